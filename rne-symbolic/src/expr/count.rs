@@ -1,0 +1,89 @@
+//! Operation counts of expression DAGs.
+
+use std::fmt;
+use std::ops::Add;
+
+use super::graph::ExprGraph;
+use super::node::{Id, Node};
+
+/// Number of arithmetic operations needed to evaluate a set of expressions once, each shared
+/// node counted once. A negation feeding an addition is a subtraction, and counted as one
+/// addition; other negations are counted separately.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct OpCount {
+    /// Multiplications.
+    pub mul: usize,
+    /// Additions and subtractions.
+    pub add: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Negations that are not absorbed into a subtraction.
+    pub neg: usize,
+    /// Sines.
+    pub sin: usize,
+    /// Cosines.
+    pub cos: usize,
+    /// Square roots.
+    pub sqrt: usize,
+}
+
+impl OpCount {
+    /// Total number of operations of any kind.
+    pub fn total(&self) -> usize {
+        self.mul + self.add + self.div + self.neg + self.sin + self.cos + self.sqrt
+    }
+}
+
+impl Add for OpCount {
+    type Output = OpCount;
+    fn add(self, o: OpCount) -> OpCount {
+        OpCount {
+            mul: self.mul + o.mul,
+            add: self.add + o.add,
+            div: self.div + o.div,
+            neg: self.neg + o.neg,
+            sin: self.sin + o.sin,
+            cos: self.cos + o.cos,
+            sqrt: self.sqrt + o.sqrt,
+        }
+    }
+}
+
+impl fmt::Display for OpCount {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} mul, {} add, {} div, {} neg, {} sin, {} cos, {} sqrt",
+            self.mul, self.add, self.div, self.neg, self.sin, self.cos, self.sqrt
+        )
+    }
+}
+
+impl ExprGraph {
+    /// Operations needed to evaluate `outputs` from the symbols, sharing common subexpressions.
+    pub fn op_count(&self, outputs: &[Id]) -> OpCount {
+        let nodes = self.reachable(outputs);
+        let mut count = OpCount::default();
+        // A negation is free when every use of it is an addition (which becomes a subtraction).
+        let mut materialised: std::collections::HashSet<Id> = outputs.iter().copied().collect();
+        for &id in &nodes {
+            let node = self.node(id);
+            if !matches!(node, Node::Add(..)) {
+                materialised.extend(node.children().filter(|&c| matches!(self.node(c), Node::Neg(_))));
+            }
+        }
+        for &id in &nodes {
+            match self.node(id) {
+                Node::Const(_) | Node::Symbol(_) => {}
+                Node::Add(..) => count.add += 1,
+                Node::Mul(..) => count.mul += 1,
+                Node::Div(..) => count.div += 1,
+                Node::Neg(_) => count.neg += usize::from(materialised.contains(&id)),
+                Node::Sin(_) => count.sin += 1,
+                Node::Cos(_) => count.cos += 1,
+                Node::Sqrt(_) => count.sqrt += 1,
+            }
+        }
+        count
+    }
+}

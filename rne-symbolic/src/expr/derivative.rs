@@ -1,0 +1,87 @@
+//! Symbolic differentiation.
+
+use std::collections::HashMap;
+
+use super::graph::ExprGraph;
+use super::node::{Id, Node, Symbol};
+
+/// Differentiates expressions of a graph with respect to one symbol, remembering the
+/// derivative of every node it has visited so that the derivatives of many outputs share work.
+#[derive(Debug)]
+pub struct Differentiator {
+    wrt: Symbol,
+    memo: HashMap<Id, Id>,
+}
+
+impl Differentiator {
+    /// A differentiator with respect to `wrt`.
+    pub fn new(wrt: Symbol) -> Differentiator {
+        Differentiator { wrt, memo: HashMap::new() }
+    }
+
+    /// ∂expr/∂wrt, built in `graph` (chain rule; sin' = cos, cos' = −sin, sqrt' = 1/(2 sqrt)).
+    pub fn derivative(&mut self, graph: &mut ExprGraph, expr: Id) -> Id {
+        if let Some(&d) = self.memo.get(&expr) {
+            return d;
+        }
+        for id in graph.reachable(&[expr]) {
+            if self.memo.contains_key(&id) {
+                continue;
+            }
+            let d = |c: Id| self.memo[&c];
+            let derivative = match graph.node(id) {
+                Node::Const(_) => graph.zero(),
+                Node::Symbol(s) if s == self.wrt => graph.one(),
+                Node::Symbol(_) => graph.zero(),
+                Node::Add(a, b) => {
+                    let (da, db) = (d(a), d(b));
+                    graph.add(da, db)
+                }
+                Node::Mul(a, b) => {
+                    let (da, db) = (d(a), d(b));
+                    let left = graph.mul(da, b);
+                    let right = graph.mul(a, db);
+                    graph.add(left, right)
+                }
+                Node::Div(a, b) => {
+                    // (a/b)' = (a' − (a/b) b') / b
+                    let (da, db) = (d(a), d(b));
+                    let quotient = graph.div(a, b);
+                    let correction = graph.mul(quotient, db);
+                    let numerator = graph.sub(da, correction);
+                    graph.div(numerator, b)
+                }
+                Node::Neg(a) => {
+                    let da = d(a);
+                    graph.neg(da)
+                }
+                Node::Sin(a) => {
+                    let da = d(a);
+                    let c = graph.cos(a);
+                    graph.mul(c, da)
+                }
+                Node::Cos(a) => {
+                    let da = d(a);
+                    let s = graph.sin(a);
+                    let ds = graph.mul(s, da);
+                    graph.neg(ds)
+                }
+                Node::Sqrt(a) => {
+                    let da = d(a);
+                    let two = graph.constant(2.0);
+                    let denominator = graph.mul(two, id);
+                    graph.div(da, denominator)
+                }
+            };
+            self.memo.insert(id, derivative);
+        }
+        self.memo[&expr]
+    }
+}
+
+impl ExprGraph {
+    /// ∂expr/∂wrt.
+    pub fn derivative(&mut self, expr: Id, wrt: Symbol) -> Id {
+        Differentiator::new(wrt).derivative(self, expr)
+    }
+}

@@ -1,0 +1,370 @@
+//! The hash-consed expression DAG and its simplifying constructors.
+
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+
+use super::node::{Constant, Id, Node, Symbol};
+use super::symbols::SymbolTable;
+
+/// A hash-consed directed acyclic graph of scalar expressions.
+///
+/// Nodes live in an arena and are never removed. Every node is unique (structural sharing
+/// through a `HashMap<Node, Id>` memo), and its children always come earlier in the arena, so
+/// `0..len()` is a topological order. The constructors (`add`, `mul`, `sin`, ...) fold
+/// constants and apply identities that are exact in real arithmetic and never increase the
+/// operation count: `x·0 = 0`, `x·1 = x`, `x + 0 = x`, `x + (−x) = 0`, `−(−x) = x`,
+/// `sin(kπ/2)` and `cos(kπ/2)` exactly, and negations pulled outwards (`(−a)·b = −(a·b)`)
+/// so that `a·b` and `−a·b` share their product.
+#[derive(Clone, Debug, Default)]
+pub struct ExprGraph {
+    nodes: Vec<Node>,
+    memo: HashMap<Node, Id>,
+    symbols: SymbolTable,
+}
+
+impl ExprGraph {
+    /// An empty graph with the given symbol names.
+    pub fn new(symbols: SymbolTable) -> ExprGraph {
+        ExprGraph { nodes: Vec::new(), memo: HashMap::new(), symbols }
+    }
+
+    /// Names of the joint and parameter symbols.
+    pub fn symbols(&self) -> &SymbolTable {
+        &self.symbols
+    }
+
+    /// Mutable access to the symbol names (to add parameters while building a model).
+    pub fn symbols_mut(&mut self) -> &mut SymbolTable {
+        &mut self.symbols
+    }
+
+    /// Number of nodes in the arena.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the arena is empty.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The node behind an id.
+    pub fn node(&self, id: Id) -> Node {
+        self.nodes[id.index()]
+    }
+
+    /// The value of a constant node, `None` for any other node.
+    pub fn as_const(&self, id: Id) -> Option<f64> {
+        match self.node(id) {
+            Node::Const(c) => Some(c.value()),
+            _ => None,
+        }
+    }
+
+    /// Whether `id` is the constant zero.
+    pub fn is_zero(&self, id: Id) -> bool {
+        self.as_const(id) == Some(0.0)
+    }
+
+    /// Whether `id` is the constant one.
+    pub fn is_one(&self, id: Id) -> bool {
+        self.as_const(id) == Some(1.0)
+    }
+
+    fn intern(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.memo.get(&node) {
+            return id;
+        }
+        debug_assert!(node.children().all(|c| c.index() < self.nodes.len()));
+        let id = Id::from_index(self.nodes.len());
+        self.nodes.push(node);
+        self.memo.insert(node, id);
+        id
+    }
+
+    /// A constant. Non-finite values are accepted (they arise only from user data that
+    /// evaluation would turn into NaN anyway) but never produced by folding.
+    pub fn constant(&mut self, value: f64) -> Id {
+        self.intern(Node::Const(Constant::new(value)))
+    }
+
+    /// The constant zero.
+    pub fn zero(&mut self) -> Id {
+        self.constant(0.0)
+    }
+
+    /// The constant one.
+    pub fn one(&mut self) -> Id {
+        self.constant(1.0)
+    }
+
+    /// A free variable.
+    pub fn symbol(&mut self, symbol: Symbol) -> Id {
+        self.intern(Node::Symbol(symbol))
+    }
+
+    /// `a + b`.
+    pub fn add(&mut self, a: Id, b: Id) -> Id {
+        match (self.node(a), self.node(b)) {
+            (Node::Const(x), Node::Const(y)) => {
+                if let Some(id) = self.fold(x.value() + y.value()) {
+                    return id;
+                }
+            }
+            (Node::Const(x), _) if x.value() == 0.0 => return b,
+            (_, Node::Const(y)) if y.value() == 0.0 => return a,
+            (Node::Neg(x), Node::Neg(y)) => {
+                let sum = self.add(x, y);
+                return self.neg(sum);
+            }
+            (Node::Neg(x), _) if x == b => return self.zero(),
+            (_, Node::Neg(y)) if y == a => return self.zero(),
+            _ => {}
+        }
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        self.intern(Node::Add(a, b))
+    }
+
+    /// `a − b`, stored as `a + (−b)`.
+    pub fn sub(&mut self, a: Id, b: Id) -> Id {
+        let nb = self.neg(b);
+        self.add(a, nb)
+    }
+
+    /// `−a`.
+    pub fn neg(&mut self, a: Id) -> Id {
+        match self.node(a) {
+            Node::Const(x) => self.constant(-x.value()),
+            Node::Neg(x) => x,
+            _ => self.intern(Node::Neg(a)),
+        }
+    }
+
+    /// `a · b`.
+    pub fn mul(&mut self, a: Id, b: Id) -> Id {
+        match (self.node(a), self.node(b)) {
+            (Node::Const(x), Node::Const(y)) => {
+                if let Some(id) = self.fold(x.value() * y.value()) {
+                    return id;
+                }
+            }
+            (Node::Const(x), _) | (_, Node::Const(x)) if x.value() == 0.0 => return self.zero(),
+            (Node::Const(x), _) if x.value() == 1.0 => return b,
+            (_, Node::Const(y)) if y.value() == 1.0 => return a,
+            (Node::Neg(x), _) => {
+                let product = self.mul(x, b);
+                return self.neg(product);
+            }
+            (_, Node::Neg(y)) => {
+                let product = self.mul(a, y);
+                return self.neg(product);
+            }
+            (Node::Const(x), _) if x.value() < 0.0 => {
+                let c = self.constant(-x.value());
+                let product = self.mul(c, b);
+                return self.neg(product);
+            }
+            (_, Node::Const(y)) if y.value() < 0.0 => {
+                let c = self.constant(-y.value());
+                let product = self.mul(a, c);
+                return self.neg(product);
+            }
+            (Node::Const(x), Node::Mul(p, r)) | (Node::Mul(p, r), Node::Const(x)) => {
+                let inner = match (self.as_const(p), self.as_const(r)) {
+                    (Some(y), _) => Some((y, r)),
+                    (_, Some(y)) => Some((y, p)),
+                    _ => None,
+                };
+                if let Some((y, rest)) = inner {
+                    if let Some(c) = self.fold(x.value() * y) {
+                        return self.mul(c, rest);
+                    }
+                }
+            }
+            _ => {}
+        }
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        self.intern(Node::Mul(a, b))
+    }
+
+    /// `a · a`.
+    pub fn square(&mut self, a: Id) -> Id {
+        self.mul(a, a)
+    }
+
+    /// `a / b`. Division by a power of two becomes an exact multiplication.
+    pub fn div(&mut self, a: Id, b: Id) -> Id {
+        match (self.node(a), self.node(b)) {
+            (Node::Const(x), Node::Const(y)) => {
+                if let Some(id) = self.fold(x.value() / y.value()) {
+                    return id;
+                }
+            }
+            (_, Node::Const(y)) if y.value() == 1.0 => return a,
+            (Node::Const(x), _) if x.value() == 0.0 && !self.is_zero(b) => return a,
+            (Node::Neg(x), _) => {
+                let quotient = self.div(x, b);
+                return self.neg(quotient);
+            }
+            (_, Node::Neg(y)) => {
+                let quotient = self.div(a, y);
+                return self.neg(quotient);
+            }
+            (_, Node::Const(y)) if is_power_of_two(y.value()) => {
+                let reciprocal = self.constant(1.0 / y.value());
+                return self.mul(a, reciprocal);
+            }
+            _ => {}
+        }
+        self.intern(Node::Div(a, b))
+    }
+
+    /// `sin a`, exact for constant multiples of π/2.
+    pub fn sin(&mut self, a: Id) -> Id {
+        match self.node(a) {
+            Node::Const(x) => self.trig_constant(x.value(), 0),
+            Node::Neg(x) => {
+                let s = self.sin(x);
+                self.neg(s)
+            }
+            _ => self.intern(Node::Sin(a)),
+        }
+    }
+
+    /// `cos a`, exact for constant multiples of π/2.
+    pub fn cos(&mut self, a: Id) -> Id {
+        match self.node(a) {
+            Node::Const(x) => self.trig_constant(x.value(), 1),
+            Node::Neg(x) => self.cos(x),
+            _ => self.intern(Node::Cos(a)),
+        }
+    }
+
+    /// `sqrt a`.
+    pub fn sqrt(&mut self, a: Id) -> Id {
+        if let Some(x) = self.as_const(a) {
+            if x >= 0.0 {
+                return self.constant(x.sqrt());
+            }
+        }
+        self.intern(Node::Sqrt(a))
+    }
+
+    /// Sum of a list (zero when empty), accumulated left to right.
+    pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
+        let mut total = self.zero();
+        for t in terms {
+            total = self.add(total, t);
+        }
+        total
+    }
+
+    fn fold(&mut self, value: f64) -> Option<Id> {
+        value.is_finite().then(|| self.constant(value))
+    }
+
+    /// sin (phase 0) or cos (phase 1) of a constant; exact at multiples of π/2.
+    fn trig_constant(&mut self, x: f64, phase: i64) -> Id {
+        let k = (x / FRAC_PI_2).round();
+        if k.abs() < 1e15 && (k * FRAC_PI_2 - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) {
+            let exact = [0.0, 1.0, 0.0, -1.0][((k as i64 + phase).rem_euclid(4)) as usize];
+            return self.constant(exact);
+        }
+        self.constant(if phase == 0 { x.sin() } else { x.cos() })
+    }
+}
+
+fn is_power_of_two(x: f64) -> bool {
+    if !x.is_normal() {
+        return false;
+    }
+    let bits = x.abs().to_bits();
+    bits & ((1u64 << 52) - 1) == 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn graph() -> (ExprGraph, Id, Id) {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["q1", "q2"]));
+        let x = g.symbol(Symbol::Position(0));
+        let y = g.symbol(Symbol::Position(1));
+        (g, x, y)
+    }
+
+    #[test]
+    fn identical_expressions_share_one_node() {
+        let (mut g, x, y) = graph();
+        let a = g.mul(x, y);
+        let b = g.mul(y, x);
+        assert_eq!(a, b);
+        let before = g.len();
+        let c = g.add(a, x);
+        let d = g.add(x, b);
+        assert_eq!(c, d);
+        assert_eq!(g.len(), before + 1);
+    }
+
+    #[test]
+    fn multiplicative_and_additive_identities_fold() {
+        let (mut g, x, _) = graph();
+        let zero = g.zero();
+        let one = g.one();
+        assert_eq!(g.mul(x, zero), zero);
+        assert_eq!(g.mul(one, x), x);
+        assert_eq!(g.add(x, zero), x);
+        let nx = g.neg(x);
+        assert_eq!(g.neg(nx), x);
+        assert_eq!(g.add(x, nx), zero);
+        let minus_one = g.constant(-1.0);
+        assert_eq!(g.mul(minus_one, x), nx);
+    }
+
+    #[test]
+    fn negation_is_pulled_out_of_products() {
+        let (mut g, x, y) = graph();
+        let nx = g.neg(x);
+        let xy = g.mul(x, y);
+        let p = g.mul(nx, y);
+        assert_eq!(g.node(p), Node::Neg(xy));
+        let minus_two = g.constant(-2.0);
+        let two = g.constant(2.0);
+        let two_x = g.mul(two, x);
+        let q = g.mul(minus_two, x);
+        assert_eq!(g.node(q), Node::Neg(two_x));
+    }
+
+    #[test]
+    fn trig_of_multiples_of_half_pi_is_exact() {
+        let (mut g, _, _) = graph();
+        for (angle, s, c) in [(0.0, 0.0, 1.0), (FRAC_PI_2, 1.0, 0.0), (PI, 0.0, -1.0), (-FRAC_PI_2, -1.0, 0.0)] {
+            let a = g.constant(angle);
+            let sa = g.sin(a);
+            let ca = g.cos(a);
+            assert_eq!(g.as_const(sa), Some(s), "sin({angle})");
+            assert_eq!(g.as_const(ca), Some(c), "cos({angle})");
+        }
+        let third = g.constant(PI / 3.0);
+        let c = g.cos(third);
+        assert!((g.as_const(c).unwrap() - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn constants_fold_and_division_by_powers_of_two_is_multiplication() {
+        let (mut g, x, _) = graph();
+        let two = g.constant(2.0);
+        let three = g.constant(3.0);
+        let six = g.mul(two, three);
+        assert_eq!(g.as_const(six), Some(6.0));
+        let half_x = g.div(x, two);
+        let half = g.constant(0.5);
+        assert_eq!(g.node(half_x), Node::Mul(x.min(half), x.max(half)));
+        let zero = g.zero();
+        let by_zero = g.div(x, zero);
+        assert_eq!(g.node(by_zero), Node::Div(x, zero));
+        let nested = g.mul(two, half_x);
+        assert_eq!(nested, x);
+    }
+}

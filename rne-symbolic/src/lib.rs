@@ -1,0 +1,13 @@
+//! Symbolic Newton–Euler dynamics of robot arms.
+//!
+//! The pipeline: a robot spec (TOML) is read into a [`RobotModel`] whose geometry and inertia
+//! are expressions in an [`ExprGraph`]; the Newton–Euler recursion of the thesis's chapter 3
+//! runs on those expressions; the joint torques are then taken apart into M(q), the
+//! Christoffel C(q, q̇), g(q), the bias and the energies.
+#![deny(missing_docs)]
+
+pub mod expr;
+mod real;
+
+pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
+pub use real::Real;

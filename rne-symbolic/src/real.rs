@@ -1,0 +1,85 @@
+//! The small real-number trait that expressions are evaluated in and generated kernels are
+//! generic over.
+
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A real scalar: what evaluation of an [`ExprGraph`](crate::ExprGraph) and the generic
+/// (`scalar: generic`) kernels need. Implemented for `f32`, `f64` and
+/// [`DoubleDouble`](crate::DoubleDouble).
+pub trait Real:
+    Copy
+    + Debug
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+{
+    /// The value nearest to `x`.
+    fn from_f64(x: f64) -> Self;
+    /// The `f64` nearest to `self`.
+    fn to_f64(self) -> f64;
+    /// `(sin self, cos self)`.
+    fn sin_cos(self) -> (Self, Self);
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Sine.
+    fn sin(self) -> Self {
+        self.sin_cos().0
+    }
+    /// Cosine.
+    fn cos(self) -> Self {
+        self.sin_cos().1
+    }
+    /// Zero.
+    fn zero() -> Self {
+        Self::from_f64(0.0)
+    }
+    /// One.
+    fn one() -> Self {
+        Self::from_f64(1.0)
+    }
+    /// Absolute value.
+    fn abs(self) -> Self {
+        if self < Self::zero() {
+            -self
+        } else {
+            self
+        }
+    }
+}
+
+impl Real for f64 {
+    fn from_f64(x: f64) -> f64 {
+        x
+    }
+    fn to_f64(self) -> f64 {
+        self
+    }
+    fn sin_cos(self) -> (f64, f64) {
+        f64::sin_cos(self)
+    }
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+}
+
+impl Real for f32 {
+    fn from_f64(x: f64) -> f32 {
+        x as f32
+    }
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    fn sin_cos(self) -> (f32, f32) {
+        f32::sin_cos(self)
+    }
+    fn sqrt(self) -> f32 {
+        f32::sqrt(self)
+    }
+}
