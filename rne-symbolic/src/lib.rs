@@ -6,8 +6,13 @@
 //! Christoffel C(q, q̇), g(q), the bias and the energies.
 #![deny(missing_docs)]
 
+pub mod canonical;
+mod double_double;
 pub mod expr;
+pub mod model;
 mod real;
+pub mod spec;
 
 pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
+pub use model::{JointKind, Link, NumericModel, RobotModel};
 pub use real::Real;

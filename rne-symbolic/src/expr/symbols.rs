@@ -28,6 +28,11 @@ impl SymbolTable {
         &self.parameters
     }
 
+    /// Replaces the joint variable names (after joints were locked or reordered).
+    pub fn set_joints<S: Into<String>>(&mut self, joints: impl IntoIterator<Item = S>) {
+        self.joints = joints.into_iter().map(Into::into).collect();
+    }
+
     /// Adds a joint variable and returns its index.
     pub fn push_joint(&mut self, name: impl Into<String>) -> u16 {
         self.joints.push(name.into());

@@ -1,0 +1,1 @@
+//! The independent numeric reference: spatial-vector RNEA, CRBA and ABA on nalgebra.

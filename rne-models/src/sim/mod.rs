@@ -1,0 +1,1 @@
+//! Simulation: integrators, controllers and the thesis's chapter 6 experiments.

@@ -1,0 +1,1 @@
+//! Canonical polynomial form of expressions, for exact comparison and readable printing.

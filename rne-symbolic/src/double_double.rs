@@ -1,0 +1,1 @@
+//! Double-double arithmetic: about 32 significant digits from a pair of `f64`.

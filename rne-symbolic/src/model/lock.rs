@@ -1,0 +1,58 @@
+//! Locking joints at constant values (the macro's `lock:` scene setting).
+
+use super::{axis_angle_rotation, JointKind, RobotModel};
+
+/// Why a joint could not be locked.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LockError {
+    /// No joint variable has this name.
+    #[error("no joint named `{name}` to lock (joints: {known})")]
+    UnknownJoint {
+        /// The name asked for.
+        name: String,
+        /// The model's joint names, comma-separated.
+        known: String,
+    },
+}
+
+impl RobotModel {
+    /// Turns joint `name` into a fixed joint at position `value` (rad or m): its rotation or
+    /// translation is folded into the link's placement and the joint leaves the state; later
+    /// joints are renumbered.
+    pub fn lock_joint(&mut self, name: &str, value: f64) -> Result<(), LockError> {
+        let k = self.joints.iter().position(|j| j.name == name).ok_or_else(|| LockError::UnknownJoint {
+            name: name.to_owned(),
+            known: self.joint_names().join(", "),
+        })?;
+        let i = self.joints[k].link;
+        let g = &mut self.graph;
+        let link = &mut self.links[i];
+        let angle = g.constant(value);
+        match link.kind {
+            JointKind::Revolute => {
+                let (c, s) = (g.cos(angle), g.sin(angle));
+                let motion = axis_angle_rotation(g, link.axis, c, s);
+                link.rotation = g.mat_mul(&link.rotation, &motion);
+            }
+            JointKind::Prismatic => {
+                let offset = g.vscale(angle, link.axis);
+                let moved = g.mat_vec(&link.rotation, offset);
+                link.translation = g.vadd(link.translation, moved);
+            }
+            JointKind::Fixed => unreachable!("fixed joints have no variable"),
+        }
+        link.kind = JointKind::Fixed;
+        link.joint = None;
+        self.joints.remove(k);
+        for link in &mut self.links {
+            if let Some(j) = link.joint.as_mut() {
+                if *j > k {
+                    *j -= 1;
+                }
+            }
+        }
+        let names = self.joint_names();
+        self.graph.symbols_mut().set_joints(names);
+        Ok(())
+    }
+}

@@ -1,0 +1,140 @@
+//! The robot model every front end (TOML spec, URDF) produces and every back end consumes.
+//!
+//! A model is a tree of rigid links. Link `i` carries a *body frame* B_i whose origin lies on
+//! the axis of its joint. Its placement relative to the parent's body frame B_p is
+//!
+//! ```text
+//! R_i^p(q) = E_i · Rot(u_i, q_i)      (revolute)     origin of B_i in B_p: t_i
+//! R_i^p    = E_i                      (prismatic)    origin of B_i in B_p: t_i + E_i u_i q_i
+//! R_i^p    = E_i                      (fixed)        origin of B_i in B_p: t_i
+//! ```
+//!
+//! with a constant rotation `E_i`, a constant attachment point `t_i` and a unit joint axis
+//! `u_i` expressed in B_i. In the thesis's frame convention (chapter 3) B_i has the
+//! orientation of frame i and the origin of frame i−1, so `u_i = b_i` of (3.27),
+//! `t_c = r_{i−1,i}` for every child `c` of link `i`, and the COM of link i in B_i is
+//! `r_{i−1,ci}`. Standard DH, modified DH and URDF origins are mapped onto the same form by
+//! the spec reader.
+//!
+//! All geometric and inertial quantities are expressions in the model's [`ExprGraph`], so a
+//! parameter is either a folded number or a symbol, as the caller chose when loading.
+
+mod geometry;
+mod lock;
+mod merge;
+mod numeric;
+
+pub use geometry::{
+    as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation, Axis,
+    Transform,
+};
+pub use numeric::{NumericLink, NumericModel};
+
+use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
+
+/// The kind of a joint.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum JointKind {
+    /// Rotation about the joint axis by q.
+    Revolute,
+    /// Translation along the joint axis by q.
+    Prismatic,
+    /// No motion: the link is rigidly attached to its parent.
+    Fixed,
+}
+
+/// A named model parameter and its value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameter {
+    /// The name used in spec expressions.
+    pub name: String,
+    /// The value from the spec.
+    pub value: f64,
+}
+
+/// One rigid link and the joint that connects it to its parent.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// The link's name.
+    pub name: String,
+    /// Index of the parent link in [`RobotModel::links`]; `None` for a link on the base.
+    pub parent: Option<usize>,
+    /// Revolute, prismatic or fixed.
+    pub kind: JointKind,
+    /// Index of the joint variable in the model's joint order (`None` for fixed joints).
+    pub joint: Option<usize>,
+    /// `E_i`: orientation of the joint frame in the parent's body frame.
+    pub rotation: Mat3,
+    /// `t_i`: position of the joint in the parent's body frame.
+    pub translation: Vec3,
+    /// `u_i`: unit joint axis in the body frame (unused for fixed joints).
+    pub axis: Vec3,
+    /// Mass m_i.
+    pub mass: Id,
+    /// Centre of mass in the body frame (`r_{i−1,ci}` in the thesis's convention).
+    pub com: Vec3,
+    /// Inertia tensor about the centre of mass, in body-frame axes (I_i of (3.5)).
+    pub inertia: Mat3,
+}
+
+/// A joint variable of the model.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct JointVariable {
+    /// Its name (`q` of a TOML link, the joint name of a URDF).
+    pub name: String,
+    /// The link it moves.
+    pub link: usize,
+}
+
+/// A robot: a tree of links with expression-valued geometry and inertia.
+///
+/// Invariants: a link's parent comes before it in `links`; joints are numbered in
+/// depth-first order from the root with children in spec order; `joints[k].link` is the link
+/// whose `joint` is `Some(k)`.
+#[derive(Clone, Debug)]
+pub struct RobotModel {
+    /// The robot's name.
+    pub name: String,
+    /// The graph holding every expression of the model (and, later, of its dynamics).
+    pub graph: ExprGraph,
+    /// The spec's parameters with their values, in spec order (symbol `Parameter(k)` is
+    /// `parameters[k]` when parameters are kept symbolic).
+    pub parameters: Vec<Parameter>,
+    /// Gravitational acceleration in the base frame (g_0 of (4.10)).
+    pub gravity: Vec3,
+    /// The links, parents first.
+    pub links: Vec<Link>,
+    /// The joint variables, in joint order.
+    pub joints: Vec<JointVariable>,
+}
+
+impl RobotModel {
+    /// Number of joint variables.
+    pub fn dof(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Joint variable names in joint order.
+    pub fn joint_names(&self) -> Vec<String> {
+        self.joints.iter().map(|j| j.name.clone()).collect()
+    }
+
+    /// Indices of the children of `link` (or of the base when `None`), in order.
+    pub fn children(&self, link: Option<usize>) -> Vec<usize> {
+        (0..self.links.len()).filter(|&i| self.links[i].parent == link).collect()
+    }
+
+    /// The values of the parameter symbols, for evaluating a model loaded with symbolic
+    /// parameters; joint symbols are not covered.
+    pub fn parameter_value(&self, symbol: Symbol) -> Option<f64> {
+        match symbol {
+            Symbol::Parameter(k) => self.parameters.get(k as usize).map(|p| p.value),
+            _ => None,
+        }
+    }
+
+    /// Replaces gravity by a constant vector (the macro's `gravity:` scene setting).
+    pub fn set_gravity(&mut self, gravity: [f64; 3]) {
+        self.gravity = self.graph.const_vec(gravity);
+    }
+}
