@@ -8,11 +8,14 @@
 
 pub mod canonical;
 mod double_double;
+pub mod dynamics;
 pub mod expr;
 pub mod model;
+pub mod newton_euler;
 mod real;
 pub mod spec;
 
 pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
+pub use dynamics::SymbolicDynamics;
 pub use model::{JointKind, Link, NumericModel, RobotModel};
 pub use real::Real;

@@ -1,0 +1,192 @@
+//! Taking the Newton–Euler torques apart: M(q), C(q, q̇), g(q), the bias, the energies and
+//! forward dynamics, each built on demand into the model's expression graph (3.1).
+
+mod christoffel;
+mod energy;
+mod ldlt;
+
+use crate::expr::{Id, Symbol, Vec3};
+use crate::model::RobotModel;
+use crate::newton_euler::{newton_euler, JointMotion, JointReaction, NewtonEuler};
+
+/// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
+///
+/// Each quantity is built the first time it is asked for, into [`SymbolicDynamics::model`]'s
+/// graph, and cached: a code generator that needs only the mass matrix never builds the
+/// Christoffel symbols. Fixed joints are merged into their parents first.
+#[derive(Clone, Debug)]
+pub struct SymbolicDynamics {
+    /// The model (fixed links merged) whose graph holds every expression built so far.
+    pub model: RobotModel,
+    full: Option<NewtonEuler>,
+    mass_matrix: Option<Vec<Vec<Id>>>,
+    gravity_torques: Option<Vec<Id>>,
+    bias_torques: Option<Vec<Id>>,
+    coriolis_matrix: Option<Vec<Vec<Id>>>,
+    kinetic_energy: Option<Id>,
+    potential_energy: Option<Id>,
+    forward_dynamics: Option<Vec<Id>>,
+}
+
+impl SymbolicDynamics {
+    /// Prepares the dynamics of `model`.
+    pub fn new(model: &RobotModel) -> SymbolicDynamics {
+        SymbolicDynamics {
+            model: model.merge_fixed_links(),
+            full: None,
+            mass_matrix: None,
+            gravity_torques: None,
+            bias_torques: None,
+            coriolis_matrix: None,
+            kinetic_energy: None,
+            potential_energy: None,
+            forward_dynamics: None,
+        }
+    }
+
+    /// Number of joint variables.
+    pub fn dof(&self) -> usize {
+        self.model.dof()
+    }
+
+    fn joint_symbols(&mut self, make: fn(u16) -> Symbol) -> Vec<Id> {
+        (0..self.dof()).map(|k| self.model.graph.symbol(make(k as u16))).collect()
+    }
+
+    fn zeros(&mut self) -> Vec<Id> {
+        vec![self.model.graph.zero(); self.dof()]
+    }
+
+    fn run(&mut self, qd: Vec<Id>, qdd: Vec<Id>, gravity: Vec3) -> NewtonEuler {
+        let q = self.joint_symbols(Symbol::Position);
+        newton_euler(&mut self.model, &JointMotion { q, qd, qdd }, gravity)
+    }
+
+    fn full(&mut self) -> &NewtonEuler {
+        if self.full.is_none() {
+            let qd = self.joint_symbols(Symbol::Velocity);
+            let qdd = self.joint_symbols(Symbol::Acceleration);
+            let gravity = self.model.gravity;
+            self.full = Some(self.run(qd, qdd, gravity));
+        }
+        self.full.as_ref().expect("just built")
+    }
+
+    /// τ(q, q̇, q̈): the joint torques of the full recursion.
+    pub fn inverse_dynamics(&mut self) -> Vec<Id> {
+        self.full().torques.clone()
+    }
+
+    /// The joint reactions f_i, τ_i of every link (body frames), from the full recursion.
+    pub fn joint_reactions(&mut self) -> Vec<JointReaction> {
+        self.full().reactions.clone()
+    }
+
+    /// M(q), row-major and symmetric (the same `Id` at (i, j) and (j, i)): column j is the
+    /// torque of the recursion with q̇ = 0, g = 0 and q̈ = e_j.
+    pub fn mass_matrix(&mut self) -> Vec<Vec<Id>> {
+        if let Some(m) = &self.mass_matrix {
+            return m.clone();
+        }
+        let n = self.dof();
+        let zero_gravity = self.model.graph.zero_vec();
+        let mut m = vec![vec![self.model.graph.zero(); n]; n];
+        for j in 0..n {
+            let mut qdd = self.zeros();
+            qdd[j] = self.model.graph.one();
+            let qd = self.zeros();
+            let column = self.run(qd, qdd, zero_gravity).torques;
+            for i in j..n {
+                m[i][j] = column[i];
+                m[j][i] = column[i];
+            }
+        }
+        self.mass_matrix = Some(m.clone());
+        m
+    }
+
+    /// g(q): the torques of the recursion with q̇ = q̈ = 0.
+    pub fn gravity_torques(&mut self) -> Vec<Id> {
+        if let Some(g) = &self.gravity_torques {
+            return g.clone();
+        }
+        let (qd, qdd, gravity) = (self.zeros(), self.zeros(), self.model.gravity);
+        let g = self.run(qd, qdd, gravity).torques;
+        self.gravity_torques = Some(g.clone());
+        g
+    }
+
+    /// C(q, q̇) q̇ + g(q): the torques of the recursion with q̈ = 0.
+    pub fn bias_torques(&mut self) -> Vec<Id> {
+        if let Some(b) = &self.bias_torques {
+            return b.clone();
+        }
+        let qd = self.joint_symbols(Symbol::Velocity);
+        let (qdd, gravity) = (self.zeros(), self.model.gravity);
+        let b = self.run(qd, qdd, gravity).torques;
+        self.bias_torques = Some(b.clone());
+        b
+    }
+
+    /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric.
+    pub fn coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
+        if let Some(c) = &self.coriolis_matrix {
+            return c.clone();
+        }
+        let m = self.mass_matrix();
+        let qd = self.joint_symbols(Symbol::Velocity);
+        let c = christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd);
+        self.coriolis_matrix = Some(c.clone());
+        c
+    }
+
+    /// Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k.
+    pub fn mass_matrix_derivative(&mut self) -> Vec<Vec<Id>> {
+        let m = self.mass_matrix();
+        let qd = self.joint_symbols(Symbol::Velocity);
+        christoffel::time_derivative(&mut self.model.graph, &m, &qd)
+    }
+
+    /// Kinetic energy ½ Σ (m_i v_ci · v_ci + ω_iᵀ I_i ω_i), from the link velocities.
+    pub fn kinetic_energy(&mut self) -> Id {
+        if let Some(t) = self.kinetic_energy {
+            return t;
+        }
+        let q = self.joint_symbols(Symbol::Position);
+        let qd = self.joint_symbols(Symbol::Velocity);
+        let t = energy::kinetic_energy(&mut self.model, &q, &qd);
+        self.kinetic_energy = Some(t);
+        t
+    }
+
+    /// Potential energy −Σ m_i g_0 · p_ci, zero with every COM at the base origin.
+    pub fn potential_energy(&mut self) -> Id {
+        if let Some(v) = self.potential_energy {
+            return v;
+        }
+        let q = self.joint_symbols(Symbol::Position);
+        let v = energy::potential_energy(&mut self.model, &q);
+        self.potential_energy = Some(v);
+        v
+    }
+
+    /// q̈ = M(q)⁻¹ (u − C(q, q̇) q̇ − g(q)) (6.2), with u the `Force` symbols, through a
+    /// symbolic LᵀDL factorisation of M that keeps M's structural zeros.
+    pub fn forward_dynamics(&mut self) -> Vec<Id> {
+        if let Some(f) = &self.forward_dynamics {
+            return f.clone();
+        }
+        let m = self.mass_matrix();
+        let bias = self.bias_torques();
+        let u = self.joint_symbols(Symbol::Force);
+        let g = &mut self.model.graph;
+        let rhs: Vec<Id> = u.iter().zip(&bias).map(|(&u, &b)| g.sub(u, b)).collect();
+        let factor = ldlt::LtdlFactor::new(g, &m);
+        let qdd = factor.solve(g, &rhs);
+        self.forward_dynamics = Some(qdd.clone());
+        qdd
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,236 @@
+//! The symbolic Newton–Euler recursion of the thesis's chapter 3, on expression graphs.
+//!
+//! Every quantity of link i is expressed in its body frame B_i (the orientation of the
+//! thesis's frame i, with its origin on joint i's axis; see [`crate::model`]). The forward
+//! recursion runs from the base to the leaves, the backward recursion from the leaves to the
+//! base; a link may have several children (a kinematic tree), whose forces and torques are
+//! summed where the thesis's serial chain has one `R_{i+1}^i f_{i+1}`.
+//!
+//! Gravity enters as the acceleration of the base, `a_{e,0} = −g_0` (instead of the
+//! `−m_i g_i` term of (3.21)): the two are the same equation, and this way gravity needs no
+//! recursion of its own. The joint reactions f_i, τ_i therefore include the weight of the
+//! links they carry, exactly as in (3.21) and (3.24).
+
+use crate::expr::{ExprGraph, Id, Vec3};
+use crate::model::{axis_angle_rotation, JointKind, RobotModel};
+
+/// The motion of every joint variable: q, q̇ and q̈ as expressions (symbols, constants, or
+/// zeros for the special cases M, g and the bias).
+#[derive(Clone, Debug)]
+pub struct JointMotion {
+    /// Joint positions q, in joint order.
+    pub q: Vec<Id>,
+    /// Joint velocities q̇.
+    pub qd: Vec<Id>,
+    /// Joint accelerations q̈.
+    pub qdd: Vec<Id>,
+}
+
+/// Velocities and accelerations of one link, in its body frame.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct LinkMotion {
+    /// Angular velocity ω_i, (3.26).
+    pub omega: Vec3,
+    /// Angular acceleration α_i, (3.30).
+    pub alpha: Vec3,
+    /// Acceleration of the body frame's origin (the joint), the thesis's `(R_i^{i−1})ᵀ a_{e,i−1}`
+    /// of (3.34)–(3.35), plus the relative motion of a prismatic joint; gravity included as
+    /// a base acceleration.
+    pub accel: Vec3,
+    /// Acceleration of the centre of mass a_{c,i}, (3.34).
+    pub accel_com: Vec3,
+}
+
+/// The force and torque that the parent exerts on link i at the joint, in the link's body
+/// frame: f_i of (3.21) and τ_i of (3.24). Their components off the joint axis are the loads
+/// the joint must resist (the thesis, section 5.4).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct JointReaction {
+    /// f_i.
+    pub force: Vec3,
+    /// τ_i.
+    pub torque: Vec3,
+}
+
+/// Everything one pass of the recursion produces.
+#[derive(Clone, Debug)]
+pub struct NewtonEuler {
+    /// Per link: velocities and accelerations.
+    pub motion: Vec<LinkMotion>,
+    /// Per link: the joint reaction.
+    pub reactions: Vec<JointReaction>,
+    /// Per joint variable: the generalised force `u_iᵀ τ_i` (revolute) or `u_iᵀ f_i`
+    /// (prismatic), the left-hand side of (3.1).
+    pub torques: Vec<Id>,
+}
+
+/// The rotation R_i^p(q) = E_i · Rot(u_i, q_i) of one link, applied without forming the
+/// product: `Rᵀ v = Rot(u, q)ᵀ (Eᵀ v)` and `R v = E (Rot(u, q) v)`.
+struct LinkRotation {
+    fixed: crate::expr::Mat3,
+    joint: Option<crate::expr::Mat3>,
+}
+
+impl LinkRotation {
+    fn to_child(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
+        let v = g.mat_t_vec(&self.fixed, v);
+        match &self.joint {
+            Some(r) => g.mat_t_vec(r, v),
+            None => v,
+        }
+    }
+
+    fn to_parent(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
+        let v = match &self.joint {
+            Some(r) => g.mat_vec(r, v),
+            None => v,
+        };
+        g.mat_vec(&self.fixed, v)
+    }
+}
+
+/// Runs the recursion of section 3.4 on `model` for the given joint motion and gravity g_0
+/// (base frame): forward (3.26), (3.30), (3.35), (3.34) from the base outwards, backward
+/// (3.21), (3.24) from the leaves inwards, with the errata of DESIGN.md §7 applied and
+/// prismatic joints handled (no angular velocity; `u q̈ + 2 ω × u q̇` added to the linear
+/// acceleration).
+pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3) -> NewtonEuler {
+    let n = model.links.len();
+    let g = &mut model.graph;
+    let links = &model.links;
+
+    let rotations: Vec<LinkRotation> = links
+        .iter()
+        .map(|link| {
+            let joint = match (link.kind, link.joint) {
+                (JointKind::Revolute, Some(k)) => {
+                    let (c, s) = (g.cos(motion.q[k]), g.sin(motion.q[k]));
+                    Some(axis_angle_rotation(g, link.axis, c, s))
+                }
+                _ => None,
+            };
+            LinkRotation { fixed: link.rotation, joint }
+        })
+        .collect();
+
+    // Attachment point of each link on its parent (s_i in the parent's body frame):
+    // t_i, moved along E_i u_i by q for a prismatic joint.
+    let attachment: Vec<Vec3> = links
+        .iter()
+        .map(|link| match (link.kind, link.joint) {
+            (JointKind::Prismatic, Some(k)) => {
+                let slide = g.vscale(motion.q[k], link.axis);
+                let moved = g.mat_vec(&link.rotation, slide);
+                g.vadd(link.translation, moved)
+            }
+            _ => link.translation,
+        })
+        .collect();
+
+    // Forward recursion.
+    let zero = g.zero_vec();
+    let base_accel = g.vneg(gravity);
+    let mut out: Vec<LinkMotion> = Vec::with_capacity(n);
+    for (i, link) in links.iter().enumerate() {
+        let (omega_p, alpha_p, accel_p) = match link.parent {
+            Some(p) => (out[p].omega, out[p].alpha, out[p].accel),
+            None => (zero, zero, base_accel),
+        };
+        let rot = &rotations[i];
+        let joint = link.joint.map(|k| (link.kind, motion.q[k], motion.qd[k], motion.qdd[k]));
+
+        // (3.26): ω_i = (R_i^{i−1})ᵀ ω_{i−1} + b_i q̇_i.
+        let mut omega = rot.to_child(g, omega_p);
+        let mut alpha = rot.to_child(g, alpha_p);
+        if let Some((JointKind::Revolute, _, qd, qdd)) = joint {
+            let spin = g.vscale(qd, link.axis);
+            omega = g.vadd(omega, spin);
+            // (3.30): α_i = (R_i^{i−1})ᵀ α_{i−1} + b_i q̈_i + ω_i × b_i q̇_i.
+            let spin_up = g.vscale(qdd, link.axis);
+            let gyroscopic = g.cross(omega, spin);
+            alpha = g.vadd(alpha, spin_up);
+            alpha = g.vadd(alpha, gyroscopic);
+        }
+
+        // (3.35) evaluated in the parent for the point where link i is attached, then
+        // rotated into frame i: the (R_i^{i−1})ᵀ a_{e,i−1} of (3.34).
+        let s = link.translation;
+        let tangential = g.cross(alpha_p, s);
+        let omega_s = g.cross(omega_p, s);
+        let centripetal = g.cross(omega_p, omega_s);
+        let attach_accel = {
+            let a = g.vadd(accel_p, tangential);
+            g.vadd(a, centripetal)
+        };
+        let mut accel = rot.to_child(g, attach_accel);
+        if let Some((JointKind::Prismatic, q, qd, qdd)) = joint {
+            // The joint slides the body origin by u q along u: the same rigid-motion terms
+            // for that offset, plus the relative acceleration u q̈ and Coriolis 2 ω × u q̇.
+            let offset = g.vscale(q, link.axis);
+            let rate = g.vscale(qd, link.axis);
+            let tangential = g.cross(alpha, offset);
+            let omega_offset = g.cross(omega, offset);
+            let centripetal = g.cross(omega, omega_offset);
+            let omega_rate = g.cross(omega, rate);
+            let two = g.constant(2.0);
+            let coriolis = g.vscale(two, omega_rate);
+            let relative = g.vscale(qdd, link.axis);
+            for term in [tangential, centripetal, coriolis, relative] {
+                accel = g.vadd(accel, term);
+            }
+        }
+
+        // (3.34): a_{c,i} = a_i + α_i × r_{i−1,ci} + ω_i × (ω_i × r_{i−1,ci}).
+        let c = link.com;
+        let tangential = g.cross(alpha, c);
+        let omega_c = g.cross(omega, c);
+        let centripetal = g.cross(omega, omega_c);
+        let accel_com = {
+            let a = g.vadd(accel, tangential);
+            g.vadd(a, centripetal)
+        };
+        out.push(LinkMotion { omega, alpha, accel, accel_com });
+    }
+
+    // Backward recursion, leaves first (children always come after their parent).
+    let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
+    for i in (0..n).rev() {
+        let link = &links[i];
+        let LinkMotion { omega, alpha, accel_com, .. } = out[i];
+        // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
+        let mut force = g.vscale(link.mass, accel_com);
+        // (3.24): τ_i = Σ_c [R_c^i τ_c + (R_c^i f_c) × r_{i,ci}] − f_i × r_{i−1,ci}
+        //             + ω_i × (I_i ω_i) + I_i α_i,   with r_{i,ci} = c_i − s_c.
+        let i_omega = g.mat_vec(&link.inertia, omega);
+        let gyroscopic = g.cross(omega, i_omega);
+        let i_alpha = g.mat_vec(&link.inertia, alpha);
+        let mut torque = g.vadd(gyroscopic, i_alpha);
+        for child in (i + 1..n).filter(|&c| links[c].parent == Some(i)) {
+            let reaction = reactions[child].expect("children are processed before their parent");
+            let f = rotations[child].to_parent(g, reaction.force);
+            let t = rotations[child].to_parent(g, reaction.torque);
+            let lever = g.vsub(link.com, attachment[child]);
+            let moment = g.cross(f, lever);
+            force = g.vadd(force, f);
+            torque = g.vadd(torque, t);
+            torque = g.vadd(torque, moment);
+        }
+        let moment = g.cross(force, link.com);
+        torque = g.vsub(torque, moment);
+        reactions[i] = Some(JointReaction { force, torque });
+    }
+    let reactions: Vec<JointReaction> =
+        reactions.into_iter().map(|r| r.expect("every link was visited")).collect();
+
+    let mut torques = vec![g.zero(); model.joints.len()];
+    for (link, reaction) in links.iter().zip(&reactions) {
+        if let Some(k) = link.joint {
+            torques[k] = match link.kind {
+                JointKind::Revolute => g.dot(link.axis, reaction.torque),
+                JointKind::Prismatic => g.dot(link.axis, reaction.force),
+                JointKind::Fixed => g.zero(),
+            };
+        }
+    }
+    NewtonEuler { motion: out, reactions, torques }
+}
