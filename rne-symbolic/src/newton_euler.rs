@@ -89,6 +89,76 @@ impl LinkRotation {
     }
 }
 
+/// The six products ω_a ω_b (a ≤ b) of an angular velocity, shared by every
+/// `ω × (ω × v)` and by `ω × (I ω)` of one link.
+#[derive(Copy, Clone, Debug)]
+struct OmegaProducts {
+    /// [ω0², ω1², ω2²].
+    square: [Id; 3],
+    /// [ω1 ω2, ω0 ω2, ω0 ω1]: `cross[k]` is the product of the two components other than k.
+    cross: [Id; 3],
+}
+
+impl OmegaProducts {
+    fn new(g: &mut ExprGraph, w: Vec3) -> OmegaProducts {
+        OmegaProducts {
+            square: [0, 1, 2].map(|k| g.square(w[k])),
+            cross: [(1, 2), (0, 2), (0, 1)].map(|(a, b)| g.mul(w[a], w[b])),
+        }
+    }
+
+    /// ω_a ω_b.
+    fn product(&self, a: usize, b: usize) -> Id {
+        if a == b {
+            self.square[a]
+        } else {
+            self.cross[3 - a - b]
+        }
+    }
+
+    /// `ω × (ω × v) = S(ω)² v = ω (ω·v) − |ω|² v` (from (2.6)), written with the shared
+    /// products: component k is `Σ_{j≠k} ω_k ω_j v_j − (Σ_{j≠k} ω_j²) v_k`.
+    fn centripetal(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
+        [0, 1, 2].map(|k| {
+            let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+            let pa = g.mul(self.product(k, a), v[a]);
+            let pb = g.mul(self.product(k, b), v[b]);
+            let squares = g.add(self.square[a], self.square[b]);
+            let radial = g.mul(squares, v[k]);
+            let along = g.add(pa, pb);
+            g.sub(along, radial)
+        })
+    }
+
+    /// The gyroscopic torque `ω × (I ω)` of a symmetric I, as a combination of the shared
+    /// products: component k is `Σ_j (I_{k+2,j} ω_{k+1} ω_j − I_{k+1,j} ω_{k+2} ω_j)`.
+    fn gyroscopic(&self, g: &mut ExprGraph, inertia: &crate::expr::Mat3) -> Vec3 {
+        [0, 1, 2].map(|k| {
+            let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+            // Collect the coefficient of each product ω_a ω_j (from ω_a (Iω)_b) minus
+            // ω_b ω_j (from ω_b (Iω)_a), merging the product ω_a ω_b that both produce.
+            let mut coefficient: Vec<((usize, usize), Id)> = Vec::new();
+            let mut add = |g: &mut ExprGraph, pair: (usize, usize), c: Id, negate: bool| {
+                let pair = (pair.0.min(pair.1), pair.0.max(pair.1));
+                let c = if negate { g.neg(c) } else { c };
+                match coefficient.iter_mut().find(|(p, _)| *p == pair) {
+                    Some((_, existing)) => *existing = g.add(*existing, c),
+                    None => coefficient.push((pair, c)),
+                }
+            };
+            for j in 0..3 {
+                add(g, (a, j), inertia[b][j], false);
+                add(g, (b, j), inertia[a][j], true);
+            }
+            let terms: Vec<Id> = coefficient
+                .into_iter()
+                .map(|((x, y), c)| g.mul(c, self.product(x, y)))
+                .collect();
+            g.sum(terms)
+        })
+    }
+}
+
 /// Runs the recursion of section 3.4 on `model` for the given joint motion and gravity g_0
 /// (base frame): forward (3.26), (3.30), (3.35), (3.34) from the base outwards, backward
 /// (3.21), (3.24) from the leaves inwards, with the errata of DESIGN.md §7 applied and
@@ -109,7 +179,10 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
                 }
                 _ => None,
             };
-            LinkRotation { fixed: link.rotation, joint }
+            LinkRotation {
+                fixed: link.rotation,
+                joint,
+            }
         })
         .collect();
 
@@ -131,13 +204,17 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
     let zero = g.zero_vec();
     let base_accel = g.vneg(gravity);
     let mut out: Vec<LinkMotion> = Vec::with_capacity(n);
+    let mut products: Vec<OmegaProducts> = Vec::with_capacity(n);
+    let base_products = OmegaProducts::new(g, zero);
     for (i, link) in links.iter().enumerate() {
-        let (omega_p, alpha_p, accel_p) = match link.parent {
-            Some(p) => (out[p].omega, out[p].alpha, out[p].accel),
-            None => (zero, zero, base_accel),
+        let (omega_p, alpha_p, accel_p, products_p) = match link.parent {
+            Some(p) => (out[p].omega, out[p].alpha, out[p].accel, products[p]),
+            None => (zero, zero, base_accel, base_products),
         };
         let rot = &rotations[i];
-        let joint = link.joint.map(|k| (link.kind, motion.q[k], motion.qd[k], motion.qdd[k]));
+        let joint = link
+            .joint
+            .map(|k| (link.kind, motion.q[k], motion.qd[k], motion.qdd[k]));
 
         // (3.26): ω_i = (R_i^{i−1})ᵀ ω_{i−1} + b_i q̇_i.
         let mut omega = rot.to_child(g, omega_p);
@@ -156,8 +233,7 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         // rotated into frame i: the (R_i^{i−1})ᵀ a_{e,i−1} of (3.34).
         let s = link.translation;
         let tangential = g.cross(alpha_p, s);
-        let omega_s = g.cross(omega_p, s);
-        let centripetal = g.cross(omega_p, omega_s);
+        let centripetal = products_p.centripetal(g, s);
         let attach_accel = {
             let a = g.vadd(accel_p, tangential);
             g.vadd(a, centripetal)
@@ -169,8 +245,7 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
             let offset = g.vscale(q, link.axis);
             let rate = g.vscale(qd, link.axis);
             let tangential = g.cross(alpha, offset);
-            let omega_offset = g.cross(omega, offset);
-            let centripetal = g.cross(omega, omega_offset);
+            let centripetal = OmegaProducts::new(g, omega).centripetal(g, offset);
             let omega_rate = g.cross(omega, rate);
             let two = g.constant(2.0);
             let coriolis = g.vscale(two, omega_rate);
@@ -181,46 +256,64 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         }
 
         // (3.34): a_{c,i} = a_i + α_i × r_{i−1,ci} + ω_i × (ω_i × r_{i−1,ci}).
+        let own_products = OmegaProducts::new(g, omega);
         let c = link.com;
         let tangential = g.cross(alpha, c);
-        let omega_c = g.cross(omega, c);
-        let centripetal = g.cross(omega, omega_c);
+        let centripetal = own_products.centripetal(g, c);
         let accel_com = {
             let a = g.vadd(accel, tangential);
             g.vadd(a, centripetal)
         };
-        out.push(LinkMotion { omega, alpha, accel, accel_com });
+        out.push(LinkMotion {
+            omega,
+            alpha,
+            accel,
+            accel_com,
+        });
+        products.push(own_products);
     }
 
     // Backward recursion, leaves first (children always come after their parent).
     let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
     for i in (0..n).rev() {
         let link = &links[i];
-        let LinkMotion { omega, alpha, accel_com, .. } = out[i];
+        let LinkMotion {
+            omega,
+            alpha,
+            accel_com,
+            ..
+        } = out[i];
         // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
-        let mut force = g.vscale(link.mass, accel_com);
+        let inertial_force = g.vscale(link.mass, accel_com);
+        let mut force = inertial_force;
         // (3.24): τ_i = Σ_c [R_c^i τ_c + (R_c^i f_c) × r_{i,ci}] − f_i × r_{i−1,ci}
-        //             + ω_i × (I_i ω_i) + I_i α_i,   with r_{i,ci} = c_i − s_c.
-        let i_omega = g.mat_vec(&link.inertia, omega);
-        let gyroscopic = g.cross(omega, i_omega);
+        //             + ω_i × (I_i ω_i) + I_i α_i.
+        // With f_i substituted from (3.21) and the cross products regrouped as the thesis
+        // does for the planar elbow in (4.36)–(4.41) (r_{i,ci} − r_{i−1,ci} = −r_{i−1,i}):
+        //   τ_i = Σ_c [R_c^i τ_c + r_{i−1,c} × R_c^i f_c] + r_{i−1,ci} × m_i a_{c,i}
+        //         + ω_i × (I_i ω_i) + I_i α_i,
+        // where r_{i−1,c} is the point where child c is attached. Same torque, fewer
+        // products: the attachment points are sparse where the COM is not.
+        let gyroscopic = products[i].gyroscopic(g, &link.inertia);
         let i_alpha = g.mat_vec(&link.inertia, alpha);
+        let own_moment = g.cross(link.com, inertial_force);
         let mut torque = g.vadd(gyroscopic, i_alpha);
+        torque = g.vadd(torque, own_moment);
         for child in (i + 1..n).filter(|&c| links[c].parent == Some(i)) {
             let reaction = reactions[child].expect("children are processed before their parent");
             let f = rotations[child].to_parent(g, reaction.force);
             let t = rotations[child].to_parent(g, reaction.torque);
-            let lever = g.vsub(link.com, attachment[child]);
-            let moment = g.cross(f, lever);
+            let moment = g.cross(attachment[child], f);
             force = g.vadd(force, f);
             torque = g.vadd(torque, t);
             torque = g.vadd(torque, moment);
         }
-        let moment = g.cross(force, link.com);
-        torque = g.vsub(torque, moment);
         reactions[i] = Some(JointReaction { force, torque });
     }
-    let reactions: Vec<JointReaction> =
-        reactions.into_iter().map(|r| r.expect("every link was visited")).collect();
+    let reactions: Vec<JointReaction> = reactions
+        .into_iter()
+        .map(|r| r.expect("every link was visited"))
+        .collect();
 
     let mut torques = vec![g.zero(); model.joints.len()];
     for (link, reaction) in links.iter().zip(&reactions) {
@@ -232,5 +325,9 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
             };
         }
     }
-    NewtonEuler { motion: out, reactions, torques }
+    NewtonEuler {
+        motion: out,
+        reactions,
+        torques,
+    }
 }

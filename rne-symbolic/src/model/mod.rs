@@ -25,9 +25,10 @@ mod merge;
 mod numeric;
 
 pub use geometry::{
-    as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation, Axis,
-    Transform,
+    as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation,
+    Axis, Transform,
 };
+pub use lock::LockError;
 pub use numeric::{NumericLink, NumericModel};
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
@@ -121,7 +122,9 @@ impl RobotModel {
 
     /// Indices of the children of `link` (or of the base when `None`), in order.
     pub fn children(&self, link: Option<usize>) -> Vec<usize> {
-        (0..self.links.len()).filter(|&i| self.links[i].parent == link).collect()
+        (0..self.links.len())
+            .filter(|&i| self.links[i].parent == link)
+            .collect()
     }
 
     /// The values of the parameter symbols, for evaluating a model loaded with symbolic
