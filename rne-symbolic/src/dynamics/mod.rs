@@ -50,7 +50,9 @@ impl SymbolicDynamics {
     }
 
     fn joint_symbols(&mut self, make: fn(u16) -> Symbol) -> Vec<Id> {
-        (0..self.dof()).map(|k| self.model.graph.symbol(make(k as u16))).collect()
+        (0..self.dof())
+            .map(|k| self.model.graph.symbol(make(k as u16)))
+            .collect()
     }
 
     fn zeros(&mut self) -> Vec<Id> {

@@ -61,12 +61,25 @@ fn planar_elbow() -> RobotModel {
     RobotModel {
         name: "planar-elbow".into(),
         graph,
-        parameters: NAMES.iter().zip(values).map(|(n, v)| Parameter { name: n.to_string(), value: v }).collect(),
+        parameters: NAMES
+            .iter()
+            .zip(values)
+            .map(|(n, v)| Parameter {
+                name: n.to_string(),
+                value: v,
+            })
+            .collect(),
         gravity: [z, minus_g, z],
         links: vec![link1, link2],
         joints: vec![
-            JointVariable { name: "q1".into(), link: 0 },
-            JointVariable { name: "q2".into(), link: 1 },
+            JointVariable {
+                name: "q1".into(),
+                link: 0,
+            },
+            JointVariable {
+                name: "q2".into(),
+                link: 1,
+            },
         ],
     }
 }
@@ -108,13 +121,19 @@ fn closed_form(s: &State) -> ([[f64; 2]; 2], [f64; 2], [f64; 2]) {
     let c12 = (s.q[0] + s.q[1]).cos();
     let h = m2 * l1 * lc2 * s2;
     let m12 = m2 * l1 * lc2 * c2 + m2 * lc2 * lc2 + i2;
-    let m = [[2.0 * m2 * l1 * lc2 * c2 + m2 * lc2 * lc2 + m2 * l1 * l1 + m1 * lc1 * lc1 + i1 + i2, m12], [
-        m12,
-        i2 + m2 * lc2 * lc2,
-    ]];
+    let m = [
+        [
+            2.0 * m2 * l1 * lc2 * c2 + m2 * lc2 * lc2 + m2 * l1 * l1 + m1 * lc1 * lc1 + i1 + i2,
+            m12,
+        ],
+        [m12, i2 + m2 * lc2 * lc2],
+    ];
     let [qd1, qd2] = s.qd;
     let c_qd = [-2.0 * h * qd2 * qd1 - h * qd2 * qd2, h * qd1 * qd1];
-    let gravity = [m2 * l1 * g * c1 + m1 * lc1 * g * c1 + m2 * lc2 * g * c12, m2 * lc2 * g * c12];
+    let gravity = [
+        m2 * l1 * g * c1 + m1 * lc1 * g * c1 + m2 * lc2 * g * c12,
+        m2 * lc2 * g * c12,
+    ];
     (m, c_qd, gravity)
 }
 
@@ -162,7 +181,10 @@ fn christoffel_matrix_reproduces_the_bias_and_makes_mdot_minus_2c_skew() {
             for j in 0..2 {
                 let n_ij = mdot_val[2 * i + j] - 2.0 * c_val[2 * i + j];
                 let n_ji = mdot_val[2 * j + i] - 2.0 * c_val[2 * j + i];
-                assert!((n_ij + n_ji).abs() < 1e-12, "Mdot - 2C not skew at ({i},{j})");
+                assert!(
+                    (n_ij + n_ji).abs() < 1e-12,
+                    "Mdot - 2C not skew at ({i},{j})"
+                );
             }
         }
     }
@@ -175,10 +197,18 @@ fn forward_dynamics_inverts_inverse_dynamics() {
     let fd = d.forward_dynamics();
     for s in states() {
         let u = eval(&d, &tau, &s);
-        let solved = State { u: [u[0], u[1]], ..s };
+        let solved = State {
+            u: [u[0], u[1]],
+            ..s
+        };
         let qdd = eval(&d, &fd, &solved);
         for i in 0..2 {
-            assert!(close(qdd[i], s.qdd[i]), "qdd[{i}]: {} vs {}", qdd[i], s.qdd[i]);
+            assert!(
+                close(qdd[i], s.qdd[i]),
+                "qdd[{i}]: {} vs {}",
+                qdd[i],
+                s.qdd[i]
+            );
         }
     }
 }
@@ -190,12 +220,19 @@ fn energies_match_the_mass_matrix_and_the_gravity_torques() {
     let v = d.potential_energy();
     let m: Vec<Id> = d.mass_matrix().concat();
     let g = d.gravity_torques();
-    let dv: Vec<Id> = (0..2).map(|k| d.model.graph.derivative(v, Symbol::Position(k))).collect();
+    let dv: Vec<Id> = (0..2)
+        .map(|k| d.model.graph.derivative(v, Symbol::Position(k)))
+        .collect();
     for s in states() {
         let tv = eval(&d, &[t], &s)[0];
         let m_val = eval(&d, &m, &s);
-        let quadratic: f64 =
-            (0..2).map(|i| (0..2).map(|j| s.qd[i] * m_val[2 * i + j] * s.qd[j]).sum::<f64>()).sum();
+        let quadratic: f64 = (0..2)
+            .map(|i| {
+                (0..2)
+                    .map(|j| s.qd[i] * m_val[2 * i + j] * s.qd[j])
+                    .sum::<f64>()
+            })
+            .sum();
         assert!(close(tv, 0.5 * quadratic), "T = 1/2 qd' M qd");
         let dv_val = eval(&d, &dv, &s);
         let g_val = eval(&d, &g, &s);

@@ -69,7 +69,10 @@ impl ExprGraph {
         for &id in &nodes {
             let node = self.node(id);
             if !matches!(node, Node::Add(..)) {
-                materialised.extend(node.children().filter(|&c| matches!(self.node(c), Node::Neg(_))));
+                materialised.extend(
+                    node.children()
+                        .filter(|&c| matches!(self.node(c), Node::Neg(_))),
+                );
             }
         }
         for &id in &nodes {

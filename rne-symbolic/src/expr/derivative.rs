@@ -16,7 +16,10 @@ pub struct Differentiator {
 impl Differentiator {
     /// A differentiator with respect to `wrt`.
     pub fn new(wrt: Symbol) -> Differentiator {
-        Differentiator { wrt, memo: HashMap::new() }
+        Differentiator {
+            wrt,
+            memo: HashMap::new(),
+        }
     }
 
     /// ∂expr/∂wrt, built in `graph` (chain rule; sin' = cos, cos' = −sin, sqrt' = 1/(2 sqrt)).

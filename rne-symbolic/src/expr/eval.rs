@@ -7,7 +7,9 @@ use crate::real::Real;
 impl ExprGraph {
     /// The nodes needed to compute `outputs`, in increasing id order (children first).
     pub fn reachable(&self, outputs: &[Id]) -> Vec<Id> {
-        let Some(max) = outputs.iter().max() else { return Vec::new() };
+        let Some(max) = outputs.iter().max() else {
+            return Vec::new();
+        };
         let mut needed = vec![false; max.index() + 1];
         for o in outputs {
             needed[o.index()] = true;
@@ -19,7 +21,12 @@ impl ExprGraph {
                 }
             }
         }
-        needed.iter().enumerate().filter(|(_, &n)| n).map(|(i, _)| Id::from_index(i)).collect()
+        needed
+            .iter()
+            .enumerate()
+            .filter(|(_, &n)| n)
+            .map(|(i, _)| Id::from_index(i))
+            .collect()
     }
 
     /// Evaluates `outputs` with symbol values from `value`.
@@ -44,7 +51,11 @@ impl Evaluator {
         for (k, id) in order.iter().enumerate() {
             slot[id.index()] = k as u32;
         }
-        Evaluator { order, slot, outputs: outputs.to_vec() }
+        Evaluator {
+            order,
+            slot,
+            outputs: outputs.to_vec(),
+        }
     }
 
     /// Number of nodes evaluated per call.
@@ -75,6 +86,9 @@ impl Evaluator {
             };
             values.push(x);
         }
-        self.outputs.iter().map(|o| values[self.slot[o.index()] as usize]).collect()
+        self.outputs
+            .iter()
+            .map(|o| values[self.slot[o.index()] as usize])
+            .collect()
     }
 }

@@ -25,7 +25,11 @@ pub struct ExprGraph {
 impl ExprGraph {
     /// An empty graph with the given symbol names.
     pub fn new(symbols: SymbolTable) -> ExprGraph {
-        ExprGraph { nodes: Vec::new(), memo: HashMap::new(), symbols }
+        ExprGraph {
+            nodes: Vec::new(),
+            memo: HashMap::new(),
+            symbols,
+        }
     }
 
     /// Names of the joint and parameter symbols.
@@ -339,7 +343,12 @@ mod tests {
     #[test]
     fn trig_of_multiples_of_half_pi_is_exact() {
         let (mut g, _, _) = graph();
-        for (angle, s, c) in [(0.0, 0.0, 1.0), (FRAC_PI_2, 1.0, 0.0), (PI, 0.0, -1.0), (-FRAC_PI_2, -1.0, 0.0)] {
+        for (angle, s, c) in [
+            (0.0, 0.0, 1.0),
+            (FRAC_PI_2, 1.0, 0.0),
+            (PI, 0.0, -1.0),
+            (-FRAC_PI_2, -1.0, 0.0),
+        ] {
             let a = g.constant(angle);
             let sa = g.sin(a);
             let ca = g.cos(a);

@@ -48,9 +48,10 @@ impl Symbol {
     /// The joint index of a joint symbol, `None` for parameters.
     pub fn joint(self) -> Option<usize> {
         match self {
-            Symbol::Position(i) | Symbol::Velocity(i) | Symbol::Acceleration(i) | Symbol::Force(i) => {
-                Some(i as usize)
-            }
+            Symbol::Position(i)
+            | Symbol::Velocity(i)
+            | Symbol::Acceleration(i)
+            | Symbol::Force(i) => Some(i as usize),
             Symbol::Parameter(_) => None,
         }
     }

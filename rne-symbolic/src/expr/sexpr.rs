@@ -79,7 +79,10 @@ impl ExprGraph {
             if let Ok(value) = token.parse::<f64>() {
                 return Ok(self.constant(value));
             }
-            let symbol = self.symbols().lookup(&token).ok_or(SexprError::UnknownSymbol(token))?;
+            let symbol = self
+                .symbols()
+                .lookup(&token)
+                .ok_or(SexprError::UnknownSymbol(token))?;
             return Ok(self.symbol(symbol));
         }
         let op = tokens.get(*pos).ok_or(SexprError::UnexpectedEnd)?.clone();
@@ -95,7 +98,10 @@ impl ExprGraph {
                 Some(_) => args.push(self.parse_tokens(tokens, pos)?),
             }
         }
-        let arity = || SexprError::Arity { op: op.clone(), count: args.len() };
+        let arity = || SexprError::Arity {
+            op: op.clone(),
+            count: args.len(),
+        };
         Ok(match (op.as_str(), args.as_slice()) {
             ("+", [first, rest @ ..]) => rest.iter().fold(*first, |acc, &x| self.add(acc, x)),
             ("*", [first, rest @ ..]) => rest.iter().fold(*first, |acc, &x| self.mul(acc, x)),
@@ -111,7 +117,11 @@ impl ExprGraph {
 }
 
 fn tokenize(text: &str) -> Vec<String> {
-    text.replace('(', " ( ").replace(')', " ) ").split_whitespace().map(str::to_owned).collect()
+    text.replace('(', " ( ")
+        .replace(')', " ) ")
+        .split_whitespace()
+        .map(str::to_owned)
+        .collect()
 }
 
 #[cfg(test)]
@@ -125,10 +135,19 @@ mod tests {
     #[test]
     fn printing_then_parsing_gives_the_same_node() {
         let mut g = graph();
-        for text in ["(+ x (* 2 y))", "(sin (- x))", "(/ Dx (+ y 3))", "(sqrt (cos DDy))"] {
+        for text in [
+            "(+ x (* 2 y))",
+            "(sin (- x))",
+            "(/ Dx (+ y 3))",
+            "(sqrt (cos DDy))",
+        ] {
             let id = g.parse_sexpr(text).unwrap();
             let printed = g.to_sexpr(id);
-            assert_eq!(g.parse_sexpr(&printed).unwrap(), id, "{text} printed as {printed}");
+            assert_eq!(
+                g.parse_sexpr(&printed).unwrap(),
+                id,
+                "{text} printed as {printed}"
+            );
         }
     }
 

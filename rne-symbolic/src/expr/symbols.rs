@@ -15,7 +15,10 @@ pub struct SymbolTable {
 impl SymbolTable {
     /// A table with these joint variable names and no parameters.
     pub fn with_joints<S: Into<String>>(joints: impl IntoIterator<Item = S>) -> SymbolTable {
-        SymbolTable { joints: joints.into_iter().map(Into::into).collect(), parameters: Vec::new() }
+        SymbolTable {
+            joints: joints.into_iter().map(Into::into).collect(),
+            parameters: Vec::new(),
+        }
     }
 
     /// Joint variable names, in joint order.
@@ -42,25 +45,37 @@ impl SymbolTable {
     /// Adds a parameter and returns its symbol.
     pub fn push_parameter(&mut self, name: impl Into<String>) -> Symbol {
         self.parameters.push(name.into());
-        Symbol::Parameter(u16::try_from(self.parameters.len() - 1).expect("at most 65536 parameters"))
+        Symbol::Parameter(
+            u16::try_from(self.parameters.len() - 1).expect("at most 65536 parameters"),
+        )
     }
 
     /// The parameter symbol with this name.
     pub fn parameter(&self, name: &str) -> Option<Symbol> {
-        self.parameters.iter().position(|p| p == name).map(|i| Symbol::Parameter(i as u16))
+        self.parameters
+            .iter()
+            .position(|p| p == name)
+            .map(|i| Symbol::Parameter(i as u16))
     }
 
     /// The printed name of a symbol.
     pub fn name(&self, symbol: Symbol) -> String {
-        let joint = |i: u16| self.joints.get(i as usize).cloned().unwrap_or_else(|| format!("q{}", i + 1));
+        let joint = |i: u16| {
+            self.joints
+                .get(i as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("q{}", i + 1))
+        };
         match symbol {
             Symbol::Position(i) => joint(i),
             Symbol::Velocity(i) => format!("D{}", joint(i)),
             Symbol::Acceleration(i) => format!("DD{}", joint(i)),
             Symbol::Force(i) => format!("tau_{}", joint(i)),
-            Symbol::Parameter(i) => {
-                self.parameters.get(i as usize).cloned().unwrap_or_else(|| format!("p{i}"))
-            }
+            Symbol::Parameter(i) => self
+                .parameters
+                .get(i as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("p{i}")),
         }
     }
 

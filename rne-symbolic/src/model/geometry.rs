@@ -72,11 +72,11 @@ pub fn axis_angle_rotation(g: &mut ExprGraph, axis: Vec3, c: Id, s: Id) -> Mat3 
     let versine = g.sub(one, c);
     let u = axis;
     let su = g.vscale(s, u);
-    let skew = [[None, Some((2, -1.0)), Some((1, 1.0))], [Some((2, 1.0)), None, Some((0, -1.0))], [
-        Some((1, -1.0)),
-        Some((0, 1.0)),
-        None,
-    ]];
+    let skew = [
+        [None, Some((2, -1.0)), Some((1, 1.0))],
+        [Some((2, 1.0)), None, Some((0, -1.0))],
+        [Some((1, -1.0)), Some((0, 1.0)), None],
+    ];
     let mut r = g.identity();
     for i in 0..3 {
         for j in 0..3 {
@@ -116,17 +116,26 @@ pub struct Transform {
 impl Transform {
     /// The identity transform.
     pub fn identity(g: &mut ExprGraph) -> Transform {
-        Transform { rotation: g.identity(), translation: g.zero_vec() }
+        Transform {
+            rotation: g.identity(),
+            translation: g.zero_vec(),
+        }
     }
 
     /// A pure rotation.
     pub fn rotation(g: &mut ExprGraph, rotation: Mat3) -> Transform {
-        Transform { rotation, translation: g.zero_vec() }
+        Transform {
+            rotation,
+            translation: g.zero_vec(),
+        }
     }
 
     /// A pure translation.
     pub fn translation(g: &mut ExprGraph, translation: Vec3) -> Transform {
-        Transform { rotation: g.identity(), translation }
+        Transform {
+            rotation: g.identity(),
+            translation,
+        }
     }
 
     /// `self ∘ other`: first `other` (child of `self`), then `self`.
@@ -134,7 +143,10 @@ impl Transform {
         let rotation = g.mat_mul(&self.rotation, &other.rotation);
         let moved = g.mat_vec(&self.rotation, other.translation);
         let translation = g.vadd(self.translation, moved);
-        Transform { rotation, translation }
+        Transform {
+            rotation,
+            translation,
+        }
     }
 
     /// Maps a point of the child frame into the parent frame.

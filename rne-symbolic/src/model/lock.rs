@@ -20,10 +20,14 @@ impl RobotModel {
     /// translation is folded into the link's placement and the joint leaves the state; later
     /// joints are renumbered.
     pub fn lock_joint(&mut self, name: &str, value: f64) -> Result<(), LockError> {
-        let k = self.joints.iter().position(|j| j.name == name).ok_or_else(|| LockError::UnknownJoint {
-            name: name.to_owned(),
-            known: self.joint_names().join(", "),
-        })?;
+        let k = self
+            .joints
+            .iter()
+            .position(|j| j.name == name)
+            .ok_or_else(|| LockError::UnknownJoint {
+                name: name.to_owned(),
+                known: self.joint_names().join(", "),
+            })?;
         let i = self.joints[k].link;
         let g = &mut self.graph;
         let link = &mut self.links[i];

@@ -61,8 +61,13 @@ impl RobotModel {
             outputs.extend(link.com);
             outputs.extend(link.inertia.iter().flatten());
         }
-        let values = self.graph.eval::<f64>(&outputs, |s: Symbol| self.parameter_value(s).unwrap_or(f64::NAN));
-        let mut reader = Reader { values: &values, next: 0 };
+        let values = self.graph.eval::<f64>(&outputs, |s: Symbol| {
+            self.parameter_value(s).unwrap_or(f64::NAN)
+        });
+        let mut reader = Reader {
+            values: &values,
+            next: 0,
+        };
         let gravity = reader.vec3();
         let links = self
             .links
@@ -80,7 +85,12 @@ impl RobotModel {
                 inertia: reader.mat3(),
             })
             .collect();
-        NumericModel { name: self.name.clone(), gravity, links, joint_names: self.joint_names() }
+        NumericModel {
+            name: self.name.clone(),
+            gravity,
+            links,
+            joint_names: self.joint_names(),
+        }
     }
 }
 
