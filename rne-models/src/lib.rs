@@ -1,5 +1,10 @@
 //! Built-in robots, the independent numeric reference, simulations and the `rne` command.
 #![deny(missing_docs)]
 
+pub mod builtin;
+pub mod cli;
+pub mod generated;
+pub mod interpreted;
+pub mod kernels;
 pub mod reference;
 pub mod sim;

@@ -1,1 +1,16 @@
-fn main() {}
+//! The `rne` command (DESIGN.md §5).
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = rne_models::cli::Cli::parse();
+    match rne_models::cli::run(cli, &mut std::io::stdout().lock()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}

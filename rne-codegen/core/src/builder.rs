@@ -1,0 +1,118 @@
+//! The build-script API: the same module as the macro, written to `OUT_DIR`.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::CodegenError;
+use crate::kernel::Kernel;
+use crate::load::generate_from_path;
+use crate::module::GeneratedModule;
+use crate::scene::{ParameterMode, ScalarType, Scene};
+
+/// Environment variable naming a directory where [`Builder::write`] also puts a copy of the
+/// generated source, outside `target/`, for people to read.
+pub const KEEP_GENERATED_ENV: &str = "RNE_KEEP_GENERATED";
+
+/// Generates a robot's dynamics module from `build.rs`.
+///
+/// ```no_run
+/// // build.rs
+/// rne_codegen::Builder::new("robots/arm.toml")
+///     .outputs(&[rne_codegen::Kernel::InverseDynamics, rne_codegen::Kernel::MassMatrix])
+///     .write("arm.rs")
+///     .unwrap();
+/// // lib.rs:  mod arm { include!(concat!(env!("OUT_DIR"), "/arm.rs")); }
+/// ```
+#[derive(Clone, Debug)]
+pub struct Builder {
+    robot: PathBuf,
+    scene: Scene,
+}
+
+impl Builder {
+    /// A builder for the robot file at `robot` (relative paths are taken from
+    /// `CARGO_MANIFEST_DIR` when it is set), generating every kernel by default.
+    pub fn new(robot: impl AsRef<Path>) -> Builder {
+        let robot = robot.as_ref();
+        let robot = match std::env::var_os("CARGO_MANIFEST_DIR") {
+            Some(dir) if robot.is_relative() => PathBuf::from(dir).join(robot),
+            _ => robot.to_path_buf(),
+        };
+        Builder {
+            robot,
+            scene: Scene::default(),
+        }
+    }
+
+    /// The kernels to generate.
+    pub fn outputs(mut self, kernels: &[Kernel]) -> Builder {
+        self.scene.outputs = kernels.to_vec();
+        self
+    }
+
+    /// Overrides the spec's gravity (`[0, 0, 0]` removes every gravity term).
+    pub fn gravity(mut self, gravity: [f64; 3]) -> Builder {
+        self.scene.gravity = Some(gravity);
+        self
+    }
+
+    /// Locks a joint at a value: it becomes a constant and leaves the state.
+    pub fn lock(mut self, joint: &str, value: f64) -> Builder {
+        self.scene.lock.push((joint.to_owned(), value));
+        self
+    }
+
+    /// Constant (folded) or runtime (`Params`) parameters.
+    pub fn parameters(mut self, mode: ParameterMode) -> Builder {
+        self.scene.parameters = mode;
+        self
+    }
+
+    /// The scalar type.
+    pub fn scalar(mut self, scalar: ScalarType) -> Builder {
+        self.scene.scalar = scalar;
+        self
+    }
+
+    /// The scene as configured.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Generates the module without writing it.
+    pub fn generate(&self) -> Result<GeneratedModule, CodegenError> {
+        generate_from_path(&self.robot, &self.scene)
+    }
+
+    /// Generates the module into `$OUT_DIR/file_name`, prints `cargo:rerun-if-changed` for
+    /// the robot file, and copies the source to `$RNE_KEEP_GENERATED/file_name` when that
+    /// variable is set. Returns the path written.
+    pub fn write(&self, file_name: &str) -> Result<PathBuf, CodegenError> {
+        println!("cargo:rerun-if-changed={}", self.robot.display());
+        println!("cargo:rerun-if-env-changed={KEEP_GENERATED_ENV}");
+        let out_dir = std::env::var_os("OUT_DIR").ok_or(CodegenError::MissingEnv("OUT_DIR"))?;
+        let source = self.generate()?.to_pretty_string();
+        let path = PathBuf::from(out_dir).join(file_name);
+        write_file(&path, &source)?;
+        if let Some(dir) = std::env::var_os(KEEP_GENERATED_ENV) {
+            write_file(&PathBuf::from(dir).join(file_name), &source)?;
+        }
+        Ok(path)
+    }
+}
+
+fn write_file(path: &Path, contents: &str) -> Result<(), CodegenError> {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|source| CodegenError::Io {
+            path: parent.to_path_buf(),
+            source,
+        })?;
+    }
+    // Leave an identical file untouched, so that cargo does not rebuild what includes it.
+    if std::fs::read_to_string(path).is_ok_and(|old| old == contents) {
+        return Ok(());
+    }
+    std::fs::write(path, contents).map_err(|source| CodegenError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}

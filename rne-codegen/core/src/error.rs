@@ -1,0 +1,31 @@
+//! Errors of code generation.
+
+use std::path::PathBuf;
+
+/// Why a module could not be generated.
+#[derive(Debug, thiserror::Error)]
+pub enum CodegenError {
+    /// The robot description could not be read.
+    #[error(transparent)]
+    Spec(#[from] rne_symbolic::spec::SpecError),
+    /// A `lock` names no joint.
+    #[error(transparent)]
+    Lock(#[from] rne_symbolic::model::LockError),
+    /// An `outputs` entry is not a kernel.
+    #[error(transparent)]
+    UnknownKernel(#[from] crate::kernel::UnknownKernel),
+    /// A parameter name cannot be a Rust field name.
+    #[error("parameter `{0}` cannot be a Rust field name of `Params`")]
+    ParameterName(String),
+    /// Writing generated files failed.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A required environment variable of a build script is missing.
+    #[error("environment variable {0} is not set (is this running inside a build script?)")]
+    MissingEnv(&'static str),
+}

@@ -1,0 +1,70 @@
+//! Scene settings: what the user's application needs, so that only that is generated.
+
+use rne_symbolic::RobotModel;
+
+use crate::error::CodegenError;
+use crate::kernel::Kernel;
+
+/// How model parameters enter the generated code.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ParameterMode {
+    /// Folded as numbers at generation time (the default; the fastest code).
+    #[default]
+    Constant,
+    /// Read at run time from a generated `Params` struct whose `Default` holds the spec's
+    /// values; every function takes `p: &Params` first.
+    Runtime,
+}
+
+/// The scalar type of the generated functions.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ScalarType {
+    /// `f64` (the default).
+    #[default]
+    F64,
+    /// `f32`.
+    F32,
+    /// Generic over `rne_codegen::Real` (f32, f64, `DoubleDouble`, ...).
+    Generic,
+}
+
+/// Everything that decides what is generated besides the robot itself (DESIGN.md §3).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The kernels to generate, in the order they are emitted.
+    pub outputs: Vec<Kernel>,
+    /// Gravity overriding the spec's (`[0, 0, 0]` removes every gravity term).
+    pub gravity: Option<[f64; 3]>,
+    /// Joints locked at constant values: they become constants and leave the state.
+    pub lock: Vec<(String, f64)>,
+    /// Constant or runtime parameters.
+    pub parameters: ParameterMode,
+    /// The scalar type.
+    pub scalar: ScalarType,
+}
+
+impl Default for Scene {
+    fn default() -> Scene {
+        Scene {
+            outputs: Kernel::ALL.to_vec(),
+            gravity: None,
+            lock: Vec::new(),
+            parameters: ParameterMode::Constant,
+            scalar: ScalarType::F64,
+        }
+    }
+}
+
+impl Scene {
+    /// The model as this scene sees it: gravity overridden, joints locked.
+    pub fn apply(&self, model: &RobotModel) -> Result<RobotModel, CodegenError> {
+        let mut model = model.clone();
+        if let Some(gravity) = self.gravity {
+            model.set_gravity(gravity);
+        }
+        for (joint, value) in &self.lock {
+            model.lock_joint(joint, *value)?;
+        }
+        Ok(model)
+    }
+}

@@ -1,0 +1,143 @@
+//! The macro's input syntax (DESIGN.md §3):
+//!
+//! ```text
+//! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],
+//!                         lock: { q1: 0.0, .. }, parameters: constant|runtime,
+//!                         scalar: f64|f32|generic }
+//! ```
+//! Parsing only checks the shape of each setting; meaning is checked in `check.rs`.
+
+use syn::parse::{Parse, ParseStream};
+use syn::punctuated::Punctuated;
+use syn::{braced, bracketed, Attribute, Ident, LitStr, Token, Visibility};
+
+/// The whole macro input.
+pub struct DynamicsModule {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub settings: Vec<Setting>,
+}
+
+/// One `key: value` entry.
+pub struct Setting {
+    pub key: Ident,
+    pub value: Value,
+}
+
+/// The value of a setting, by its syntactic shape.
+pub enum Value {
+    /// `"path"`.
+    Str(LitStr),
+    /// `name`.
+    Ident(Ident),
+    /// `[a, b, ..]` of identifiers or numbers.
+    List(syn::token::Bracket, Vec<Element>),
+    /// `{ name: number, .. }`.
+    Map(syn::token::Brace, Vec<(Ident, Number)>),
+}
+
+/// An element of a list.
+pub enum Element {
+    Ident(Ident),
+    Number(Number),
+}
+
+/// A possibly negated numeric literal, with its span.
+pub struct Number {
+    pub value: f64,
+    pub span: proc_macro2::Span,
+}
+
+impl Parse for DynamicsModule {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis: Visibility = input.parse()?;
+        input.parse::<Token![mod]>()?;
+        let name: Ident = input.parse()?;
+        let content;
+        braced!(content in input);
+        let settings = Punctuated::<Setting, Token![,]>::parse_terminated(&content)?;
+        Ok(DynamicsModule {
+            attrs,
+            vis,
+            name,
+            settings: settings.into_iter().collect(),
+        })
+    }
+}
+
+impl Parse for Setting {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let key: Ident = input.parse()?;
+        input.parse::<Token![:]>()?;
+        let value = if input.peek(LitStr) {
+            Value::Str(input.parse()?)
+        } else if input.peek(syn::token::Bracket) {
+            let content;
+            let bracket = bracketed!(content in input);
+            let elements = Punctuated::<Element, Token![,]>::parse_terminated(&content)?;
+            Value::List(bracket, elements.into_iter().collect())
+        } else if input.peek(syn::token::Brace) {
+            let content;
+            let brace = braced!(content in input);
+            let entries = Punctuated::<MapEntry, Token![,]>::parse_terminated(&content)?;
+            Value::Map(
+                brace,
+                entries.into_iter().map(|e| (e.key, e.value)).collect(),
+            )
+        } else if input.peek(Ident) {
+            Value::Ident(input.parse()?)
+        } else {
+            return Err(input.error("expected a string, a name, `[..]` or `{..}`"));
+        };
+        Ok(Setting { key, value })
+    }
+}
+
+struct MapEntry {
+    key: Ident,
+    value: Number,
+}
+
+impl Parse for MapEntry {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let key = input.parse()?;
+        input.parse::<Token![:]>()?;
+        Ok(MapEntry {
+            key,
+            value: input.parse()?,
+        })
+    }
+}
+
+impl Parse for Element {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        if input.peek(Ident) {
+            Ok(Element::Ident(input.parse()?))
+        } else {
+            Ok(Element::Number(input.parse()?))
+        }
+    }
+}
+
+impl Parse for Number {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let negative = input.peek(Token![-]);
+        let span = input.span();
+        if negative {
+            input.parse::<Token![-]>()?;
+        }
+        let value = if input.peek(syn::LitFloat) {
+            input.parse::<syn::LitFloat>()?.base10_parse::<f64>()?
+        } else if input.peek(syn::LitInt) {
+            input.parse::<syn::LitInt>()?.base10_parse::<f64>()?
+        } else {
+            return Err(input.error("expected a number"));
+        };
+        Ok(Number {
+            value: if negative { -value } else { value },
+            span,
+        })
+    }
+}

@@ -1,0 +1,180 @@
+//! Checks the meaning of every setting and turns the syntax into a `Scene`, collecting all
+//! errors (each spanned on the offending token) before reporting them.
+
+use std::collections::BTreeSet;
+
+use proc_macro2::Span;
+use rne_codegen_core::{Kernel, ParameterMode, ScalarType, Scene};
+use syn::{Attribute, Ident, LitStr, Visibility};
+
+use crate::ast::{DynamicsModule, Element, Value};
+
+/// A checked macro input.
+pub struct CheckedModule {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub robot: LitStr,
+    pub scene: Scene,
+    /// The span of each locked joint's name, for errors about joints the robot lacks.
+    pub lock_spans: Vec<Span>,
+}
+
+const KEYS: [&str; 6] = [
+    "robot",
+    "outputs",
+    "gravity",
+    "lock",
+    "parameters",
+    "scalar",
+];
+
+struct Errors(Option<syn::Error>);
+
+impl Errors {
+    fn push(&mut self, span: Span, message: impl std::fmt::Display) {
+        let error = syn::Error::new(span, message);
+        match &mut self.0 {
+            Some(existing) => existing.combine(error),
+            None => self.0 = Some(error),
+        }
+    }
+}
+
+pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
+    let mut errors = Errors(None);
+    let mut seen = BTreeSet::new();
+    let mut robot = None;
+    let mut scene = Scene::default();
+    let mut lock_spans = Vec::new();
+    for setting in &input.settings {
+        let key = setting.key.to_string();
+        if !KEYS.contains(&key.as_str()) {
+            errors.push(
+                setting.key.span(),
+                format!(
+                    "unknown setting `{key}`; expected one of: {}",
+                    KEYS.join(", ")
+                ),
+            );
+            continue;
+        }
+        if !seen.insert(key.clone()) {
+            errors.push(setting.key.span(), format!("`{key}` is given twice"));
+            continue;
+        }
+        match (key.as_str(), &setting.value) {
+            ("robot", Value::Str(path)) => robot = Some(path.clone()),
+            ("outputs", Value::List(bracket, elements)) => {
+                let mut outputs = Vec::new();
+                for element in elements {
+                    match element {
+                        Element::Ident(name) => match name.to_string().parse::<Kernel>() {
+                            Ok(kernel) if outputs.contains(&kernel) => {
+                                errors.push(name.span(), format!("output `{name}` is listed twice"))
+                            }
+                            Ok(kernel) => outputs.push(kernel),
+                            Err(e) => errors.push(name.span(), e),
+                        },
+                        Element::Number(n) => errors.push(n.span, "expected an output name"),
+                    }
+                }
+                if elements.is_empty() {
+                    errors.push(
+                        bracket.span.join(),
+                        "`outputs` must name at least one function",
+                    );
+                }
+                scene.outputs = outputs;
+            }
+            ("gravity", Value::List(bracket, elements)) => {
+                let mut gravity = Vec::new();
+                for element in elements {
+                    match element {
+                        Element::Number(n) if n.value.is_finite() => gravity.push(n.value),
+                        Element::Number(n) => {
+                            errors.push(n.span, "gravity components must be finite")
+                        }
+                        Element::Ident(name) => errors.push(name.span(), "expected a number"),
+                    }
+                }
+                match <[f64; 3]>::try_from(gravity) {
+                    Ok(g) => scene.gravity = Some(g),
+                    Err(v) if v.len() == elements.len() => errors.push(
+                        bracket.span.join(),
+                        format!("gravity needs 3 components, got {}", v.len()),
+                    ),
+                    Err(_) => {}
+                }
+            }
+            ("lock", Value::Map(_, entries)) => {
+                let mut names = BTreeSet::new();
+                for (joint, value) in entries {
+                    if !names.insert(joint.to_string()) {
+                        errors.push(joint.span(), format!("joint `{joint}` is locked twice"));
+                    } else if !value.value.is_finite() {
+                        errors.push(value.span, "a locked joint's value must be finite");
+                    } else {
+                        scene.lock.push((joint.to_string(), value.value));
+                        lock_spans.push(joint.span());
+                    }
+                }
+            }
+            ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "constant" => scene.parameters = ParameterMode::Constant,
+                "runtime" => scene.parameters = ParameterMode::Runtime,
+                other => errors.push(
+                    mode.span(),
+                    format!("unknown parameters mode `{other}`; expected `constant` or `runtime`"),
+                ),
+            },
+            ("scalar", Value::Ident(scalar)) => match scalar.to_string().as_str() {
+                "f64" => scene.scalar = ScalarType::F64,
+                "f32" => scene.scalar = ScalarType::F32,
+                "generic" => scene.scalar = ScalarType::Generic,
+                other => errors.push(
+                    scalar.span(),
+                    format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
+                ),
+            },
+            (key, value) => errors.push(value_span(value), expected_shape(key)),
+        }
+    }
+    if robot.is_none() && !seen.contains("robot") {
+        errors.push(input.name.span(), "missing `robot: \"path/to/robot.toml\"`");
+    }
+    match (errors.0, robot) {
+        (Some(e), _) => Err(e),
+        (None, Some(robot)) => Ok(CheckedModule {
+            attrs: input.attrs,
+            vis: input.vis,
+            name: input.name,
+            robot,
+            scene,
+            lock_spans,
+        }),
+        (None, None) => Err(syn::Error::new(input.name.span(), "missing `robot`")),
+    }
+}
+
+fn value_span(value: &Value) -> Span {
+    match value {
+        Value::Str(s) => s.span(),
+        Value::Ident(i) => i.span(),
+        Value::List(b, _) => b.span.join(),
+        Value::Map(b, _) => b.span.join(),
+    }
+}
+
+fn expected_shape(key: &str) -> String {
+    match key {
+        "robot" => "expected a string: `robot: \"robots/arm.toml\"`".into(),
+        "outputs" => {
+            "expected a list of function names: `outputs: [inverse_dynamics, mass_matrix]`".into()
+        }
+        "gravity" => "expected three numbers: `gravity: [0.0, 0.0, -9.81]`".into(),
+        "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
+        "parameters" => "expected `constant` or `runtime`".into(),
+        _ => "expected `f64`, `f32` or `generic`".into(),
+    }
+}

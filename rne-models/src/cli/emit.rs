@@ -1,0 +1,36 @@
+//! `rne emit MODEL`: the Rust the macro generates.
+
+use std::io::Write;
+
+use clap::Args;
+use rne_codegen::generate;
+
+use super::options::scene;
+use super::CliError;
+use crate::builtin::RobotSource;
+
+/// Arguments of `rne emit`.
+#[derive(Debug, Args)]
+pub struct EmitArgs {
+    /// A built-in robot name or a path to a .toml spec.
+    pub model: String,
+    /// Functions to generate, comma-separated (default: all).
+    #[arg(long)]
+    pub outputs: Option<String>,
+    /// Gravity in the base frame, `x,y,z`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub gravity: Option<String>,
+    /// Joints to lock, `q1=0,q2=1.5`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lock: Option<String>,
+}
+
+/// Prints the generated module.
+pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let scene = scene(args.outputs.as_deref(), args.gravity.as_deref(), args.lock.as_deref())?;
+    let source = RobotSource::resolve(&args.model);
+    let model = source.load(&rne_symbolic::spec::LoadOptions::default())?;
+    let module = generate(&model, &scene, &source.display_name())?;
+    write!(out, "{}", module.to_pretty_string())?;
+    Ok(())
+}

@@ -1,0 +1,194 @@
+//! `rne eval MODEL --q ..`: the dynamics at one state, from the generated kernels (built-in
+//! robots), the expression graph (other files) or the independent numeric reference.
+
+use std::io::Write;
+
+use clap::{Args, ValueEnum};
+use rne_symbolic::spec::LoadOptions;
+
+use super::options::parse_list;
+use super::CliError;
+use crate::builtin::RobotSource;
+use crate::interpreted::Interpreted;
+use crate::kernels::Kernels;
+use crate::reference::Reference;
+
+/// Which implementation computes the numbers.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Engine {
+    /// Generated kernels for built-in robots; the expression graph for other files.
+    Symbolic,
+    /// The independent numeric reference (spatial RNEA, CRBA, ABA).
+    Numeric,
+}
+
+/// What to print.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Quantity {
+    /// Joint torques τ(q, q̇, q̈).
+    Tau,
+    /// Mass matrix M(q).
+    #[value(name = "M")]
+    M,
+    /// Christoffel Coriolis matrix C(q, q̇).
+    #[value(name = "C")]
+    C,
+    /// Gravity torques g(q).
+    #[value(name = "g")]
+    G,
+    /// Bias C(q, q̇) q̇ + g(q).
+    Bias,
+    /// Forward dynamics q̈(q, q̇, τ).
+    Fd,
+    /// Kinetic and potential energy.
+    Energy,
+    /// Everything.
+    All,
+}
+
+/// Arguments of `rne eval`.
+#[derive(Debug, Args)]
+pub struct EvalArgs {
+    /// A built-in robot name or a path to a .toml spec.
+    pub model: String,
+    /// Joint positions, comma-separated.
+    #[arg(long, allow_hyphen_values = true)]
+    pub q: String,
+    /// Joint velocities (default zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub qd: Option<String>,
+    /// Joint accelerations (default zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub qdd: Option<String>,
+    /// Joint torques for forward dynamics (default zero).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tau: Option<String>,
+    /// What to compute, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "all")]
+    pub what: Vec<Quantity>,
+    /// Which implementation computes it.
+    #[arg(long, value_enum, default_value = "symbolic")]
+    pub engine: Engine,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Computes the requested quantities and prints them.
+pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let source = RobotSource::resolve(&args.model);
+    let model = source.load(&LoadOptions::default())?;
+    let n = model.dof();
+    let q = parse_list("q", &args.q)?;
+    let state = |name: &str, text: &Option<String>| match text {
+        Some(text) => parse_list(name, text),
+        None => Ok(vec![0.0; n]),
+    };
+    let (qd, qdd, tau) = (state("qd", &args.qd)?, state("qdd", &args.qdd)?, state("tau", &args.tau)?);
+    let wants = |q: Quantity| args.what.contains(&q) || args.what.contains(&Quantity::All);
+
+    let mut results: Vec<(&str, serde_json::Value)> = Vec::new();
+    let vector = |v: Vec<f64>| serde_json::json!(v);
+    let matrix = |m: Vec<Vec<f64>>| serde_json::json!(m);
+    match args.engine {
+        Engine::Symbolic => {
+            let interpreted;
+            let kernels: &dyn Kernels = match &source {
+                RobotSource::Builtin(robot) => robot.kernels,
+                RobotSource::File(_) => {
+                    interpreted = Interpreted::new(&model);
+                    &interpreted
+                }
+            };
+            if wants(Quantity::Tau) {
+                results.push(("tau", vector(kernels.inverse_dynamics(&q, &qd, &qdd)?)));
+            }
+            if wants(Quantity::M) {
+                results.push(("M", matrix(kernels.mass_matrix(&q)?)));
+            }
+            if wants(Quantity::C) {
+                results.push(("C", matrix(kernels.coriolis_matrix(&q, &qd)?)));
+            }
+            if wants(Quantity::G) {
+                results.push(("g", vector(kernels.gravity_torques(&q)?)));
+            }
+            if wants(Quantity::Bias) {
+                results.push(("bias", vector(kernels.bias_torques(&q, &qd)?)));
+            }
+            if wants(Quantity::Fd) {
+                results.push(("qdd", vector(kernels.forward_dynamics(&q, &qd, &tau)?)));
+            }
+            if wants(Quantity::Energy) {
+                results.push(("kinetic", serde_json::json!(kernels.kinetic_energy(&q, &qd)?)));
+                results.push(("potential", serde_json::json!(kernels.potential_energy(&q)?)));
+            }
+        }
+        Engine::Numeric => {
+            let numeric = |e: crate::reference::ReferenceError| CliError::Argument(e.to_string());
+            let mut reference = Reference::try_new(&model.to_numeric()).map_err(numeric)?;
+            let rows = |m: nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
+                m.row_iter().map(|r| r.iter().copied().collect()).collect()
+            };
+            if wants(Quantity::Tau) {
+                results.push(("tau", vector(reference.inverse_dynamics(&q, &qd, &qdd).map_err(numeric)?.data.into())));
+            }
+            if wants(Quantity::M) {
+                results.push(("M", matrix(rows(reference.mass_matrix(&q).map_err(numeric)?))));
+            }
+            if args.what.contains(&Quantity::C) {
+                return Err(CliError::Argument(
+                    "the numeric reference computes C(q, q̇) q̇ (see `bias`), not the Christoffel matrix; use --engine symbolic".into(),
+                ));
+            }
+            if wants(Quantity::G) {
+                results.push(("g", vector(reference.gravity_torques(&q).map_err(numeric)?.data.into())));
+            }
+            if wants(Quantity::Bias) {
+                results.push(("bias", vector(reference.bias_torques(&q, &qd).map_err(numeric)?.data.into())));
+            }
+            if wants(Quantity::Fd) {
+                results.push(("qdd", vector(reference.forward_dynamics(&q, &qd, &tau).map_err(numeric)?.data.into())));
+            }
+            if wants(Quantity::Energy) {
+                results.push(("kinetic", serde_json::json!(reference.kinetic_energy(&q, &qd).map_err(numeric)?)));
+                results.push(("potential", serde_json::json!(reference.potential_energy(&q).map_err(numeric)?)));
+            }
+        }
+    }
+
+    if args.json {
+        let mut object = serde_json::Map::new();
+        object.insert("model".into(), serde_json::json!(source.display_name()));
+        object.insert("joints".into(), serde_json::json!(model.joint_names()));
+        for (key, value) in results {
+            object.insert(key.into(), value);
+        }
+        writeln!(out, "{}", serde_json::Value::Object(object))?;
+    } else {
+        writeln!(out, "model: {}", source.display_name())?;
+        writeln!(out, "joints: {}", model.joint_names().join(", "))?;
+        for (key, value) in results {
+            match value {
+                serde_json::Value::Array(rows) if rows.first().is_some_and(|r| r.is_array()) => {
+                    writeln!(out, "{key}:")?;
+                    for row in rows {
+                        writeln!(out, "  {}", format_row(&row))?;
+                    }
+                }
+                other => writeln!(out, "{key}: {}", format_row(&other))?,
+            }
+        }
+    }
+    Ok(())
+}
+
+fn format_row(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::Array(items) => {
+            let items: Vec<String> = items.iter().map(format_row).collect();
+            format!("[{}]", items.join(", "))
+        }
+        serde_json::Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), |x| format!("{x:.17e}")),
+        other => other.to_string(),
+    }
+}

@@ -1,0 +1,45 @@
+//! The `rne` command line: one file per subcommand.
+
+mod emit;
+mod eval;
+mod list;
+mod options;
+mod stats;
+
+use std::io::Write;
+
+use clap::{Parser, Subcommand};
+
+pub use options::{parse_list, parse_locks, CliError};
+
+/// Exact, fast robot dynamics from a robot description.
+#[derive(Debug, Parser)]
+#[command(name = "rne", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// List the built-in robots.
+    Models,
+    /// Print the Rust that `derive_dynamics!` generates for a robot.
+    Emit(emit::EmitArgs),
+    /// Operation counts and generation time per generated function.
+    Stats(stats::StatsArgs),
+    /// Evaluate the dynamics at one state.
+    Eval(eval::EvalArgs),
+}
+
+/// Runs one command, writing its output to `out`.
+pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
+    match cli.command {
+        Command::Models => list::run(out),
+        Command::Emit(args) => emit::run(&args, out),
+        Command::Stats(args) => stats::run(&args, out),
+        Command::Eval(args) => eval::run(&args, out),
+    }
+}

@@ -1,0 +1,72 @@
+//! Argument parsing shared by the subcommands, and the command's error type.
+
+use rne_codegen::{Kernel, Scene};
+
+/// Why a command failed; printed as `error: ...` with a non-zero exit code.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The robot file could not be read.
+    #[error(transparent)]
+    Spec(#[from] rne_symbolic::spec::SpecError),
+    /// Code generation failed.
+    #[error(transparent)]
+    Codegen(#[from] rne_codegen::CodegenError),
+    /// A state vector has the wrong length.
+    #[error(transparent)]
+    Dimension(#[from] crate::kernels::DimensionError),
+    /// A malformed argument.
+    #[error("{0}")]
+    Argument(String),
+    /// Writing the output failed.
+    #[error("cannot write output: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Parses `1.5,-2,0` into numbers.
+pub fn parse_list(name: &str, text: &str) -> Result<Vec<f64>, CliError> {
+    text.split(',')
+        .map(|item| {
+            let item = item.trim();
+            item.parse::<f64>()
+                .map_err(|_| CliError::Argument(format!("--{name}: `{item}` is not a number")))
+        })
+        .collect()
+}
+
+/// Parses `q1=0,q2=1.5` into locked joints.
+pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
+    text.split(',')
+        .map(|item| {
+            let (name, value) = item
+                .split_once('=')
+                .ok_or_else(|| CliError::Argument(format!("--lock: `{item}` is not `joint=value`")))?;
+            let value = value
+                .trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::Argument(format!("--lock: `{value}` is not a number")))?;
+            Ok((name.trim().to_owned(), value))
+        })
+        .collect()
+}
+
+/// The scene described by the `--outputs`, `--gravity` and `--lock` options.
+pub fn scene(outputs: Option<&str>, gravity: Option<&str>, lock: Option<&str>) -> Result<Scene, CliError> {
+    let mut scene = Scene::default();
+    if let Some(outputs) = outputs {
+        scene.outputs = outputs
+            .split(',')
+            .map(|name| name.trim().parse::<Kernel>().map_err(|e| CliError::Argument(e.to_string())))
+            .collect::<Result<_, _>>()?;
+    }
+    if let Some(gravity) = gravity {
+        let g = parse_list("gravity", gravity)?;
+        scene.gravity = Some(
+            g.try_into()
+                .map_err(|g: Vec<f64>| CliError::Argument(format!("--gravity needs 3 values, got {}", g.len())))?,
+        );
+    }
+    if let Some(lock) = lock {
+        scene.lock = parse_locks(lock)?;
+    }
+    Ok(scene)
+}
