@@ -8,6 +8,14 @@ pub enum CodegenError {
     /// The robot description could not be read.
     #[error(transparent)]
     Spec(#[from] rne_symbolic::spec::SpecError),
+    /// The robot file could not be read.
+    #[error("cannot read robot file `{file}`: {source}")]
+    Read {
+        /// The file, as the user named it.
+        file: String,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// A `lock` names no joint.
     #[error(transparent)]
     Lock(#[from] rne_symbolic::model::LockError),

@@ -21,7 +21,7 @@ pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use emit::{emit_kernel, EmitContext};
 pub use error::CodegenError;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
-pub use load::{generate_from_path, load_for_scene};
+pub use load::{generate_from_path, read_robot};
 pub use module::{generate, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use scene::{ParameterMode, ScalarType, Scene};

@@ -1,1 +1,235 @@
 //! The independent numeric reference: spatial-vector RNEA, CRBA and ABA on nalgebra.
+//!
+//! This module shares no recursion code with the symbolic path of `rne-symbolic`: it reads a
+//! [`NumericModel`] (plain `f64` geometry and inertia) and runs Featherstone's algorithms from
+//! *Rigid Body Dynamics Algorithms* (RBDA) on six-dimensional spatial vectors. The generated
+//! kernels are checked against it.
+//!
+//! # Conventions
+//!
+//! Link i's body frame B_i is placed in its parent's body frame by
+//! `R_i^p(q) = E_i Rot(u_i, q_i)` with origin `t_i` (revolute), `R_i^p = E_i` with origin
+//! `t_i + E_i u_i q_i` (prismatic), or the constant `E_i`, `t_i` (fixed); see
+//! [`rne_symbolic::model`]. Spatial vectors are expressed in body coordinates at the body
+//! origin, angular part first. Fixed joints are kept as zero-DOF bodies — the symbolic path
+//! merges them, and this separate handling is what checks the merge. Gravity `g` (base frame)
+//! enters as the base acceleration `a_0 = [0; −g]`.
+//!
+//! The joint-space equation of motion is the thesis's (3.1):
+//! `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)`.
+//!
+//! | function | algorithm |
+//! |---|---|
+//! | [`Reference::inverse_dynamics`] | RNEA, RBDA table 5.1 |
+//! | [`Reference::gravity_torques`] | RNEA(q, 0, 0) |
+//! | [`Reference::bias_torques`] | RNEA(q, q̇, 0) `= C q̇ + g` |
+//! | [`Reference::mass_matrix`] | CRBA, RBDA table 6.2 |
+//! | [`Reference::forward_dynamics`] | ABA, RBDA table 7.1 (does not form M) |
+//! | [`Reference::kinetic_energy`], [`Reference::potential_energy`] | sums over the bodies |
+//!
+//! # Memory
+//!
+//! [`Reference::new`] allocates the per-body workspace once; the `*_into` methods then write
+//! into caller-provided slices without allocating. The other methods allocate only the vector or
+//! matrix they return.
+//!
+//! # Errors and non-finite input
+//!
+//! Every method checks the lengths of its slices and returns
+//! [`ReferenceError::WrongLength`] instead of panicking. Values are not inspected: NaN or
+//! infinite inputs propagate to NaN or infinite outputs (all loops run over the model's
+//! structure, never over values). A joint that moves neither mass nor inertia makes M singular;
+//! [`Reference::forward_dynamics`] then returns non-finite accelerations.
+
+mod aba;
+mod crba;
+mod data;
+mod energy;
+mod error;
+mod model;
+mod rnea;
+mod spatial;
+
+pub use error::ReferenceError;
+
+use nalgebra::{DMatrix, DVector};
+use rne_symbolic::NumericModel;
+
+use data::Data;
+use model::Model;
+
+/// The numeric reference for one robot: the model's constants and a workspace, in the spirit
+/// of Pinocchio's `Model` / `Data` split. Methods take `&mut self` only to reuse the workspace.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    model: Model,
+    data: Data,
+}
+
+impl Reference {
+    /// Builds the reference for `model`.
+    ///
+    /// # Panics
+    ///
+    /// If `model` breaks an invariant of [`NumericModel`]; [`Reference::try_new`] returns the
+    /// error instead. Models produced by `RobotModel::to_numeric` always satisfy them.
+    pub fn new(model: &NumericModel) -> Reference {
+        Reference::try_new(model).unwrap_or_else(|error| panic!("{error}"))
+    }
+
+    /// Builds the reference for `model`, or says which invariant it breaks: parents before
+    /// children, joint indices a permutation of `0..dof` on the moving joints (none on fixed
+    /// ones), unit joint axes, rotation matrices `E_i`, symmetric inertias.
+    pub fn try_new(model: &NumericModel) -> Result<Reference, ReferenceError> {
+        let model = Model::new(model)?;
+        let data = Data::new(&model);
+        Ok(Reference { model, data })
+    }
+
+    /// Number of joint variables.
+    pub fn dof(&self) -> usize {
+        self.model.dof()
+    }
+
+    /// Joint variable names in joint order.
+    pub fn joint_names(&self) -> &[String] {
+        &self.model.joint_names
+    }
+
+    /// Inverse dynamics by the RNEA: `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)`.
+    pub fn inverse_dynamics(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<DVector<f64>, ReferenceError> {
+        let mut tau = DVector::zeros(self.dof());
+        self.inverse_dynamics_into(q, qd, qdd, tau.as_mut_slice())?;
+        Ok(tau)
+    }
+
+    /// [`Reference::inverse_dynamics`] into `tau`.
+    pub fn inverse_dynamics_into(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        tau: &mut [f64],
+    ) -> Result<(), ReferenceError> {
+        self.check(&[("q", q), ("qd", qd), ("qdd", qdd), ("tau", &*tau)])?;
+        rnea::inverse_dynamics(&self.model, &mut self.data, q, Some(qd), Some(qdd), tau);
+        Ok(())
+    }
+
+    /// The joint-space inertia matrix M(q) by the CRBA, symmetric, `dof × dof`.
+    pub fn mass_matrix(&mut self, q: &[f64]) -> Result<DMatrix<f64>, ReferenceError> {
+        let n = self.dof();
+        let mut m = DMatrix::zeros(n, n);
+        self.mass_matrix_into(q, m.as_mut_slice())?;
+        Ok(m)
+    }
+
+    /// [`Reference::mass_matrix`] into `out`, `dof²` entries, row-major (M is symmetric, so
+    /// the order does not matter; `[[f64; N]; N]::as_flattened_mut` fits).
+    pub fn mass_matrix_into(&mut self, q: &[f64], out: &mut [f64]) -> Result<(), ReferenceError> {
+        self.check(&[("q", q)])?;
+        let n = self.dof();
+        if out.len() != n * n {
+            return Err(ReferenceError::WrongLength {
+                argument: "out",
+                expected: n * n,
+                found: out.len(),
+            });
+        }
+        crba::mass_matrix(&self.model, &mut self.data, q, out);
+        Ok(())
+    }
+
+    /// The gravity torques `g(q)` = RNEA(q, 0, 0).
+    pub fn gravity_torques(&mut self, q: &[f64]) -> Result<DVector<f64>, ReferenceError> {
+        let mut g = DVector::zeros(self.dof());
+        self.gravity_torques_into(q, g.as_mut_slice())?;
+        Ok(g)
+    }
+
+    /// [`Reference::gravity_torques`] into `out`.
+    pub fn gravity_torques_into(
+        &mut self,
+        q: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ReferenceError> {
+        self.check(&[("q", q), ("out", &*out)])?;
+        rnea::inverse_dynamics(&self.model, &mut self.data, q, None, None, out);
+        Ok(())
+    }
+
+    /// The bias torques `C(q, q̇) q̇ + g(q)` = RNEA(q, q̇, 0).
+    pub fn bias_torques(&mut self, q: &[f64], qd: &[f64]) -> Result<DVector<f64>, ReferenceError> {
+        let mut bias = DVector::zeros(self.dof());
+        self.bias_torques_into(q, qd, bias.as_mut_slice())?;
+        Ok(bias)
+    }
+
+    /// [`Reference::bias_torques`] into `out`.
+    pub fn bias_torques_into(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ReferenceError> {
+        self.check(&[("q", q), ("qd", qd), ("out", &*out)])?;
+        rnea::inverse_dynamics(&self.model, &mut self.data, q, Some(qd), None, out);
+        Ok(())
+    }
+
+    /// Forward dynamics by the ABA: `q̈ = M(q)⁻¹ (τ − C(q, q̇) q̇ − g(q))`.
+    pub fn forward_dynamics(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+    ) -> Result<DVector<f64>, ReferenceError> {
+        let mut qdd = DVector::zeros(self.dof());
+        self.forward_dynamics_into(q, qd, tau, qdd.as_mut_slice())?;
+        Ok(qdd)
+    }
+
+    /// [`Reference::forward_dynamics`] into `qdd`.
+    pub fn forward_dynamics_into(
+        &mut self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+        qdd: &mut [f64],
+    ) -> Result<(), ReferenceError> {
+        self.check(&[("q", q), ("qd", qd), ("tau", tau), ("qdd", &*qdd)])?;
+        aba::forward_dynamics(&self.model, &mut self.data, q, qd, tau, qdd);
+        Ok(())
+    }
+
+    /// Kinetic energy `T = Σ ½ (m v_c·v_c + ωᵀ I_c ω) = ½ q̇ᵀ M(q) q̇`.
+    pub fn kinetic_energy(&mut self, q: &[f64], qd: &[f64]) -> Result<f64, ReferenceError> {
+        self.check(&[("q", q), ("qd", qd)])?;
+        Ok(energy::kinetic_energy(&self.model, &mut self.data, q, qd))
+    }
+
+    /// Potential energy `V = −Σ m g·p_c`, with `p_c` each centre of mass in the base frame
+    /// (zero when every COM is at the base origin).
+    pub fn potential_energy(&mut self, q: &[f64]) -> Result<f64, ReferenceError> {
+        self.check(&[("q", q)])?;
+        Ok(energy::potential_energy(&self.model, &mut self.data, q))
+    }
+
+    /// Checks that every named slice has `dof` entries.
+    fn check(&self, slices: &[(&'static str, &[f64])]) -> Result<(), ReferenceError> {
+        let expected = self.dof();
+        match slices.iter().find(|(_, s)| s.len() != expected) {
+            Some(&(argument, s)) => Err(ReferenceError::WrongLength {
+                argument,
+                expected,
+                found: s.len(),
+            }),
+            None => Ok(()),
+        }
+    }
+}

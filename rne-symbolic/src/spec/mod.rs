@@ -1,1 +1,242 @@
-//! Robot specs: TOML files (format 1 of DESIGN.md §2) read into a [`RobotModel`](crate::RobotModel).
+//! Robot specs: TOML files (format 1 of DESIGN.md §2) read into a [`RobotModel`].
+//!
+//! ```toml
+//! name = "planar-elbow"
+//! gravity = [0, "-g", 0]
+//! [parameters]
+//! g = 9.81
+//! l1 = 0.3
+//! [[link]]
+//! name = "link1"
+//! joint = "revolute"
+//! rotation = "Rz(q1)"
+//! position = ["l1", 0, 0]
+//! mass = 15
+//! com_from_prev = ["l1/2", 0, 0]
+//! inertia = { box = ["l1", 0.08, 0.08] }
+//! ```
+//!
+//! # Reading
+//!
+//! 1. The TOML is read into a tree that remembers the line of every key and value
+//!    (`document`); every table's keys are checked against the set it allows (`schema`).
+//! 2. The links are put in model order: depth-first from the base, children in file order;
+//!    joint variables are named (`q`, default `q<k>` counting movable joints in the file) and
+//!    numbered in that order (`tree`).
+//! 3. Parameters are defined in any order over each other, ordered by dependency and evaluated
+//!    (`parameters`). Expression strings are parsed straight into an [`ExprGraph`]
+//!    (`expression`), in which every parameter is its own symbol `Parameter(k)`.
+//! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post` (`frames`), its
+//!    placement is `parent.post ∘ pre`, its inertials are moved into the body frame
+//!    (`inertia`, `assemble`), and the result is checked numerically (`validate`).
+//! 5. The model's expressions are copied into the model's own graph, keeping parameters as
+//!    symbols or folding them into constants ([`LoadOptions::symbolic_parameters`]). Because
+//!    every structural check runs on the symbolic form, both modes accept the same specs.
+//!
+//! # Decisions on points DESIGN §2 leaves open
+//!
+//! - `gravity` defaults to `[0, 0, -9.81]` (z up, the 9.81 m/s² of ROBOTS.md).
+//! - The `origin`/`axis` convention follows URDF: `axis` defaults to `[1, 0, 0]` and is
+//!   normalised; `origin.xyz` and `origin.rpy` default to zero. A zero axis is an error; so is an
+//!   `axis` on a fixed joint, and a `q` on a fixed joint.
+//! - `rotation` defaults to the identity and `position` to zero; a revolute joint's
+//!   `rotation` must then still contain its variable, so omitting it is the DESIGN error
+//!   "joint variable missing from rotation".
+//! - In `rotation`, `position`, `dh` and `mdh` the link's own joint variable may appear (in
+//!   `dh`/`mdh` only in `theta` for a revolute joint or `d` for a prismatic one, as ±q + c; when
+//!   it does not appear, q is added there). It may not appear in `origin`, `axis`, `mass`,
+//!   `com` or `inertia`; another link's joint variable may appear nowhere.
+//! - `com_from_prev` (r_{i−1,ci}) is accepted with the `rotation`/`position` convention on
+//!   revolute and fixed joints, whose body origin is the origin of frame i−1; a prismatic joint
+//!   moves that origin away from the link.
+//! - `inertia` is required (a point mass writes zeros). A 3×3 array must be symmetric to a
+//!   relative 1e-12; the model uses its upper triangle.
+//! - `triangle_inequality = false` turns off only the triangle inequality test, for published
+//!   data that breaks it (PUMA 560 link 3); the spec should say why in a comment.
+//! - Joint variable names must be identifiers, unique, and distinct from parameter names,
+//!   also in their printed derivatives `D<q>`, `DD<q>` and force `tau_<q>`. Parameter and joint
+//!   names may not be `pi`, `sqrt`, `sin`, `cos`, `Rx`, `Ry`, `Rz`; no link may be named `base`.
+//! - An exponent must fold to a constant integer of magnitude at most 64, or 0.5; expressions
+//!   nest at most 64 deep.
+
+mod assemble;
+mod document;
+mod error;
+mod expression;
+mod frames;
+mod inertia;
+mod parameters;
+mod rewrite;
+mod schema;
+mod scope;
+mod tree;
+mod validate;
+
+use std::path::Path;
+
+pub use error::{SpecError, SpecErrorKind};
+
+use self::assemble::Assembled;
+use self::document::Table;
+use self::rewrite::Transplant;
+use self::schema::{LinkSpec, RobotSpec};
+use self::scope::Namespace;
+use self::tree::Tree;
+use self::validate::Values;
+use crate::expr::{ExprGraph, Id, Symbol, SymbolTable, Vec3};
+use crate::model::{Link, Transform};
+use crate::RobotModel;
+
+/// How a spec is read.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Keep every parameter as its own symbol `Symbol::Parameter(k)` (k in spec order) instead
+    /// of folding it into a constant (the CLI's `--symbolic-params`, the macro's
+    /// `parameters: runtime`). [`RobotModel::parameters`] holds the values either way.
+    pub symbolic_parameters: bool,
+}
+
+/// Reads the spec file at `path` (DESIGN §2); errors name the file as `path` displays.
+pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+    let origin = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        SpecError::new(SpecErrorKind::Io, format!("cannot read the spec: {e}")).locate(&origin, "")
+    })?;
+    parse_str(&text, &origin, options)
+}
+
+/// Reads a spec from `text`; `origin` names the file in error messages.
+pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+    let root = document::parse(text).map_err(|e| e.locate(origin, text))?;
+    read(&root, options).map_err(|e| with_position(e, &root).locate(origin, text))
+}
+
+fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+    let spec = schema::read(root)?;
+    let parameter_names: Vec<&str> = spec
+        .parameters
+        .iter()
+        .map(|p| p.name.name.as_str())
+        .collect();
+    let tree = tree::build(&spec.links, &parameter_names)?;
+    let links: Vec<&LinkSpec<'_>> = tree
+        .order
+        .iter()
+        .filter_map(|&s| spec.links.get(s))
+        .collect();
+    let link_names: Vec<&str> = links.iter().map(|l| l.name.name.as_str()).collect();
+    let space = Namespace::new(&spec.parameters, &tree.joints, &link_names)?;
+
+    let mut scratch = ExprGraph::new(SymbolTable::with_joints(tree.joint_names()));
+    let parameters = parameters::define(&mut scratch, &spec.parameters, &space)?;
+    let gravity = gravity(&mut scratch, &spec, &space)?;
+    let built = assemble_links(&mut scratch, &tree, &links, &space)?;
+
+    let values = Values::new(&scratch, &parameters);
+    validate::finite_vector(&values, &gravity, "gravity")?;
+    for assembled in &built {
+        validate::link(&values, assembled).map_err(|e| e.in_link(&assembled.link.name))?;
+    }
+
+    let mut graph = ExprGraph::new(SymbolTable::with_joints(tree.joint_names()));
+    if options.symbolic_parameters {
+        for p in &parameters {
+            graph.symbols_mut().push_parameter(p.name.clone());
+        }
+    }
+    let mut copier = Transplant::new(&scratch, graph, |g: &mut ExprGraph, s: Symbol| match s {
+        Symbol::Parameter(k) if !options.symbolic_parameters => {
+            g.constant(parameters.get(k as usize).map_or(f64::NAN, |p| p.value))
+        }
+        s => g.symbol(s),
+    });
+    let gravity = copier.vector(gravity);
+    let links = built
+        .into_iter()
+        .map(|b| copy_link(&mut copier, b.link))
+        .collect();
+    let graph = copier.finish();
+    Ok(RobotModel {
+        name: spec.name,
+        graph,
+        parameters,
+        gravity,
+        links,
+        joints: tree.joints,
+    })
+}
+
+/// Builds the links in model order, each placed by its parent's post-transform.
+fn assemble_links(
+    scratch: &mut ExprGraph,
+    tree: &Tree,
+    links: &[&LinkSpec<'_>],
+    space: &Namespace,
+) -> Result<Vec<Assembled>, SpecError> {
+    let mut built: Vec<Assembled> = Vec::with_capacity(links.len());
+    for (m, link) in links.iter().enumerate() {
+        let parent = tree.parent.get(m).copied().flatten();
+        let parent_post = match parent.and_then(|p| built.get(p)) {
+            Some(p) => p.frames.post,
+            None => Transform::identity(scratch),
+        };
+        let joint = tree.joint.get(m).copied().flatten();
+        let assembled = assemble::link(scratch, link, parent, joint, &parent_post, space)
+            .map_err(|e| e.in_link(&link.name.name))?;
+        built.push(assembled);
+    }
+    Ok(built)
+}
+
+/// A link with its expressions copied into the model's graph.
+fn copy_link<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
+    copier: &mut Transplant<'_, F>,
+    link: Link,
+) -> Link {
+    Link {
+        rotation: copier.matrix(link.rotation),
+        translation: copier.vector(link.translation),
+        axis: copier.vector(link.axis),
+        mass: copier.scalar(link.mass),
+        com: copier.vector(link.com),
+        inertia: copier.matrix(link.inertia),
+        ..link
+    }
+}
+
+/// The gravity vector in the base frame (default `[0, 0, -9.81]`).
+fn gravity(
+    graph: &mut ExprGraph,
+    spec: &RobotSpec<'_>,
+    space: &Namespace,
+) -> Result<Vec3, SpecError> {
+    match &spec.gravity {
+        Some(g) => space.scope(None, false).vector(graph, g),
+        None => Ok(graph.const_vec([0.0, 0.0, -9.81])),
+    }
+}
+
+/// Gives an error without a position the position of its field (in its link, if any).
+fn with_position(error: SpecError, root: &Table) -> SpecError {
+    let table = match error.link() {
+        None => Some((root, None)),
+        Some(name) => link_table(root, name),
+    };
+    let span = table.and_then(|(table, link_span)| {
+        error
+            .field()
+            .and_then(|field| table.span_of(field))
+            .or(link_span)
+    });
+    error.at_span(span)
+}
+
+/// The first `[[link]]` table named `name`, and where it was written.
+fn link_table<'r>(root: &'r Table, name: &str) -> Option<(&'r Table, document::Span)> {
+    let links = root.get("link")?.as_array("link").ok()?;
+    links.iter().find_map(|item| {
+        let table = item.as_table("link").ok()?;
+        let named = table.get("name")?.as_str("name").ok()? == name;
+        named.then(|| (table, item.span.clone()))
+    })
+}

@@ -1,0 +1,58 @@
+//! Kinetic and potential energy, from body velocities and base-frame centres of mass.
+//!
+//! ```text
+//! T = Σ_i ½ (m_i v_{c,i}·v_{c,i} + ω_iᵀ I_{c,i} ω_i),    v_{c,i} = v_i + ω_i × c_i
+//! V = −Σ_i m_i g·p_{c,i},                                p_{c,i} = p_i + R_i^0 c_i
+//! ```
+//!
+//! with `[ω_i; v_i]` the spatial velocity of body i (body frame, at its origin), `c_i` its
+//! COM in the body frame and `R_i^0`, `p_i` its placement in the base frame. T equals
+//! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1); V is zero when every COM is at the base origin, and
+//! `d(T + V)/dt = q̇ᵀ τ`. The sums use the COM form rather than the spatial inertias of the
+//! RNEA and CRBA, so comparing them checks those.
+
+use nalgebra::Vector6;
+
+use super::data::Data;
+use super::model::Model;
+use super::spatial::{angular, linear};
+
+/// Kinetic energy at (q, q̇). Slices have the model's length (checked by the caller).
+pub(crate) fn kinetic_energy(model: &Model, data: &mut Data, q: &[f64], qd: &[f64]) -> f64 {
+    let mut energy = 0.0;
+    for (i, body) in model.bodies.iter().enumerate() {
+        let x = body.transform(q);
+        let mut v = match body.parent {
+            Some(p) => x.apply_motion(&data.velocities[p]),
+            None => Vector6::zeros(),
+        };
+        if let Some(k) = body.joint_index() {
+            v += body.motion_subspace * qd[k];
+        }
+        let w = angular(&v);
+        let com_velocity = linear(&v) + w.cross(&body.com);
+        energy += 0.5 * (body.mass * com_velocity.norm_squared() + w.dot(&(body.inertia_com * w)));
+        data.velocities[i] = v;
+    }
+    energy
+}
+
+/// Potential energy at q. Slices have the model's length (checked by the caller).
+pub(crate) fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> f64 {
+    let mut energy = 0.0;
+    for (i, body) in model.bodies.iter().enumerate() {
+        let x = body.transform(q);
+        let (rotation, origin) = match body.parent {
+            Some(p) => (
+                data.rotations[p] * x.rotation.transpose(),
+                data.origins[p] + data.rotations[p] * x.translation,
+            ),
+            None => (x.rotation.transpose(), x.translation),
+        };
+        let com = origin + rotation * body.com;
+        energy -= body.mass * model.gravity.dot(&com);
+        data.rotations[i] = rotation;
+        data.origins[i] = origin;
+    }
+    energy
+}

@@ -1,0 +1,193 @@
+//! The error of spec reading: what went wrong, and where (file, line, link, field).
+
+use std::ops::Range;
+
+/// What kind of mistake a [`SpecError`] reports.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SpecErrorKind {
+    /// The file could not be read.
+    Io,
+    /// The text is not valid TOML.
+    Syntax,
+    /// The TOML is valid but does not follow the spec format: an unknown or missing key, a
+    /// value of the wrong type, zero or two frame conventions on a link.
+    Format,
+    /// A malformed expression, an unknown symbol, a bad power, a parameter cycle.
+    Expression,
+    /// A joint variable that does not enter its frame convention as the joint's motion: missing
+    /// from a revolute `rotation`, not of the form ±q + c, a zero or non-unit axis.
+    Kinematics,
+    /// The link tree: unknown parent, duplicate link or joint names, cycles, no links.
+    Tree,
+    /// Physically invalid numbers: negative mass, an inertia that is not symmetric, not positive
+    /// semi-definite or breaks the triangle inequality, a value that is not finite.
+    Physics,
+}
+
+/// An error found while reading a robot spec (DESIGN §2), naming the file, the link and the field.
+///
+/// Displays as `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`; the
+/// line number appears when the TOML parser knows where the offending value is, the link and
+/// field when the error belongs to one.
+///
+/// A struct with a [`SpecErrorKind`] rather than an enum with one variant per mistake: every
+/// error carries the same location, callers that react to errors match on the kind, and the
+/// message says exactly what is wrong. It is boxed so that the `Result`s of the reader stay one
+/// pointer wide.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}", self.render())]
+pub struct SpecError(Box<Details>);
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Details {
+    kind: SpecErrorKind,
+    file: String,
+    line: Option<usize>,
+    link: Option<String>,
+    field: Option<String>,
+    message: String,
+    span: Option<Range<usize>>,
+}
+
+impl SpecError {
+    /// An error of this kind with no location yet; the reader adds the file, link and field as
+    /// the error travels outwards.
+    pub(crate) fn new(kind: SpecErrorKind, message: impl Into<String>) -> SpecError {
+        SpecError(Box::new(Details {
+            kind,
+            file: String::new(),
+            line: None,
+            link: None,
+            field: None,
+            message: message.into(),
+            span: None,
+        }))
+    }
+
+    /// Sets the field if none is set yet (inner functions know more precise fields).
+    pub(crate) fn at_field(mut self, field: impl Into<String>) -> SpecError {
+        if self.0.field.is_none() {
+            self.0.field = Some(field.into());
+        }
+        self
+    }
+
+    /// Sets the link if none is set yet.
+    pub(crate) fn in_link(mut self, link: &str) -> SpecError {
+        if self.0.link.is_none() {
+            self.0.link = Some(link.to_owned());
+        }
+        self
+    }
+
+    /// Sets the byte range of the offending TOML text if none is set yet.
+    pub(crate) fn at_span(mut self, span: Option<Range<usize>>) -> SpecError {
+        if self.0.span.is_none() {
+            self.0.span = span;
+        }
+        self
+    }
+
+    /// Sets the file name and turns the byte range into a line number of `text`.
+    pub(crate) fn locate(mut self, file: &str, text: &str) -> SpecError {
+        file.clone_into(&mut self.0.file);
+        if self.0.line.is_none() {
+            self.0.line = self
+                .0
+                .span
+                .as_ref()
+                .and_then(|span| text.get(..span.start))
+                .map(|before| before.matches('\n').count() + 1);
+        }
+        self
+    }
+
+    /// What kind of mistake this is.
+    pub fn kind(&self) -> SpecErrorKind {
+        self.0.kind
+    }
+
+    /// The file (the `origin` given to [`parse_str`](super::parse_str), or the path given to
+    /// [`load_file`](super::load_file)).
+    pub fn file(&self) -> &str {
+        &self.0.file
+    }
+
+    /// The 1-based line of the offending TOML text, when known.
+    pub fn line(&self) -> Option<usize> {
+        self.0.line
+    }
+
+    /// The link the error belongs to, if any.
+    pub fn link(&self) -> Option<&str> {
+        self.0.link.as_deref()
+    }
+
+    /// The field the error belongs to, if any (`mass`, `inertia.xy`, `dh.theta`, `com[1]`,
+    /// `parameters.w`, ...).
+    pub fn field(&self) -> Option<&str> {
+        self.0.field.as_deref()
+    }
+
+    /// The description of the problem, without its location.
+    pub fn message(&self) -> &str {
+        &self.0.message
+    }
+
+    fn render(&self) -> String {
+        let mut out = self.0.file.clone();
+        if let Some(line) = self.0.line {
+            out.push_str(&format!(":{line}"));
+        }
+        out.push_str(": ");
+        let mut place = Vec::new();
+        if let Some(link) = &self.0.link {
+            place.push(format!("link '{link}'"));
+        }
+        if let Some(field) = &self.0.field {
+            place.push(format!("field '{field}'"));
+        }
+        if !place.is_empty() {
+            out.push_str(&place.join(", "));
+            out.push_str(": ");
+        }
+        out.push_str(&self.0.message);
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn displays_file_line_link_and_field() {
+        let text = "a\nb\nmass = -3\n";
+        let error = SpecError::new(SpecErrorKind::Physics, "mass must be >= 0, got -3")
+            .at_field("mass")
+            .in_link("link2")
+            .at_span(Some(11..13))
+            .locate("robots/arm.toml", text);
+        assert_eq!(
+            error.to_string(),
+            "robots/arm.toml:3: link 'link2', field 'mass': mass must be >= 0, got -3"
+        );
+        assert_eq!(error.line(), Some(3));
+    }
+
+    #[test]
+    fn omits_what_is_unknown() {
+        let error =
+            SpecError::new(SpecErrorKind::Tree, "the spec has no [[link]]").locate("x.toml", "");
+        assert_eq!(error.to_string(), "x.toml: the spec has no [[link]]");
+    }
+
+    #[test]
+    fn inner_locations_win() {
+        let error = SpecError::new(SpecErrorKind::Format, "m")
+            .at_field("inertia.xy")
+            .at_field("inertia");
+        assert_eq!(error.field(), Some("inertia.xy"));
+    }
+}
