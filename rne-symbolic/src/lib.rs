@@ -15,7 +15,8 @@ pub mod newton_euler;
 mod real;
 pub mod spec;
 
+pub use double_double::DoubleDouble;
 pub use dynamics::SymbolicDynamics;
 pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
-pub use model::{JointKind, Link, NumericModel, RobotModel};
+pub use model::{JointKind, Link, NumericLink, NumericModel, RobotModel};
 pub use real::Real;

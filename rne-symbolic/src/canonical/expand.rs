@@ -1,0 +1,504 @@
+//! Expansion of expressions into canonical polynomials.
+
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+use std::sync::Arc;
+
+use super::atom::{Angle, Atom};
+use super::error::CanonicalError;
+use super::polynomial::Polynomial;
+use crate::expr::{ExprGraph, Id, Node};
+
+/// Largest |n| for which `sin(n x)` and `cos(n x)` are expanded by the multiple-angle
+/// formulas; larger or fractional multiples stay inside an [`Angle::Expr`].
+const MAX_MULTIPLE: f64 = 32.0;
+
+impl Polynomial {
+    /// The canonical form of the expression `expr` of `graph`.
+    ///
+    /// Products are expanded fully. `sin` and `cos` of an integer combination of symbols plus
+    /// a constant, `sin(Σ n_k x_k + c)`, are expanded by the angle-addition and multiple-angle
+    /// formulas into s_k = sin x_k and c_k = cos x_k, with the constant's sine and cosine exact
+    /// at multiples of π/2 (the rule of [`ExprGraph::sin`]); any other part of an argument
+    /// becomes an [`Angle::Expr`]. Square roots of non-constant polynomials become
+    /// [`Atom::Sqrt`] atoms. Division is allowed by a monomial free of sines and cosines
+    /// (a mass, a length, a constant); it gives negative exponents.
+    ///
+    /// Every node is expanded once (memoised over the DAG), and an intermediate result is
+    /// dropped as soon as its last user has been expanded.
+    pub fn from_expr(graph: &ExprGraph, expr: Id) -> Result<Polynomial, CanonicalError> {
+        let mut forms = Polynomial::from_exprs(graph, &[expr])?;
+        Ok(forms.pop().unwrap_or_default())
+    }
+
+    /// The canonical forms of several expressions, sharing the work on common
+    /// subexpressions (e.g. all torques of a robot at once).
+    pub fn from_exprs(graph: &ExprGraph, exprs: &[Id]) -> Result<Vec<Polynomial>, CanonicalError> {
+        Expansion::new(graph, exprs).run(exprs)
+    }
+}
+
+/// `cos θ + i sin θ` as a pair of polynomials: products of phasors add angles.
+#[derive(Clone)]
+struct Phasor {
+    cos: Polynomial,
+    sin: Polynomial,
+}
+
+impl Phasor {
+    fn zero_angle() -> Phasor {
+        Phasor {
+            cos: Polynomial::one(),
+            sin: Polynomial::zero(),
+        }
+    }
+
+    fn of(angle: Angle) -> Phasor {
+        Phasor {
+            cos: Polynomial::atom(Atom::Cos(angle.clone())),
+            sin: Polynomial::atom(Atom::Sin(angle)),
+        }
+    }
+
+    /// cos(a + b) = cos a cos b − sin a sin b, sin(a + b) = sin a cos b + cos a sin b.
+    fn times(&self, other: &Phasor) -> Phasor {
+        Phasor {
+            cos: &(&self.cos * &other.cos) - &(&self.sin * &other.sin),
+            sin: &(&self.sin * &other.cos) + &(&self.cos * &other.sin),
+        }
+    }
+
+    /// The phasor of the negated angle.
+    fn conj(self) -> Phasor {
+        Phasor {
+            cos: self.cos,
+            sin: -self.sin,
+        }
+    }
+
+    /// The phasor of `n` times the angle (n ≥ 0), by repeated squaring.
+    fn pow(&self, n: u32) -> Phasor {
+        let mut result = Phasor::zero_angle();
+        let mut base = self.clone();
+        let mut n = n;
+        while n > 0 {
+            if n & 1 == 1 {
+                result = result.times(&base);
+            }
+            n >>= 1;
+            if n > 0 {
+                base = base.times(&base);
+            }
+        }
+        result
+    }
+}
+
+/// The phasor of an angle given by its canonical polynomial.
+fn phasor(angle: &Polynomial) -> Phasor {
+    let mut result = Phasor::zero_angle();
+    let mut rest = Polynomial::zero();
+    for (m, c) in angle.terms() {
+        let symbol = match m.factors() {
+            [(Atom::Symbol(s), 1)] if c.fract() == 0.0 && c.abs() <= MAX_MULTIPLE => Some(*s),
+            _ => None,
+        };
+        if let Some(s) = symbol {
+            let multiple = Phasor::of(Angle::Symbol(s)).pow(c.abs() as u32);
+            result = result.times(&if c < 0.0 { multiple.conj() } else { multiple });
+        } else if m.is_one() {
+            let (sin, cos) = sin_cos_constant(c);
+            result = result.times(&Phasor {
+                cos: Polynomial::constant(cos),
+                sin: Polynomial::constant(sin),
+            });
+        } else {
+            rest.add_reduced(m.clone(), c);
+        }
+    }
+    if !rest.is_empty() {
+        let negative = rest.terms().next().is_some_and(|(_, c)| c < 0.0);
+        let rest = if negative { -rest } else { rest };
+        let other = Phasor::of(Angle::Expr(Arc::new(rest)));
+        result = result.times(&if negative { other.conj() } else { other });
+    }
+    result
+}
+
+/// `(sin x, cos x)` of a constant, exact at multiples of π/2 (as [`ExprGraph::sin`] folds).
+fn sin_cos_constant(x: f64) -> (f64, f64) {
+    let k = (x / FRAC_PI_2).round();
+    if k.abs() < 1e15 && (k * FRAC_PI_2 - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) {
+        return [(0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0)]
+            [(k as i64).rem_euclid(4) as usize];
+    }
+    x.sin_cos()
+}
+
+/// One expansion run over the nodes needed by a set of outputs.
+struct Expansion<'g> {
+    graph: &'g ExprGraph,
+    /// Position in `values` of each node index (`u32::MAX` for nodes not needed).
+    slot: Vec<u32>,
+    /// Expanded form of each needed node, `None` before it is expanded and after its last use.
+    values: Vec<Option<Polynomial>>,
+    /// Remaining uses of each needed node (parent edges, plus one per output).
+    uses: Vec<u32>,
+    /// Phasors of trigonometric arguments, shared by `sin a` and `cos a`.
+    phasors: HashMap<Id, Phasor>,
+}
+
+impl<'g> Expansion<'g> {
+    fn new(graph: &'g ExprGraph, outputs: &[Id]) -> Expansion<'g> {
+        let order = graph.reachable(outputs);
+        let mut slot = vec![u32::MAX; order.last().map_or(0, |id| id.index() + 1)];
+        for (k, id) in order.iter().enumerate() {
+            slot[id.index()] = k as u32;
+        }
+        let mut uses = vec![0; order.len()];
+        for &id in &order {
+            for c in graph.node(id).children() {
+                uses[slot[c.index()] as usize] += 1;
+            }
+        }
+        for o in outputs {
+            uses[slot[o.index()] as usize] += 1;
+        }
+        let values = vec![None; order.len()];
+        Expansion {
+            graph,
+            slot,
+            values,
+            uses,
+            phasors: HashMap::new(),
+        }
+    }
+
+    fn run(mut self, outputs: &[Id]) -> Result<Vec<Polynomial>, CanonicalError> {
+        let order = self.graph.reachable(outputs);
+        for id in order {
+            let value = self.expand(id)?;
+            for c in self.graph.node(id).children() {
+                let k = self.slot[c.index()] as usize;
+                self.uses[k] -= 1;
+                if self.uses[k] == 0 {
+                    self.values[k] = None;
+                }
+            }
+            let k = self.slot[id.index()] as usize;
+            self.values[k] = Some(value);
+        }
+        Ok(outputs.iter().map(|o| self.get(*o).clone()).collect())
+    }
+
+    fn get(&self, id: Id) -> &Polynomial {
+        self.values[self.slot[id.index()] as usize]
+            .as_ref()
+            .expect("children are expanded before their parents")
+    }
+
+    /// The value of `id`, moved out when the caller is its last user, cloned otherwise.
+    fn take(&mut self, id: Id) -> Polynomial {
+        let k = self.slot[id.index()] as usize;
+        if self.uses[k] == 1 {
+            self.values[k]
+                .take()
+                .expect("children are expanded before their parents")
+        } else {
+            self.get(id).clone()
+        }
+    }
+
+    fn expand(&mut self, id: Id) -> Result<Polynomial, CanonicalError> {
+        Ok(match self.graph.node(id) {
+            Node::Const(c) if !c.value().is_finite() => {
+                return Err(CanonicalError::NonFiniteConstant {
+                    node: id,
+                    value: c.value(),
+                })
+            }
+            Node::Const(c) => Polynomial::constant(c.value()),
+            Node::Symbol(s) => Polynomial::symbol(s),
+            Node::Add(a, b) if a == b => self.get(a).scale(2.0),
+            Node::Add(a, b) => {
+                let (owned, other) = if self.uses[self.slot[b.index()] as usize] == 1 {
+                    (b, a)
+                } else {
+                    (a, b)
+                };
+                let mut sum = self.take(owned);
+                sum += self.get(other);
+                sum
+            }
+            Node::Mul(a, b) => self.get(a) * self.get(b),
+            Node::Neg(a) => -self.take(a),
+            Node::Div(a, b) => self.divide(id, a, b)?,
+            Node::Sin(a) => self.phasor(a).sin.clone(),
+            Node::Cos(a) => self.phasor(a).cos.clone(),
+            Node::Sqrt(a) => match self.get(a).as_constant() {
+                Some(x) if x >= 0.0 => Polynomial::constant(x.sqrt()),
+                _ => Polynomial::atom(Atom::Sqrt(Arc::new(self.get(a).clone()))),
+            },
+        })
+    }
+
+    fn phasor(&mut self, argument: Id) -> &Phasor {
+        if !self.phasors.contains_key(&argument) {
+            let p = phasor(self.get(argument));
+            self.phasors.insert(argument, p);
+        }
+        &self.phasors[&argument]
+    }
+
+    /// `a / b` for a divisor that expands to a monomial free of sines and cosines.
+    fn divide(&self, node: Id, a: Id, b: Id) -> Result<Polynomial, CanonicalError> {
+        let divisor = self.get(b);
+        let mut terms = divisor.terms();
+        let (monomial, c) = match (terms.next(), terms.next()) {
+            (None, _) => return Err(CanonicalError::DivisionByZero { node }),
+            (Some(term), None) => term,
+            (Some(_), Some(_)) => {
+                return Err(CanonicalError::NonMonomialDivisor {
+                    node,
+                    terms: divisor.len(),
+                })
+            }
+        };
+        if monomial
+            .factors()
+            .iter()
+            .any(|(atom, _)| atom.is_trigonometric())
+        {
+            return Err(CanonicalError::TrigonometricDivisor { node });
+        }
+        let reciprocal = monomial.recip();
+        let mut quotient = Polynomial::zero();
+        for (m, cm) in self.get(a).terms() {
+            quotient.add_reduced(m * &reciprocal, cm / c);
+        }
+        Ok(quotient)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::canonical::Monomial;
+    use crate::expr::{Symbol, SymbolTable};
+    use proptest::prelude::*;
+
+    fn graph() -> ExprGraph {
+        let mut symbols = SymbolTable::with_joints(["q1", "q2", "q3"]);
+        for p in ["m1", "m2", "l1", "alpha"] {
+            symbols.push_parameter(p);
+        }
+        ExprGraph::new(symbols)
+    }
+
+    fn canonical(g: &mut ExprGraph, text: &str) -> Result<Polynomial, CanonicalError> {
+        let id = g.parse_sexpr(text).unwrap();
+        Polynomial::from_expr(g, id)
+    }
+
+    fn assert_same(a: &str, b: &str) {
+        let mut g = graph();
+        let (pa, pb) = (canonical(&mut g, a).unwrap(), canonical(&mut g, b).unwrap());
+        assert_eq!(pa, pb, "{a}  vs  {b}");
+    }
+
+    #[test]
+    fn pythagoras_reduces_to_one() {
+        assert_same("(+ (* (sin q1) (sin q1)) (* (cos q1) (cos q1)))", "1");
+        assert_same(
+            "(+ (* (sin (+ q1 q2)) (sin (+ q1 q2))) (* (cos (+ q1 q2)) (cos (+ q1 q2))))",
+            "1",
+        );
+        assert_same(
+            "(+ (* (sin (* q1 q2)) (sin (* q1 q2))) (* (cos (* q1 q2)) (cos (* q1 q2))))",
+            "1",
+        );
+    }
+
+    #[test]
+    fn angle_sums_expand_by_the_addition_formulas() {
+        assert_same(
+            "(cos (+ q1 q2))",
+            "(- (* (cos q1) (cos q2)) (* (sin q1) (sin q2)))",
+        );
+        assert_same(
+            "(sin (+ q1 q2))",
+            "(+ (* (sin q1) (cos q2)) (* (cos q1) (sin q2)))",
+        );
+        assert_same(
+            "(sin (- q1 q2))",
+            "(- (* (sin q1) (cos q2)) (* (cos q1) (sin q2)))",
+        );
+        assert_same(
+            "(* (sin (+ q1 q2)) (sin (- q1 q2)))",
+            "(- (* (sin q1) (sin q1)) (* (sin q2) (sin q2)))",
+        );
+        assert_same(
+            "(sin (+ q1 alpha))",
+            "(+ (* (sin q1) (cos alpha)) (* (cos q1) (sin alpha)))",
+        );
+    }
+
+    #[test]
+    fn multiple_angles_expand() {
+        assert_same("(sin (* 2 q1))", "(* 2 (sin q1) (cos q1))");
+        assert_same(
+            "(cos (* 3 q1))",
+            "(- (* 4 (cos q1) (cos q1) (cos q1)) (* 3 (cos q1)))",
+        );
+        assert_same("(cos (* -2 q2))", "(- (* 2 (cos q2) (cos q2)) 1)");
+    }
+
+    #[test]
+    fn constant_offsets_are_exact_at_multiples_of_half_pi() {
+        assert_same("(sin (- q2 1.5707963267948966))", "(- (cos q2))");
+        assert_same("(cos (+ q2 3.141592653589793))", "(- (cos q2))");
+        assert_same(
+            "(sin (+ (- q2 1.5707963267948966) 4.71238898038469))",
+            "(- (sin q2))",
+        );
+        let mut g = graph();
+        let p = canonical(&mut g, "(sin (+ q1 0.5))").unwrap();
+        let c1 = Monomial::atom(Atom::cos_of(Symbol::Position(0)));
+        assert_eq!(p.term_coefficient(&c1), 0.5f64.sin());
+    }
+
+    #[test]
+    fn other_arguments_become_structural_angles() {
+        assert_same("(sin (- (* q1 q2)))", "(- (sin (* q2 q1)))");
+        assert_same("(cos (- (* q1 q2)))", "(cos (* q2 q1))");
+        assert_same(
+            "(sin (+ q3 (* q1 q2)))",
+            "(+ (* (sin q3) (cos (* q1 q2))) (* (cos q3) (sin (* q1 q2))))",
+        );
+        assert_same("(sin (* 0.5 q1))", "(sin (* q1 0.5))");
+    }
+
+    #[test]
+    fn square_roots_square_to_their_argument() {
+        assert_same("(* (sqrt (+ l1 m1)) (sqrt (+ m1 l1)))", "(+ l1 m1)");
+        assert_same("(sqrt 4)", "2");
+        assert_same("(/ (* m1 (sqrt l1)) (sqrt l1))", "m1");
+    }
+
+    #[test]
+    fn division_by_a_monomial_gives_negative_exponents() {
+        assert_same("(/ (* m1 (+ l1 q1)) m1)", "(+ l1 q1)");
+        assert_same("(* (/ 1 (* m1 m1)) m1)", "(/ 1 m1)");
+        assert_same("(/ (* 6 q1) 3)", "(* 2 q1)");
+        let mut g = graph();
+        let p = canonical(&mut g, "(/ 1 m2)").unwrap();
+        let m2 = Atom::Symbol(g.symbols().lookup("m2").unwrap());
+        assert_eq!(p.terms().next().unwrap().0.exponent(&m2), -1);
+    }
+
+    #[test]
+    fn division_by_anything_else_is_an_error() {
+        let mut g = graph();
+        assert!(matches!(
+            canonical(&mut g, "(/ q1 (+ m1 m2))"),
+            Err(CanonicalError::NonMonomialDivisor { terms: 2, .. })
+        ));
+        assert!(matches!(
+            canonical(&mut g, "(/ q1 (cos q2))"),
+            Err(CanonicalError::TrigonometricDivisor { .. })
+        ));
+        assert!(matches!(
+            canonical(&mut g, "(/ q1 (- m1 m1))"),
+            Err(CanonicalError::DivisionByZero { .. })
+        ));
+        let zero = g
+            .parse_sexpr("(- (* (sin q1) (sin q1)) (- 1 (* (cos q1) (cos q1))))")
+            .unwrap();
+        let q1 = g.parse_sexpr("q1").unwrap();
+        let by_zero = g.div(q1, zero);
+        assert!(matches!(
+            Polynomial::from_expr(&g, by_zero),
+            Err(CanonicalError::DivisionByZero { .. })
+        ));
+        let inf = g.constant(f64::INFINITY);
+        assert!(matches!(
+            Polynomial::from_expr(&g, inf),
+            Err(CanonicalError::NonFiniteConstant { .. })
+        ));
+    }
+
+    #[test]
+    fn shared_subexpressions_are_expanded_once_and_outputs_kept() {
+        let mut g = graph();
+        let mut x = g.parse_sexpr("(+ (cos q1) (* m1 (sin q2)))").unwrap();
+        let mut outputs = vec![x];
+        for _ in 0..3 {
+            x = g.mul(x, x);
+            outputs.push(x);
+        }
+        let forms = Polynomial::from_exprs(&g, &outputs).unwrap();
+        assert_eq!(forms[1], &forms[0] * &forms[0]);
+        assert_eq!(forms[3], forms[2].pow(2));
+        assert_eq!(forms.len(), outputs.len());
+    }
+
+    /// Random expressions over three joints and two parameters, with divisions by a
+    /// parameter only.
+    fn expression() -> impl Strategy<Value = String> {
+        let leaf = prop_oneof![
+            Just("q1".to_string()),
+            Just("q2".to_string()),
+            Just("q3".to_string()),
+            Just("m1".to_string()),
+            Just("l1".to_string()),
+            (-3i32..4).prop_map(|k| k.to_string()),
+            Just("1.5707963267948966".to_string()),
+        ];
+        leaf.prop_recursive(5, 40, 3, |inner| {
+            prop_oneof![
+                (inner.clone(), inner.clone()).prop_map(|(a, b)| format!("(+ {a} {b})")),
+                (inner.clone(), inner.clone()).prop_map(|(a, b)| format!("(- {a} {b})")),
+                (inner.clone(), inner.clone()).prop_map(|(a, b)| format!("(* {a} {b})")),
+                inner.clone().prop_map(|a| format!("(/ {a} m1)")),
+                inner.clone().prop_map(|a| format!("(sin {a})")),
+                inner.clone().prop_map(|a| format!("(cos {a})")),
+                inner
+                    .clone()
+                    .prop_map(|a| format!("(sqrt (+ 2 (* {a} {a})))")),
+            ]
+        })
+    }
+
+    fn value(s: Symbol) -> f64 {
+        match s {
+            Symbol::Position(k) => [0.3, -1.1, 2.0][k as usize],
+            Symbol::Parameter(k) => [1.7, 0.4, 0.9, 0.2][k as usize],
+            _ => 0.0,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn canonical_form_evaluates_like_the_expression(text in expression()) {
+            let mut g = graph();
+            let id = g.parse_sexpr(&text).unwrap();
+            let p = Polynomial::from_expr(&g, id).unwrap();
+            let expected = g.eval(&[id], value)[0];
+            let got = p.eval(value);
+            let scale = 1.0 + expected.abs() + p.eval(|s| value(s).abs()).abs();
+            prop_assert!((got - expected).abs() <= 1e-9 * scale, "{text}: {got} vs {expected}");
+        }
+
+        #[test]
+        fn canonical_form_survives_a_round_trip_through_the_graph(text in expression()) {
+            let mut g = graph();
+            let id = g.parse_sexpr(&text).unwrap();
+            let p = Polynomial::from_expr(&g, id).unwrap();
+            let back = p.to_expr(&mut g);
+            let q = Polynomial::from_expr(&g, back).unwrap();
+            prop_assert!(q.approx_eq(&p, 1e-14), "{text}");
+        }
+    }
+}
