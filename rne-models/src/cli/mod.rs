@@ -4,6 +4,7 @@ mod emit;
 mod eval;
 mod list;
 mod options;
+mod show;
 mod stats;
 
 use std::io::Write;
@@ -26,6 +27,8 @@ pub struct Cli {
 pub enum Command {
     /// List the built-in robots.
     Models,
+    /// Print M, C, g, the torques and the energies for people to read.
+    Show(show::ShowArgs),
     /// Print the Rust that `derive_dynamics!` generates for a robot.
     Emit(emit::EmitArgs),
     /// Operation counts and generation time per generated function.
@@ -38,6 +41,7 @@ pub enum Command {
 pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
     match cli.command {
         Command::Models => list::run(out),
+        Command::Show(args) => show::run(&args, out),
         Command::Emit(args) => emit::run(&args, out),
         Command::Stats(args) => stats::run(&args, out),
         Command::Eval(args) => eval::run(&args, out),

@@ -1,0 +1,124 @@
+//! The `rne` command: printed equations (snapshots), evaluation, emission and errors.
+
+use std::process::Command;
+
+use clap::Parser;
+use rne_models::cli::{run, Cli};
+
+fn rne(args: &[&str]) -> Result<String, String> {
+    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied())).map_err(|e| e.to_string())?;
+    let mut out = Vec::new();
+    run(cli, &mut out).map_err(|e| e.to_string())?;
+    Ok(String::from_utf8(out).expect("utf-8 output"))
+}
+
+#[test]
+fn show_prints_the_planar_elbow_like_the_thesis() {
+    insta::assert_snapshot!(rne(&["show", "planar-elbow", "--symbolic-params"]).unwrap());
+}
+
+#[test]
+fn show_prints_latex() {
+    insta::assert_snapshot!(rne(&["show", "planar-elbow", "--symbolic-params", "--format", "latex", "--what", "M"]).unwrap());
+}
+
+#[test]
+fn show_prints_the_irb140_mass_matrix_with_numbers() {
+    insta::assert_snapshot!(rne(&["show", "irb140-3dof", "--what", "M"]).unwrap());
+}
+
+#[test]
+fn eval_json_has_the_documented_keys_and_engines_agree() {
+    let state = ["--q", "0.3,-0.5,1.1", "--qd", "1,2,-0.5", "--qdd", "0.1,0.2,0.3", "--tau", "1,2,3", "--json"];
+    let mut symbolic = vec!["eval", "irb140-3dof"];
+    symbolic.extend(state);
+    let mut numeric = symbolic.clone();
+    numeric.extend(["--engine", "numeric", "--what", "tau,M,g,bias,fd,energy"]);
+    let symbolic: serde_json::Value = serde_json::from_str(&rne(&symbolic).unwrap()).unwrap();
+    let numeric: serde_json::Value = serde_json::from_str(&rne(&numeric).unwrap()).unwrap();
+    assert_eq!(symbolic["model"], "irb140-3dof");
+    assert_eq!(symbolic["joints"], serde_json::json!(["q1", "q2", "q3"]));
+    for key in ["tau", "M", "C", "g", "bias", "qdd", "kinetic", "potential"] {
+        assert!(symbolic.get(key).is_some(), "missing key {key}");
+    }
+    let flat = |v: &serde_json::Value| -> Vec<f64> {
+        match v {
+            serde_json::Value::Array(items) => items.iter().flat_map(|x| flat_one(x)).collect(),
+            other => vec![other.as_f64().unwrap()],
+        }
+    };
+    fn flat_one(v: &serde_json::Value) -> Vec<f64> {
+        match v {
+            serde_json::Value::Array(items) => items.iter().map(|x| x.as_f64().unwrap()).collect(),
+            other => vec![other.as_f64().unwrap()],
+        }
+    }
+    for key in ["tau", "M", "g", "bias", "qdd", "kinetic", "potential"] {
+        let (a, b) = (flat(&symbolic[key]), flat(&numeric[key]));
+        let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() <= 1e-12 * scale, "{key}: {x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn eval_of_a_spec_file_uses_the_expression_graph() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/planar-elbow.toml");
+    let by_file = rne(&["eval", path, "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json"]).unwrap();
+    let builtin = rne(&["eval", "planar-elbow", "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json"]).unwrap();
+    let a: serde_json::Value = serde_json::from_str(&by_file).unwrap();
+    let b: serde_json::Value = serde_json::from_str(&builtin).unwrap();
+    let close = |x: &serde_json::Value, y: &serde_json::Value| (x.as_f64().unwrap() - y.as_f64().unwrap()).abs() < 1e-12;
+    for i in 0..2 {
+        assert!(close(&a["tau"][i], &b["tau"][i]));
+        for j in 0..2 {
+            assert!(close(&a["C"][i][j], &b["C"][i][j]));
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let cases: [(&[&str], &str); 6] = [
+        (&["eval", "planar-elbow", "--q", "1,2,3"], "`q` has 3 values; the robot has 2 joints"),
+        (&["eval", "planar-elbow", "--q", "1,x"], "--q: `x` is not a number"),
+        (&["eval", "no/such/robot.toml", "--q", "1"], "no/such/robot.toml"),
+        (&["emit", "planar-elbow", "--lock", "q7=0"], "no joint named `q7`"),
+        (&["emit", "planar-elbow", "--outputs", "torques"], "unknown output `torques`"),
+        (&["emit", "planar-elbow", "--gravity", "0,1"], "--gravity needs 3 values"),
+    ];
+    for (args, expected) in cases {
+        let error = rne(args).expect_err("should fail");
+        assert!(error.contains(expected), "{args:?}: {error}");
+    }
+}
+
+#[test]
+fn the_binary_exits_non_zero_with_the_error_on_stderr() {
+    let output = Command::new(env!("CARGO_BIN_EXE_rne")).args(["eval", "planar-elbow", "--q", "1,2,3"]).output().unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(output.stdout.is_empty());
+}
+
+#[test]
+fn emitted_code_is_byte_identical_across_processes() {
+    let emit = || {
+        let output = Command::new(env!("CARGO_BIN_EXE_rne")).args(["emit", "irb140-3dof"]).output().unwrap();
+        assert!(output.status.success());
+        output.stdout
+    };
+    let first = emit();
+    assert!(first.len() > 1000);
+    assert_eq!(first, emit(), "two processes emitted different code");
+}
+
+#[test]
+fn models_lists_the_builtin_robots() {
+    let listing = rne(&["models"]).unwrap();
+    for name in ["planar-elbow", "irb140-3dof"] {
+        assert!(listing.contains(name), "{listing}");
+    }
+}
