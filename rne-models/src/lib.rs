@@ -1,6 +1,7 @@
 //! Built-in robots, the independent numeric reference, simulations and the `rne` command.
 #![deny(missing_docs)]
 
+pub mod accuracy;
 pub mod builtin;
 pub mod cli;
 pub mod generated;

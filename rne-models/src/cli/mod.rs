@@ -6,6 +6,7 @@ mod list;
 mod options;
 mod show;
 mod stats;
+mod verify;
 
 use std::io::Write;
 
@@ -35,6 +36,8 @@ pub enum Command {
     Stats(stats::StatsArgs),
     /// Evaluate the dynamics at one state.
     Eval(eval::EvalArgs),
+    /// Generate every built-in robot's kernels and check them against the numeric reference.
+    Verify(verify::VerifyArgs),
 }
 
 /// Runs one command, writing its output to `out`.
@@ -45,5 +48,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Emit(args) => emit::run(&args, out),
         Command::Stats(args) => stats::run(&args, out),
         Command::Eval(args) => eval::run(&args, out),
+        Command::Verify(args) => verify::run(&args, out),
     }
 }
