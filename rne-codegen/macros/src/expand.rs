@@ -8,17 +8,18 @@ use rne_codegen_core::{generate, read_robot, CodegenError};
 
 use crate::check::CheckedModule;
 
-/// Overrides `CARGO_MANIFEST_DIR` as the base of relative robot paths. For the crate's own
-/// compile-fail tests, which trybuild builds in a directory of its own.
-const MANIFEST_DIR_OVERRIDE: &str = "RNE_CODEGEN_MANIFEST_DIR";
+/// A second base for relative robot paths that are not found under `CARGO_MANIFEST_DIR`. For
+/// the crate's own compile-fail tests, which trybuild builds in a directory of its own.
+const MANIFEST_DIR_FALLBACK: &str = "RNE_CODEGEN_MANIFEST_DIR";
 
 pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
-    let manifest_dir = std::env::var_os(MANIFEST_DIR_OVERRIDE)
-        .or_else(|| std::env::var_os("CARGO_MANIFEST_DIR"))
-        .map(PathBuf::from)
-        .unwrap_or_default();
     let origin = module.robot.value();
-    let path = manifest_dir.join(&origin);
+    let base = |var: &str| std::env::var_os(var).map(|dir| PathBuf::from(dir).join(&origin));
+    let path = match (base("CARGO_MANIFEST_DIR"), base(MANIFEST_DIR_FALLBACK)) {
+        (Some(primary), Some(fallback)) if !primary.exists() && fallback.exists() => fallback,
+        (Some(primary), _) => primary,
+        (None, fallback) => fallback.unwrap_or_else(|| PathBuf::from(&origin)),
+    };
     let generated = read_robot(&path, &origin, &module.scene)
         .and_then(|model| generate(&model, &module.scene, &origin))
         .map_err(|e| match &e {

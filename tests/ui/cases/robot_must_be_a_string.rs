@@ -1,0 +1,7 @@
+rne_codegen::derive_dynamics! {
+    mod arm {
+        robot: [1],
+    }
+}
+
+fn main() {}

@@ -1,0 +1,1 @@
+//! Compile-fail tests of `derive_dynamics!` live in `tests/`; this crate has no library code.
