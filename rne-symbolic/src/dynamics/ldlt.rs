@@ -24,7 +24,9 @@ impl LtdlFactor {
         let one = g.one();
         for k in (0..n).rev() {
             inverse_pivot[k] = g.div(one, h[k][k]);
-            for i in 0..k {
+            // Down the row towards the first column: the update of row i reads h[k][j] for
+            // j ≤ i, which must not have been scaled into L yet.
+            for i in (0..k).rev() {
                 if g.is_zero(h[k][i]) {
                     continue;
                 }
