@@ -14,6 +14,7 @@ pub mod model;
 pub mod newton_euler;
 mod real;
 pub mod spec;
+pub mod trig;
 
 pub use double_double::DoubleDouble;
 pub use dynamics::SymbolicDynamics;

@@ -61,8 +61,10 @@ impl Real for f64 {
     fn to_f64(self) -> f64 {
         self
     }
+    /// [`crate::trig::sin_cos`]: within 1 ulp, and several times faster than the standard
+    /// library's on the joint-angle ranges of robots.
     fn sin_cos(self) -> (f64, f64) {
-        f64::sin_cos(self)
+        crate::trig::sin_cos(self)
     }
     fn sqrt(self) -> f64 {
         f64::sqrt(self)
@@ -76,8 +78,10 @@ impl Real for f32 {
     fn to_f64(self) -> f64 {
         self as f64
     }
+    /// Through the `f64` [`crate::trig::sin_cos`], rounded once to `f32`.
     fn sin_cos(self) -> (f32, f32) {
-        f32::sin_cos(self)
+        let (s, c) = crate::trig::sin_cos(self as f64);
+        (s as f32, c as f32)
     }
     fn sqrt(self) -> f32 {
         f32::sqrt(self)

@@ -37,13 +37,28 @@ fn generic_kernels_in_f64_are_bit_identical_to_the_f64_kernels() {
     let mut rng = common::rng(21);
     for _ in 0..1000 {
         let (q, qd, qdd) = state(&mut rng, 3);
-        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) =
-            (q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap());
-        assert_eq!(generic::inverse_dynamics(&q, &qd, &qdd), double::inverse_dynamics(&q, &qd, &qdd));
+        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
+        assert_eq!(
+            generic::inverse_dynamics(&q, &qd, &qdd),
+            double::inverse_dynamics(&q, &qd, &qdd)
+        );
         assert_eq!(generic::mass_matrix(&q), double::mass_matrix(&q));
-        assert_eq!(generic::coriolis_matrix(&q, &qd), double::coriolis_matrix(&q, &qd));
-        assert_eq!(generic::forward_dynamics(&q, &qd, &qdd), double::forward_dynamics(&q, &qd, &qdd));
-        assert_eq!(generic::kinetic_energy(&q, &qd), double::kinetic_energy(&q, &qd));
+        assert_eq!(
+            generic::coriolis_matrix(&q, &qd),
+            double::coriolis_matrix(&q, &qd)
+        );
+        assert_eq!(
+            generic::forward_dynamics(&q, &qd, &qdd),
+            double::forward_dynamics(&q, &qd, &qdd)
+        );
+        assert_eq!(
+            generic::kinetic_energy(&q, &qd),
+            double::kinetic_energy(&q, &qd)
+        );
         assert_eq!(generic::potential_energy(&q), double::potential_energy(&q));
     }
 }
@@ -54,12 +69,18 @@ fn f32_kernels_agree_with_f64_to_single_precision() {
     let mut worst = 0.0f64;
     for _ in 0..1000 {
         let (q, qd, qdd) = state(&mut rng, 3);
-        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) =
-            (q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap());
+        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
         let tau32 = single::inverse_dynamics(&to_f32(&q), &to_f32(&qd), &to_f32(&qdd));
         let generic32 = generic::inverse_dynamics(&to_f32(&q), &to_f32(&qd), &to_f32(&qdd));
         assert_eq!(tau32, generic32, "generic in f32 equals the f32 kernel");
-        worst = worst.max(rel_err(&to_f64(tau32), &double::inverse_dynamics(&q, &qd, &qdd)));
+        worst = worst.max(rel_err(
+            &to_f64(tau32),
+            &double::inverse_dynamics(&q, &qd, &qdd),
+        ));
         let m32 = single::mass_matrix(&to_f32(&q));
         let m64 = double::mass_matrix(&q);
         for i in 0..3 {

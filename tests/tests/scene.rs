@@ -39,23 +39,38 @@ rne_codegen::derive_dynamics! {
     }
 }
 
-const SPEC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../rne-models/robots/irb140-3dof.toml");
+const SPEC: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../rne-models/robots/irb140-3dof.toml"
+);
 
 #[test]
 fn zero_gravity_module_equals_the_full_module_without_its_gravity_torques() {
     let mut rng = common::rng(11);
     for _ in 0..1000 {
         let (q, qd, qdd) = state(&mut rng, 3);
-        let (q, qd, qdd) = (q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap());
+        let (q, qd, qdd) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
         let expected: Vec<f64> = full::inverse_dynamics(&q, &qd, &qdd)
             .iter()
             .zip(full::gravity_torques(&q))
             .map(|(t, g)| t - g)
             .collect();
         assert!(rel_err(&weightless::inverse_dynamics(&q, &qd, &qdd), &expected) < 1e-13);
-        assert_eq!(weightless::gravity_torques(&q), [0.0; 3], "no gravity term survives");
+        assert_eq!(
+            weightless::gravity_torques(&q),
+            [0.0; 3],
+            "no gravity term survives"
+        );
         assert_eq!(weightless::potential_energy(&q), 0.0);
-        assert_eq!(weightless::mass_matrix(&q), full::mass_matrix(&q), "M does not depend on gravity");
+        assert_eq!(
+            weightless::mass_matrix(&q),
+            full::mass_matrix(&q),
+            "M does not depend on gravity"
+        );
     }
 }
 
@@ -71,7 +86,12 @@ fn locked_module_equals_the_full_module_at_the_locked_values() {
         let qd_full = [0.0, 0.0, qd[0]];
         let qdd_full = [0.0, 0.0, qdd[0]];
         let tau = full::inverse_dynamics(&q_full, &qd_full, &qdd_full);
-        assert!(rel_err(&wrist_pendulum::inverse_dynamics(&q3, &qd3, &qdd3), &[tau[2]]) < 1e-13);
+        assert!(
+            rel_err(
+                &wrist_pendulum::inverse_dynamics(&q3, &qd3, &qdd3),
+                &[tau[2]]
+            ) < 1e-13
+        );
         let m = full::mass_matrix(&q_full);
         assert!(rel_err(&wrist_pendulum::mass_matrix(&q3)[0], &[m[2][2]]) < 1e-13);
         let g = full::gravity_torques(&q_full);
@@ -92,26 +112,69 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
     let mut rng = common::rng(13);
     for _ in 0..200 {
         let (q, qd, qdd) = state(&mut rng, 3);
-        let (q, qd, qdd) = (q.try_into().unwrap(), qd.try_into().unwrap(), qdd.try_into().unwrap());
+        let (q, qd, qdd) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
         let constant = full::inverse_dynamics(&q, &qd, &qdd);
         assert!(rel_err(&tunable::inverse_dynamics(&p, &q, &qd, &qdd), &constant) < 1e-13);
     }
     // Doubling m3 at run time equals editing the spec's m3 (checked with the reference).
-    let heavier = tunable::Params { m3: 44.0, ..tunable::Params::default() };
-    let mut model = load_file(SPEC.as_ref(), &LoadOptions { symbolic_parameters: true }).unwrap();
-    model.parameters.iter_mut().find(|p| p.name == "m3").unwrap().value = 44.0;
+    let heavier = tunable::Params {
+        m3: 44.0,
+        ..tunable::Params::default()
+    };
+    let mut model = load_file(
+        SPEC.as_ref(),
+        &LoadOptions {
+            symbolic_parameters: true,
+        },
+    )
+    .unwrap();
+    model
+        .parameters
+        .iter_mut()
+        .find(|p| p.name == "m3")
+        .unwrap()
+        .value = 44.0;
     let mut reference = rne_models::reference::Reference::new(&model.to_numeric());
     let (q, qd, qdd) = ([0.1, 0.7, -1.2], [0.5, -0.3, 2.0], [1.0, 0.2, -0.4]);
-    let expected: Vec<f64> = reference.inverse_dynamics(&q, &qd, &qdd).unwrap().data.into();
-    assert!(rel_err(&tunable::inverse_dynamics(&heavier, &q, &qd, &qdd), &expected) < 1e-13);
+    let expected: Vec<f64> = reference
+        .inverse_dynamics(&q, &qd, &qdd)
+        .unwrap()
+        .data
+        .into();
+    assert!(
+        rel_err(
+            &tunable::inverse_dynamics(&heavier, &q, &qd, &qdd),
+            &expected
+        ) < 1e-13
+    );
 }
 
 #[test]
 fn specialised_scenes_cost_fewer_operations() {
     let model = load_file(SPEC.as_ref(), &LoadOptions::default()).unwrap();
     let full = generate(&model, &Scene::default(), "irb140").unwrap();
-    let weightless = generate(&model, &Scene { gravity: Some([0.0; 3]), ..Scene::default() }, "irb140").unwrap();
-    let locked = generate(&model, &Scene { lock: vec![("q1".into(), 0.3), ("q2".into(), -0.5)], ..Scene::default() }, "irb140").unwrap();
+    let weightless = generate(
+        &model,
+        &Scene {
+            gravity: Some([0.0; 3]),
+            ..Scene::default()
+        },
+        "irb140",
+    )
+    .unwrap();
+    let locked = generate(
+        &model,
+        &Scene {
+            lock: vec![("q1".into(), 0.3), ("q2".into(), -0.5)],
+            ..Scene::default()
+        },
+        "irb140",
+    )
+    .unwrap();
     for (variant, name) in [(&weightless, "zero gravity"), (&locked, "locked q1, q2")] {
         for (k, (special, general)) in variant.kernels.iter().zip(&full.kernels).enumerate() {
             assert_eq!(special.kernel, general.kernel);
@@ -123,12 +186,35 @@ fn specialised_scenes_cost_fewer_operations() {
                 general.ops
             );
             if special.kernel == Kernel::InverseDynamics {
-                assert!(special.ops.total() < general.ops.total(), "{name}: inverse dynamics not cheaper ({k})");
+                assert!(
+                    special.ops.total() < general.ops.total(),
+                    "{name}: inverse dynamics not cheaper ({k})"
+                );
             }
         }
     }
-    let only_id = generate(&model, &Scene { outputs: vec![Kernel::InverseDynamics], ..Scene::default() }, "irb140").unwrap();
-    assert_eq!(only_id.kernels.len(), 1, "only what the scene asks for is generated");
-    let runtime = generate(&model, &Scene { parameters: ParameterMode::Runtime, ..Scene::default() }, "irb140").unwrap();
+    let only_id = generate(
+        &model,
+        &Scene {
+            outputs: vec![Kernel::InverseDynamics],
+            ..Scene::default()
+        },
+        "irb140",
+    )
+    .unwrap();
+    assert_eq!(
+        only_id.kernels.len(),
+        1,
+        "only what the scene asks for is generated"
+    );
+    let runtime = generate(
+        &model,
+        &Scene {
+            parameters: ParameterMode::Runtime,
+            ..Scene::default()
+        },
+        "irb140",
+    )
+    .unwrap();
     assert_eq!(runtime.kernels.len(), full.kernels.len());
 }

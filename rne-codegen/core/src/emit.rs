@@ -140,19 +140,12 @@ impl Emitter<'_> {
         }
     }
 
+    /// `sin`, `cos` and `sqrt` go through `rne_codegen::Real` for every scalar type, so that
+    /// `f64` kernels get the fast, accurate `rne_codegen::sin_cos`.
     fn call(&self, method: &str, a: Operand) -> (TokenStream, Precedence) {
         let method = Ident::new(method, Span::call_site());
         let arg = self.operand(a).0;
-        match self.ctx.scalar {
-            ScalarType::Generic => (
-                quote!(<T as ::rne_codegen::Real>::#method(#arg)),
-                Precedence::Atom,
-            ),
-            _ => {
-                let receiver = self.at_least(a, Precedence::Atom);
-                (quote!(#receiver.#method()), Precedence::Atom)
-            }
-        }
+        (quote!(::rne_codegen::Real::#method(#arg)), Precedence::Atom)
     }
 
     fn instr(&self, instr: Instr) -> (TokenStream, Precedence) {
@@ -191,16 +184,10 @@ impl Emitter<'_> {
         let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
             let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
             let angle = self.input(Symbol::Position(k));
-            let generic = self.ctx.scalar == ScalarType::Generic;
-            match (sin, cos, generic) {
-                (true, true, false) => quote!(let (#s, #c) = #angle.sin_cos();),
-                (true, true, true) => {
-                    quote!(let (#s, #c) = <T as ::rne_codegen::Real>::sin_cos(#angle);)
-                }
-                (true, false, false) => quote!(let #s = #angle.sin();),
-                (true, false, true) => quote!(let #s = <T as ::rne_codegen::Real>::sin(#angle);),
-                (false, _, false) => quote!(let #c = #angle.cos();),
-                (false, _, true) => quote!(let #c = <T as ::rne_codegen::Real>::cos(#angle);),
+            match (sin, cos) {
+                (true, true) => quote!(let (#s, #c) = ::rne_codegen::Real::sin_cos(#angle);),
+                (true, false) => quote!(let #s = ::rne_codegen::Real::sin(#angle);),
+                (false, _) => quote!(let #c = ::rne_codegen::Real::cos(#angle);),
             }
         });
         quote!(#(#lines)*)

@@ -12,9 +12,13 @@ use crate::scene::{ParameterMode, Scene};
 /// Reads the robot file at `path`, naming it `origin` in error messages, with parameters kept
 /// symbolic when `scene` wants them at run time.
 pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel, CodegenError> {
-    let options = LoadOptions { symbolic_parameters: scene.parameters == ParameterMode::Runtime };
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| CodegenError::Read { file: origin.to_owned(), source })?;
+    let options = LoadOptions {
+        symbolic_parameters: scene.parameters == ParameterMode::Runtime,
+    };
+    let text = std::fs::read_to_string(path).map_err(|source| CodegenError::Read {
+        file: origin.to_owned(),
+        source,
+    })?;
     Ok(parse_str(&text, origin, &options)?)
 }
 
