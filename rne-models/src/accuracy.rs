@@ -41,7 +41,11 @@ pub enum AccuracyError {
 
 /// Normwise relative error ‖a − b‖∞ / ‖b‖∞ (absolute when b is zero).
 pub fn relative_error(a: &[f64], b: &[f64]) -> f64 {
-    let diff = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    let diff = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
     let scale = b.iter().map(|y| y.abs()).fold(0.0, f64::max);
     if scale > 0.0 {
         diff / scale
@@ -64,13 +68,26 @@ pub fn compare(
     let mut weightless = Reference::try_new(&weightless)?;
     let n = kernels.dof();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut uniform = |bound: f64| -> Vec<f64> { (0..n).map(|_| rng.gen_range(-bound..=bound)).collect() };
-    const NAMES: [&str; 8] = ["tau", "M", "g", "bias", "C qd", "qdd", "kinetic", "potential"];
+    let mut uniform =
+        |bound: f64| -> Vec<f64> { (0..n).map(|_| rng.gen_range(-bound..=bound)).collect() };
+    const NAMES: [&str; 8] = [
+        "tau",
+        "M",
+        "g",
+        "bias",
+        "C qd",
+        "qdd",
+        "kinetic",
+        "potential",
+    ];
     let mut errors: [Vec<f64>; 8] = Default::default();
     for _ in 0..samples {
         let (q, qd, qdd) = (uniform(std::f64::consts::PI), uniform(10.0), uniform(10.0));
         let tau_ref: Vec<f64> = reference.inverse_dynamics(&q, &qd, &qdd)?.data.into();
-        errors[0].push(relative_error(&kernels.inverse_dynamics(&q, &qd, &qdd)?, &tau_ref));
+        errors[0].push(relative_error(
+            &kernels.inverse_dynamics(&q, &qd, &qdd)?,
+            &tau_ref,
+        ));
         let m_ref: Vec<f64> = reference.mass_matrix(&q)?.transpose().data.into();
         errors[1].push(relative_error(&kernels.mass_matrix(&q)?.concat(), &m_ref));
         let g_ref: Vec<f64> = reference.gravity_torques(&q)?.data.into();
@@ -78,19 +95,32 @@ pub fn compare(
         let bias_ref: Vec<f64> = reference.bias_torques(&q, &qd)?.data.into();
         errors[3].push(relative_error(&kernels.bias_torques(&q, &qd)?, &bias_ref));
         let c = kernels.coriolis_matrix(&q, &qd)?;
-        let c_qd: Vec<f64> = c.iter().map(|row| row.iter().zip(&qd).map(|(a, b)| a * b).sum()).collect();
+        let c_qd: Vec<f64> = c
+            .iter()
+            .map(|row| row.iter().zip(&qd).map(|(a, b)| a * b).sum())
+            .collect();
         let c_qd_ref: Vec<f64> = weightless.bias_torques(&q, &qd)?.data.into();
         errors[4].push(relative_error(&c_qd, &c_qd_ref));
         let scale = g_ref.iter().fold(10.0, |m: f64, g| m.max(g.abs()));
         let tau_in = uniform(scale);
         let qdd_ref: Vec<f64> = reference.forward_dynamics(&q, &qd, &tau_in)?.data.into();
-        errors[5].push(relative_error(&kernels.forward_dynamics(&q, &qd, &tau_in)?, &qdd_ref));
+        errors[5].push(relative_error(
+            &kernels.forward_dynamics(&q, &qd, &tau_in)?,
+            &qdd_ref,
+        ));
         let t_ref = reference.kinetic_energy(&q, &qd)?;
-        errors[6].push(relative_error(&[kernels.kinetic_energy(&q, &qd)?], &[t_ref]));
+        errors[6].push(relative_error(
+            &[kernels.kinetic_energy(&q, &qd)?],
+            &[t_ref],
+        ));
         let v_ref = reference.potential_energy(&q)?;
         let v_scale = g_ref.iter().fold(v_ref.abs(), |m, g| m.max(g.abs()));
         let v = kernels.potential_energy(&q)?;
-        errors[7].push(if v_scale > 0.0 { (v - v_ref).abs() / v_scale } else { (v - v_ref).abs() });
+        errors[7].push(if v_scale > 0.0 {
+            (v - v_ref).abs() / v_scale
+        } else {
+            (v - v_ref).abs()
+        });
     }
     Ok(NAMES
         .iter()

@@ -26,9 +26,18 @@ impl Interpreted {
     /// Builds every kernel of `model` (numeric or symbolic parameters).
     pub fn new(model: &RobotModel) -> Interpreted {
         let mut dynamics = SymbolicDynamics::new(model);
-        let roots: Vec<(Kernel, Vec<_>)> = Kernel::ALL.iter().map(|&k| (k, k.build(&mut dynamics))).collect();
-        let evaluators = roots.into_iter().map(|(k, ids)| (k, Evaluator::new(&dynamics.model.graph, &ids))).collect();
-        Interpreted { dynamics, evaluators }
+        let roots: Vec<(Kernel, Vec<_>)> = Kernel::ALL
+            .iter()
+            .map(|&k| (k, k.build(&mut dynamics)))
+            .collect();
+        let evaluators = roots
+            .into_iter()
+            .map(|(k, ids)| (k, Evaluator::new(&dynamics.model.graph, &ids)))
+            .collect();
+        Interpreted {
+            dynamics,
+            evaluators,
+        }
     }
 
     fn check(&self, argument: &'static str, values: &[f64]) -> Result<(), DimensionError> {
@@ -36,12 +45,21 @@ impl Interpreted {
         if values.len() == expected {
             Ok(())
         } else {
-            Err(DimensionError { argument, got: values.len(), expected })
+            Err(DimensionError {
+                argument,
+                got: values.len(),
+                expected,
+            })
         }
     }
 
     fn eval(&self, kernel: Kernel, state: &State) -> Vec<f64> {
-        let evaluator = &self.evaluators.iter().find(|(k, _)| *k == kernel).expect("every kernel is built").1;
+        let evaluator = &self
+            .evaluators
+            .iter()
+            .find(|(k, _)| *k == kernel)
+            .expect("every kernel is built")
+            .1;
         let model = &self.dynamics.model;
         evaluator.eval(&model.graph, |s| match s {
             Symbol::Position(k) => state.q[k as usize],
@@ -53,7 +71,9 @@ impl Interpreted {
     }
 
     fn matrix(&self, flat: Vec<f64>) -> Vec<Vec<f64>> {
-        flat.chunks(self.dynamics.dof().max(1)).map(<[f64]>::to_vec).collect()
+        flat.chunks(self.dynamics.dof().max(1))
+            .map(<[f64]>::to_vec)
+            .collect()
     }
 }
 
@@ -66,50 +86,124 @@ impl Kernels for Interpreted {
         self.dynamics.model.joint_names()
     }
 
-    fn inverse_dynamics(&self, q: &[f64], qd: &[f64], qdd: &[f64]) -> Result<Vec<f64>, DimensionError> {
+    fn inverse_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) -> Result<Vec<f64>, DimensionError> {
         self.check("q", q)?;
         self.check("qd", qd)?;
         self.check("qdd", qdd)?;
-        Ok(self.eval(Kernel::InverseDynamics, &State { q, qd, qdd, tau: &[] }))
+        Ok(self.eval(
+            Kernel::InverseDynamics,
+            &State {
+                q,
+                qd,
+                qdd,
+                tau: &[],
+            },
+        ))
     }
 
     fn mass_matrix(&self, q: &[f64]) -> Result<Vec<Vec<f64>>, DimensionError> {
         self.check("q", q)?;
-        Ok(self.matrix(self.eval(Kernel::MassMatrix, &State { q, qd: &[], qdd: &[], tau: &[] })))
+        Ok(self.matrix(self.eval(
+            Kernel::MassMatrix,
+            &State {
+                q,
+                qd: &[],
+                qdd: &[],
+                tau: &[],
+            },
+        )))
     }
 
     fn coriolis_matrix(&self, q: &[f64], qd: &[f64]) -> Result<Vec<Vec<f64>>, DimensionError> {
         self.check("q", q)?;
         self.check("qd", qd)?;
-        Ok(self.matrix(self.eval(Kernel::CoriolisMatrix, &State { q, qd, qdd: &[], tau: &[] })))
+        Ok(self.matrix(self.eval(
+            Kernel::CoriolisMatrix,
+            &State {
+                q,
+                qd,
+                qdd: &[],
+                tau: &[],
+            },
+        )))
     }
 
     fn gravity_torques(&self, q: &[f64]) -> Result<Vec<f64>, DimensionError> {
         self.check("q", q)?;
-        Ok(self.eval(Kernel::GravityTorques, &State { q, qd: &[], qdd: &[], tau: &[] }))
+        Ok(self.eval(
+            Kernel::GravityTorques,
+            &State {
+                q,
+                qd: &[],
+                qdd: &[],
+                tau: &[],
+            },
+        ))
     }
 
     fn bias_torques(&self, q: &[f64], qd: &[f64]) -> Result<Vec<f64>, DimensionError> {
         self.check("q", q)?;
         self.check("qd", qd)?;
-        Ok(self.eval(Kernel::BiasTorques, &State { q, qd, qdd: &[], tau: &[] }))
+        Ok(self.eval(
+            Kernel::BiasTorques,
+            &State {
+                q,
+                qd,
+                qdd: &[],
+                tau: &[],
+            },
+        ))
     }
 
-    fn forward_dynamics(&self, q: &[f64], qd: &[f64], tau: &[f64]) -> Result<Vec<f64>, DimensionError> {
+    fn forward_dynamics(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        tau: &[f64],
+    ) -> Result<Vec<f64>, DimensionError> {
         self.check("q", q)?;
         self.check("qd", qd)?;
         self.check("tau", tau)?;
-        Ok(self.eval(Kernel::ForwardDynamics, &State { q, qd, qdd: &[], tau }))
+        Ok(self.eval(
+            Kernel::ForwardDynamics,
+            &State {
+                q,
+                qd,
+                qdd: &[],
+                tau,
+            },
+        ))
     }
 
     fn kinetic_energy(&self, q: &[f64], qd: &[f64]) -> Result<f64, DimensionError> {
         self.check("q", q)?;
         self.check("qd", qd)?;
-        Ok(self.eval(Kernel::KineticEnergy, &State { q, qd, qdd: &[], tau: &[] })[0])
+        Ok(self.eval(
+            Kernel::KineticEnergy,
+            &State {
+                q,
+                qd,
+                qdd: &[],
+                tau: &[],
+            },
+        )[0])
     }
 
     fn potential_energy(&self, q: &[f64]) -> Result<f64, DimensionError> {
         self.check("q", q)?;
-        Ok(self.eval(Kernel::PotentialEnergy, &State { q, qd: &[], qdd: &[], tau: &[] })[0])
+        Ok(self.eval(
+            Kernel::PotentialEnergy,
+            &State {
+                q,
+                qd: &[],
+                qdd: &[],
+                tau: &[],
+            },
+        )[0])
     }
 }

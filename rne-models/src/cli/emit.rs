@@ -27,7 +27,11 @@ pub struct EmitArgs {
 
 /// Prints the generated module.
 pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let scene = scene(args.outputs.as_deref(), args.gravity.as_deref(), args.lock.as_deref())?;
+    let scene = scene(
+        args.outputs.as_deref(),
+        args.gravity.as_deref(),
+        args.lock.as_deref(),
+    )?;
     let source = RobotSource::resolve(&args.model);
     let model = source.load(&rne_symbolic::spec::LoadOptions::default())?;
     let module = generate(&model, &scene, &source.display_name())?;

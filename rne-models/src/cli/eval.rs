@@ -84,7 +84,11 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Some(text) => parse_list(name, text),
         None => Ok(vec![0.0; n]),
     };
-    let (qd, qdd, tau) = (state("qd", &args.qd)?, state("qdd", &args.qdd)?, state("tau", &args.tau)?);
+    let (qd, qdd, tau) = (
+        state("qd", &args.qd)?,
+        state("qdd", &args.qdd)?,
+        state("tau", &args.tau)?,
+    );
     let wants = |q: Quantity| args.what.contains(&q) || args.what.contains(&Quantity::All);
 
     let mut results: Vec<(&str, serde_json::Value)> = Vec::new();
@@ -119,8 +123,14 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 results.push(("qdd", vector(kernels.forward_dynamics(&q, &qd, &tau)?)));
             }
             if wants(Quantity::Energy) {
-                results.push(("kinetic", serde_json::json!(kernels.kinetic_energy(&q, &qd)?)));
-                results.push(("potential", serde_json::json!(kernels.potential_energy(&q)?)));
+                results.push((
+                    "kinetic",
+                    serde_json::json!(kernels.kinetic_energy(&q, &qd)?),
+                ));
+                results.push((
+                    "potential",
+                    serde_json::json!(kernels.potential_energy(&q)?),
+                ));
             }
         }
         Engine::Numeric => {
@@ -130,10 +140,22 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 m.row_iter().map(|r| r.iter().copied().collect()).collect()
             };
             if wants(Quantity::Tau) {
-                results.push(("tau", vector(reference.inverse_dynamics(&q, &qd, &qdd).map_err(numeric)?.data.into())));
+                results.push((
+                    "tau",
+                    vector(
+                        reference
+                            .inverse_dynamics(&q, &qd, &qdd)
+                            .map_err(numeric)?
+                            .data
+                            .into(),
+                    ),
+                ));
             }
             if wants(Quantity::M) {
-                results.push(("M", matrix(rows(reference.mass_matrix(&q).map_err(numeric)?))));
+                results.push((
+                    "M",
+                    matrix(rows(reference.mass_matrix(&q).map_err(numeric)?)),
+                ));
             }
             if args.what.contains(&Quantity::C) {
                 return Err(CliError::Argument(
@@ -141,17 +163,44 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 ));
             }
             if wants(Quantity::G) {
-                results.push(("g", vector(reference.gravity_torques(&q).map_err(numeric)?.data.into())));
+                results.push((
+                    "g",
+                    vector(reference.gravity_torques(&q).map_err(numeric)?.data.into()),
+                ));
             }
             if wants(Quantity::Bias) {
-                results.push(("bias", vector(reference.bias_torques(&q, &qd).map_err(numeric)?.data.into())));
+                results.push((
+                    "bias",
+                    vector(
+                        reference
+                            .bias_torques(&q, &qd)
+                            .map_err(numeric)?
+                            .data
+                            .into(),
+                    ),
+                ));
             }
             if wants(Quantity::Fd) {
-                results.push(("qdd", vector(reference.forward_dynamics(&q, &qd, &tau).map_err(numeric)?.data.into())));
+                results.push((
+                    "qdd",
+                    vector(
+                        reference
+                            .forward_dynamics(&q, &qd, &tau)
+                            .map_err(numeric)?
+                            .data
+                            .into(),
+                    ),
+                ));
             }
             if wants(Quantity::Energy) {
-                results.push(("kinetic", serde_json::json!(reference.kinetic_energy(&q, &qd).map_err(numeric)?)));
-                results.push(("potential", serde_json::json!(reference.potential_energy(&q).map_err(numeric)?)));
+                results.push((
+                    "kinetic",
+                    serde_json::json!(reference.kinetic_energy(&q, &qd).map_err(numeric)?),
+                ));
+                results.push((
+                    "potential",
+                    serde_json::json!(reference.potential_energy(&q).map_err(numeric)?),
+                ));
             }
         }
     }
@@ -188,7 +237,9 @@ fn format_row(value: &serde_json::Value) -> String {
             let items: Vec<String> = items.iter().map(format_row).collect();
             format!("[{}]", items.join(", "))
         }
-        serde_json::Value::Number(n) => n.as_f64().map_or_else(|| n.to_string(), |x| format!("{x:.17e}")),
+        serde_json::Value::Number(n) => n
+            .as_f64()
+            .map_or_else(|| n.to_string(), |x| format!("{x:.17e}")),
         other => other.to_string(),
     }
 }

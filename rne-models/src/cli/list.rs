@@ -11,7 +11,14 @@ use crate::builtin::{RobotSource, BUILTIN_ROBOTS};
 pub fn run(out: &mut dyn Write) -> Result<(), CliError> {
     for robot in BUILTIN_ROBOTS {
         let model = RobotSource::Builtin(robot).load(&LoadOptions::default())?;
-        writeln!(out, "{:<14} {} joints  {}  ({})", robot.name, model.dof(), robot.description, robot.file)?;
+        writeln!(
+            out,
+            "{:<14} {} joints  {}  ({})",
+            robot.name,
+            model.dof(),
+            robot.description,
+            robot.file
+        )?;
     }
     Ok(())
 }

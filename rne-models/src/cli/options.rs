@@ -37,9 +37,9 @@ pub fn parse_list(name: &str, text: &str) -> Result<Vec<f64>, CliError> {
 pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
     text.split(',')
         .map(|item| {
-            let (name, value) = item
-                .split_once('=')
-                .ok_or_else(|| CliError::Argument(format!("--lock: `{item}` is not `joint=value`")))?;
+            let (name, value) = item.split_once('=').ok_or_else(|| {
+                CliError::Argument(format!("--lock: `{item}` is not `joint=value`"))
+            })?;
             let value = value
                 .trim()
                 .parse::<f64>()
@@ -50,20 +50,27 @@ pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
 }
 
 /// The scene described by the `--outputs`, `--gravity` and `--lock` options.
-pub fn scene(outputs: Option<&str>, gravity: Option<&str>, lock: Option<&str>) -> Result<Scene, CliError> {
+pub fn scene(
+    outputs: Option<&str>,
+    gravity: Option<&str>,
+    lock: Option<&str>,
+) -> Result<Scene, CliError> {
     let mut scene = Scene::default();
     if let Some(outputs) = outputs {
         scene.outputs = outputs
             .split(',')
-            .map(|name| name.trim().parse::<Kernel>().map_err(|e| CliError::Argument(e.to_string())))
+            .map(|name| {
+                name.trim()
+                    .parse::<Kernel>()
+                    .map_err(|e| CliError::Argument(e.to_string()))
+            })
             .collect::<Result<_, _>>()?;
     }
     if let Some(gravity) = gravity {
         let g = parse_list("gravity", gravity)?;
-        scene.gravity = Some(
-            g.try_into()
-                .map_err(|g: Vec<f64>| CliError::Argument(format!("--gravity needs 3 values, got {}", g.len())))?,
-        );
+        scene.gravity = Some(g.try_into().map_err(|g: Vec<f64>| {
+            CliError::Argument(format!("--gravity needs 3 values, got {}", g.len()))
+        })?);
     }
     if let Some(lock) = lock {
         scene.lock = parse_locks(lock)?;

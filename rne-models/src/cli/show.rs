@@ -58,7 +58,9 @@ pub struct ShowArgs {
 /// Prints the requested parts of the dynamics.
 pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = source.load(&LoadOptions { symbolic_parameters: args.symbolic_params })?;
+    let model = source.load(&LoadOptions {
+        symbolic_parameters: args.symbolic_params,
+    })?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();
     let want = |p: Part| args.what == p || args.what == Part::All;
@@ -70,11 +72,27 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         (true, Some(b)) => format!("_{{{a}{b}}}"),
         (true, None) => format!("_{{{a}}}"),
     };
-    let name = |text: &str, tex: &str| if latex { tex.to_owned() } else { text.to_owned() };
+    let name = |text: &str, tex: &str| {
+        if latex {
+            tex.to_owned()
+        } else {
+            text.to_owned()
+        }
+    };
     if want(Part::Tau) {
         let tau = dynamics.inverse_dynamics();
-        let entries = (0..n).map(|i| (format!("{}{}", name("tau", "\\tau"), sub(i + 1, None)), tau[i])).collect();
-        sections.push(("joint torques, M(q) qdd + C(q, qd) qd + g(q) = tau (3.1)", entries));
+        let entries = (0..n)
+            .map(|i| {
+                (
+                    format!("{}{}", name("tau", "\\tau"), sub(i + 1, None)),
+                    tau[i],
+                )
+            })
+            .collect();
+        sections.push((
+            "joint torques, M(q) qdd + C(q, qd) qd + g(q) = tau (3.1)",
+            entries,
+        ));
     }
     if want(Part::M) {
         let m = dynamics.mass_matrix();
@@ -90,11 +108,16 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
             .flat_map(|i| (0..n).map(move |j| (i, j)))
             .map(|(i, j)| (format!("C{}", sub(i + 1, Some(j + 1))), c[i][j]))
             .collect();
-        sections.push(("Coriolis matrix C(q, qd) from Christoffel symbols (Mdot - 2C skew)", entries));
+        sections.push((
+            "Coriolis matrix C(q, qd) from Christoffel symbols (Mdot - 2C skew)",
+            entries,
+        ));
     }
     if want(Part::G) {
         let g = dynamics.gravity_torques();
-        let entries = (0..n).map(|i| (format!("g{}", sub(i + 1, None)), g[i])).collect();
+        let entries = (0..n)
+            .map(|i| (format!("g{}", sub(i + 1, None)), g[i]))
+            .collect();
         sections.push(("gravity torques g(q)", entries));
     }
     if want(Part::Energy) {
@@ -104,17 +127,34 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
 
     let graph = &dynamics.model.graph;
-    let format = if latex { PrintFormat::Latex } else { PrintFormat::Text };
+    let format = if latex {
+        PrintFormat::Latex
+    } else {
+        PrintFormat::Text
+    };
     let printer = Printer::new(graph.symbols(), format);
-    let printer = if args.symbolic_params { printer } else { printer.significant_digits(6) };
-    let roots: Vec<Id> = sections.iter().flat_map(|(_, entries)| entries.iter().map(|(_, id)| *id)).collect();
+    let printer = if args.symbolic_params {
+        printer
+    } else {
+        printer.significant_digits(6)
+    };
+    let roots: Vec<Id> = sections
+        .iter()
+        .flat_map(|(_, entries)| entries.iter().map(|(_, id)| *id))
+        .collect();
     let polynomials = Polynomial::from_exprs(graph, &roots)
         .map_err(|e| CliError::Argument(format!("cannot expand the dynamics for printing: {e}")))?;
     let mut polynomials = polynomials.into_iter();
     let comment = if latex { "%" } else { "#" };
     let equals = if latex { " &= " } else { " = " };
     let end = if latex { " \\\\" } else { "" };
-    writeln!(out, "{comment} {} ({} joints: {})", source.display_name(), n, model.joint_names().join(", "))?;
+    writeln!(
+        out,
+        "{comment} {} ({} joints: {})",
+        source.display_name(),
+        n,
+        model.joint_names().join(", ")
+    )?;
     for (title, entries) in &sections {
         writeln!(out, "\n{comment} {title}")?;
         for (label, _) in entries {

@@ -46,7 +46,11 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         return Ok(());
     }
     writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
-    writeln!(out, "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10}", "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "gen (ms)")?;
+    writeln!(
+        out,
+        "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10}",
+        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "gen (ms)"
+    )?;
     for k in &module.kernels {
         let o = k.ops;
         writeln!(
@@ -63,6 +67,10 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             k.generation_time.as_secs_f64() * 1e3
         )?;
     }
-    writeln!(out, "total generation time: {:.3} ms", module.generation_time.as_secs_f64() * 1e3)?;
+    writeln!(
+        out,
+        "total generation time: {:.3} ms",
+        module.generation_time.as_secs_f64() * 1e3
+    )?;
     Ok(())
 }

@@ -35,7 +35,11 @@ pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
         args.models
             .iter()
             .map(|name| {
-                builtin(name).ok_or_else(|| CliError::Argument(format!("`{name}` is not a built-in robot (see `rne models`)")))
+                builtin(name).ok_or_else(|| {
+                    CliError::Argument(format!(
+                        "`{name}` is not a built-in robot (see `rne models`)"
+                    ))
+                })
             })
             .collect::<Result<_, _>>()?
     };
@@ -55,19 +59,39 @@ pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
         let agreement = compare(&model, robot.kernels, args.samples, args.seed)
             .map_err(|e| CliError::Argument(e.to_string()))?;
-        writeln!(out, "  against the numeric reference, {} seeded states (max / median relative error):", args.samples)?;
+        writeln!(
+            out,
+            "  against the numeric reference, {} seeded states (max / median relative error):",
+            args.samples
+        )?;
         for a in &agreement {
-            let verdict = if a.max_error <= args.tolerance { "ok" } else { "FAIL" };
-            writeln!(out, "  {:<10} {:>10.2e} {:>10.2e}  {verdict}", a.quantity, a.max_error, a.median_error)?;
+            let verdict = if a.max_error <= args.tolerance {
+                "ok"
+            } else {
+                "FAIL"
+            };
+            writeln!(
+                out,
+                "  {:<10} {:>10.2e} {:>10.2e}  {verdict}",
+                a.quantity, a.max_error, a.median_error
+            )?;
             if a.max_error > args.tolerance {
                 failures.push(format!("{} {}", robot.name, a.quantity));
             }
         }
     }
     if failures.is_empty() {
-        writeln!(out, "all kernels agree with the reference to {:e}", args.tolerance)?;
+        writeln!(
+            out,
+            "all kernels agree with the reference to {:e}",
+            args.tolerance
+        )?;
         Ok(())
     } else {
-        Err(CliError::Argument(format!("errors above {:e}: {}", args.tolerance, failures.join(", "))))
+        Err(CliError::Argument(format!(
+            "errors above {:e}: {}",
+            args.tolerance,
+            failures.join(", ")
+        )))
     }
 }
