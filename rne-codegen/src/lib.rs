@@ -35,4 +35,4 @@ pub use rne_codegen_core::{
     ParameterMode, ScalarType, Scene, KEEP_GENERATED_ENV,
 };
 pub use rne_codegen_macros::derive_dynamics;
-pub use rne_symbolic::Real;
+pub use rne_symbolic::{DoubleDouble, Real};

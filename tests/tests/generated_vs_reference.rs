@@ -176,3 +176,50 @@ fn christoffel_matrix_is_symmetric_in_velocity_and_makes_mdot_minus_2c_skew() {
         }
     }
 }
+
+#[test]
+fn expression_graphs_with_symbolic_parameters_agree_with_the_reference_on_the_thesis_robots() {
+    use rne_models::interpreted::Interpreted;
+    use rne_models::kernels::Kernels;
+    for name in ["planar-elbow", "irb140-3dof"] {
+        let robot = rne_models::builtin::builtin(name).unwrap();
+        let symbolic = RobotSource::Builtin(robot)
+            .load(&LoadOptions {
+                symbolic_parameters: true,
+            })
+            .unwrap();
+        assert!(!symbolic.parameters.is_empty());
+        let graph = Interpreted::new(&symbolic);
+        let mut reference = Reference::new(&symbolic.to_numeric());
+        let mut weightless = symbolic.to_numeric();
+        weightless.gravity = [0.0; 3];
+        let mut weightless = Reference::new(&weightless);
+        let n = graph.dof();
+        let mut rng = common::rng(0x5eed_0004);
+        for k in 0..1000 {
+            let (q, qd, qdd) = state(&mut rng, n);
+            let tau_ref: Vec<f64> = reference
+                .inverse_dynamics(&q, &qd, &qdd)
+                .unwrap()
+                .data
+                .into();
+            assert!(
+                rel_err(&graph.inverse_dynamics(&q, &qd, &qdd).unwrap(), &tau_ref) <= 1e-12,
+                "{name} tau {k}"
+            );
+            let m_ref: Vec<f64> = reference.mass_matrix(&q).unwrap().transpose().data.into();
+            assert!(
+                rel_err(&flat(&graph.mass_matrix(&q).unwrap()), &m_ref) <= 1e-12,
+                "{name} M {k}"
+            );
+            let g_ref: Vec<f64> = reference.gravity_torques(&q).unwrap().data.into();
+            assert!(
+                rel_err(&graph.gravity_torques(&q).unwrap(), &g_ref) <= 1e-12,
+                "{name} g {k}"
+            );
+            let c_qd = mat_vec(&graph.coriolis_matrix(&q, &qd).unwrap(), &qd);
+            let c_qd_ref: Vec<f64> = weightless.bias_torques(&q, &qd).unwrap().data.into();
+            assert!(rel_err(&c_qd, &c_qd_ref) <= 1e-12, "{name} C qd {k}");
+        }
+    }
+}

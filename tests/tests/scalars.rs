@@ -3,6 +3,7 @@
 mod common;
 
 use common::{rel_err, state};
+use rne_codegen::DoubleDouble;
 
 rne_codegen::derive_dynamics! {
     mod double {
@@ -88,4 +89,31 @@ fn f32_kernels_agree_with_f64_to_single_precision() {
         }
     }
     assert!(worst < 1e-4, "f32 relative error {worst:e}");
+}
+
+#[test]
+fn generic_kernels_in_double_double_agree_with_f64_and_are_more_precise() {
+    let dd = |v: &[f64; 3]| v.map(DoubleDouble::from_f64);
+    let mut rng = common::rng(23);
+    for _ in 0..300 {
+        let (q, qd, qdd) = state(&mut rng, 3);
+        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
+        let precise = generic::inverse_dynamics(&dd(&q), &dd(&qd), &dd(&qdd)).map(|x| x.to_f64());
+        assert!(rel_err(&double::inverse_dynamics(&q, &qd, &qdd), &precise) < 1e-13);
+        let m_precise = generic::mass_matrix(&dd(&q));
+        let m = double::mass_matrix(&q);
+        for i in 0..3 {
+            assert!(rel_err(&m[i], &m_precise[i].map(|x| x.to_f64())) < 1e-13);
+        }
+        // The double-double result is not just the f64 one widened: it carries more digits.
+        let widened = generic::inverse_dynamics(&dd(&q), &dd(&qd), &dd(&qdd));
+        assert!(
+            widened.iter().any(|x| x.lo() != 0.0),
+            "no low-order digits at all"
+        );
+    }
 }

@@ -26,7 +26,11 @@ pub enum Part {
     G,
     /// Kinetic and potential energy.
     Energy,
-    /// Everything.
+    /// The joint reactions f_i and τ_i ((3.21), (3.24)): force and torque the parent exerts on
+    /// each link, in the link's body frame; the components off the joint axis are the loads
+    /// the joint must resist (thesis section 5.4). Not part of `all`.
+    Reactions,
+    /// Everything but the reactions.
     All,
 }
 
@@ -63,7 +67,7 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     })?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();
-    let want = |p: Part| args.what == p || args.what == Part::All;
+    let want = |p: Part| args.what == p || (args.what == Part::All && p != Part::Reactions);
     let mut sections: Vec<(&str, Vec<(String, Id)>)> = Vec::new();
     let latex = args.format == Format::Latex;
     let sub = |a: usize, b: Option<usize>| match (latex, b) {
@@ -124,6 +128,27 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         let t = dynamics.kinetic_energy();
         let v = dynamics.potential_energy();
         sections.push(("energy", vec![("T".to_owned(), t), ("V".to_owned(), v)]));
+    }
+
+    if want(Part::Reactions) {
+        let reactions = dynamics.joint_reactions();
+        let links: Vec<String> = dynamics
+            .model
+            .links
+            .iter()
+            .map(|l| l.name.clone())
+            .collect();
+        let mut entries = Vec::new();
+        for (link, r) in links.iter().zip(&reactions) {
+            for (axis, (f, t)) in ["x", "y", "z"].iter().zip(r.force.iter().zip(&r.torque)) {
+                entries.push((format!("f_{link}.{axis}"), *f));
+                entries.push((format!("tau_{link}.{axis}"), *t));
+            }
+        }
+        sections.push((
+            "joint reactions f_i, tau_i in each link's body frame (3.21), (3.24)",
+            entries,
+        ));
     }
 
     let graph = &dynamics.model.graph;

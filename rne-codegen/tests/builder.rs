@@ -1,0 +1,63 @@
+//! The build-script `Builder` and the determinism of generated code.
+
+use std::path::PathBuf;
+
+use rne_codegen::{generate_from_path, Builder, Kernel, Scene, KEEP_GENERATED_ENV};
+
+fn robot() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../rne-models/robots/irb140-3dof.toml")
+}
+
+#[test]
+fn two_generations_of_the_same_spec_are_byte_identical() {
+    let scene = Scene::default();
+    let first = generate_from_path(&robot(), &scene).unwrap();
+    let second = generate_from_path(&robot(), &scene).unwrap();
+    assert_eq!(first.items.to_string(), second.items.to_string());
+    assert_eq!(first.to_pretty_string(), second.to_pretty_string());
+}
+
+#[test]
+fn builder_writes_the_module_to_out_dir_and_a_readable_copy_on_request() {
+    let root = std::env::temp_dir().join(format!("rne-builder-test-{}", std::process::id()));
+    let out_dir = root.join("out");
+    let keep = root.join("keep");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    std::env::set_var("OUT_DIR", &out_dir);
+    std::env::set_var(KEEP_GENERATED_ENV, &keep);
+    let builder = Builder::new(robot())
+        .outputs(&[Kernel::InverseDynamics, Kernel::MassMatrix])
+        .lock("q1", 0.0);
+    let written = builder.write("irb140.rs").unwrap();
+    assert_eq!(written, out_dir.join("irb140.rs"));
+    let source = std::fs::read_to_string(&written).unwrap();
+    let expected = generate_from_path(&robot(), builder.scene())
+        .unwrap()
+        .to_pretty_string();
+    assert_eq!(
+        source, expected,
+        "the file holds the same module as the macro"
+    );
+    assert!(source.contains("pub const NDOF: usize = 2;"));
+    assert!(source.contains("pub fn inverse_dynamics(") && source.contains("pub fn mass_matrix("));
+    assert!(
+        !source.contains("pub fn forward_dynamics("),
+        "only the requested kernels"
+    );
+    assert_eq!(
+        std::fs::read_to_string(keep.join("irb140.rs")).unwrap(),
+        source
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn builder_reports_a_missing_robot_file_by_name() {
+    let error = Builder::new("/nonexistent/arm.toml")
+        .generate()
+        .unwrap_err();
+    assert!(
+        error.to_string().contains("/nonexistent/arm.toml"),
+        "{error}"
+    );
+}
