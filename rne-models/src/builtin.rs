@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{load_file, parse_str, LoadOptions, SpecError};
+use rne_symbolic::spec::{load_robot, parse_robot, LoadOptions, RobotFormat, SpecError};
 use rne_symbolic::RobotModel;
 
 use crate::generated;
@@ -11,12 +11,17 @@ use crate::kernels::Kernels;
 
 impl_kernels!(PlanarElbow, generated::planar_elbow);
 impl_kernels!(Irb140ThreeDof, generated::irb140_3dof);
+impl_kernels!(Puma560, generated::puma560);
+impl_kernels!(Ur5, generated::ur5);
+impl_kernels!(Panda, generated::panda);
+impl_kernels!(PandaArm, generated::panda_arm);
+impl_kernels!(Irb140, generated::irb140);
 
 /// A robot that ships with rne.
 pub struct BuiltinRobot {
     /// The name used on the command line.
     pub name: &'static str,
-    /// The spec file, relative to `rne-models/`.
+    /// The spec file (`.toml` or `.urdf`), relative to `rne-models/`.
     pub file: &'static str,
     /// The spec file's text.
     pub source: &'static str,
@@ -42,6 +47,41 @@ pub static BUILTIN_ROBOTS: &[BuiltinRobot] = &[
         description: "ABB IRB 140, first three joints, thesis chapter 5 and table 6.2",
         kernels: &Irb140ThreeDof,
     },
+    BuiltinRobot {
+        name: "puma560",
+        file: "robots/puma560.toml",
+        source: include_str!("../robots/puma560.toml"),
+        description: "PUMA 560, standard DH, Corke & Armstrong-Helouvry (ICRA 1994) parameters",
+        kernels: &Puma560,
+    },
+    BuiltinRobot {
+        name: "ur5",
+        file: "robots/ur5.urdf",
+        source: include_str!("../robots/ur5.urdf"),
+        description: "Universal Robots UR5, ros-industrial description",
+        kernels: &Ur5,
+    },
+    BuiltinRobot {
+        name: "panda",
+        file: "robots/panda.urdf",
+        source: include_str!("../robots/panda.urdf"),
+        description: "Franka Emika Panda with hand and two fingers (9 joints, a tree), Gaz et al. 2019",
+        kernels: &Panda,
+    },
+    BuiltinRobot {
+        name: "panda-arm",
+        file: "robots/panda-arm.urdf",
+        source: include_str!("../robots/panda-arm.urdf"),
+        description: "Franka Emika Panda arm to the flange, no hand (7 joints), Gaz et al. 2019",
+        kernels: &PandaArm,
+    },
+    BuiltinRobot {
+        name: "irb140",
+        file: "robots/irb140.toml",
+        source: include_str!("../robots/irb140.toml"),
+        description: "ABB IRB 140, six joints: thesis chapter 5 and ABB's wrist geometry (wrist inertials estimated)",
+        kernels: &Irb140,
+    },
 ];
 
 /// The built-in robot called `name`.
@@ -66,11 +106,14 @@ impl RobotSource {
         }
     }
 
-    /// Reads the robot.
+    /// Reads the robot, a TOML spec or a URDF as its file's extension says.
     pub fn load(&self, options: &LoadOptions) -> Result<RobotModel, SpecError> {
         match self {
-            RobotSource::Builtin(robot) => parse_str(robot.source, robot.file, options),
-            RobotSource::File(path) => load_file(path, options),
+            RobotSource::Builtin(robot) => {
+                let format = RobotFormat::from_path(Path::new(robot.file))?;
+                parse_robot(robot.source, robot.file, format, options)
+            }
+            RobotSource::File(path) => load_robot(path, options),
         }
     }
 

@@ -15,6 +15,7 @@ pub mod newton_euler;
 mod real;
 pub mod spec;
 pub mod trig;
+pub mod urdf;
 
 pub use double_double::DoubleDouble;
 pub use dynamics::SymbolicDynamics;

@@ -2,24 +2,26 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
 use crate::module::{generate, GeneratedModule};
 use crate::scene::{ParameterMode, Scene};
 
-/// Reads the robot file at `path`, naming it `origin` in error messages, with parameters kept
-/// symbolic when `scene` wants them at run time.
+/// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension), naming it
+/// `origin` in error messages, with parameters kept symbolic when `scene` wants them at run
+/// time.
 pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel, CodegenError> {
     let options = LoadOptions {
         symbolic_parameters: scene.parameters == ParameterMode::Runtime,
     };
+    let format = RobotFormat::from_path(Path::new(origin))?;
     let text = std::fs::read_to_string(path).map_err(|source| CodegenError::Read {
         file: origin.to_owned(),
         source,
     })?;
-    Ok(parse_str(&text, origin, &options)?)
+    Ok(parse_robot(&text, origin, format, &options)?)
 }
 
 /// Reads a robot file and generates the module `scene` asks for.

@@ -23,13 +23,23 @@ pub enum SpecErrorKind {
     /// Physically invalid numbers: negative mass, an inertia that is not symmetric, not positive
     /// semi-definite or breaks the triangle inequality, a value that is not finite.
     Physics,
+    /// A URDF file that cannot be read (malformed XML, a missing or malformed element or
+    /// attribute) or that uses what a rigid-body tree with one-variable joints cannot model:
+    /// floating, planar or spherical joints, mimic joints, a joint name that cannot name a joint
+    /// variable.
+    Urdf,
+    /// A file name whose extension names no robot format (`.toml` or `.urdf`).
+    UnknownFormat,
 }
 
-/// An error found while reading a robot spec (DESIGN §2), naming the file, the link and the field.
+/// An error found while reading a robot spec (DESIGN §2), naming the file, the joint or link and
+/// the field.
 ///
 /// Displays as `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`; the
-/// line number appears when the TOML parser knows where the offending value is, the link and
-/// field when the error belongs to one.
+/// line number appears when the reader knows where the offending text is, the joint, link and
+/// field when the error belongs to one. A URDF error names the joint for what its `<joint>`
+/// element says and the link for what its `<link>` element says:
+/// `robots/arm.urdf:7: joint 'elbow', field 'axis': axis must not be zero`.
 ///
 /// A struct with a [`SpecErrorKind`] rather than an enum with one variant per mistake: every
 /// error carries the same location, callers that react to errors match on the kind, and the
@@ -44,6 +54,7 @@ struct Details {
     kind: SpecErrorKind,
     file: String,
     line: Option<usize>,
+    joint: Option<String>,
     link: Option<String>,
     field: Option<String>,
     message: String,
@@ -58,6 +69,7 @@ impl SpecError {
             kind,
             file: String::new(),
             line: None,
+            joint: None,
             link: None,
             field: None,
             message: message.into(),
@@ -69,6 +81,14 @@ impl SpecError {
     pub(crate) fn at_field(mut self, field: impl Into<String>) -> SpecError {
         if self.0.field.is_none() {
             self.0.field = Some(field.into());
+        }
+        self
+    }
+
+    /// Sets the joint if none is set yet (a URDF `<joint>` element).
+    pub(crate) fn in_joint(mut self, joint: &str) -> SpecError {
+        if self.0.joint.is_none() {
+            self.0.joint = Some(joint.to_owned());
         }
         self
     }
@@ -114,9 +134,14 @@ impl SpecError {
         &self.0.file
     }
 
-    /// The 1-based line of the offending TOML text, when known.
+    /// The 1-based line of the offending text, when known.
     pub fn line(&self) -> Option<usize> {
         self.0.line
+    }
+
+    /// The URDF joint the error belongs to, if any.
+    pub fn joint(&self) -> Option<&str> {
+        self.0.joint.as_deref()
     }
 
     /// The link the error belongs to, if any.
@@ -125,7 +150,7 @@ impl SpecError {
     }
 
     /// The field the error belongs to, if any (`mass`, `inertia.xy`, `dh.theta`, `com[1]`,
-    /// `parameters.w`, ...).
+    /// `parameters.w`; in a URDF `axis`, `origin.rpy`, `inertial.mass`, ...).
     pub fn field(&self) -> Option<&str> {
         self.0.field.as_deref()
     }
@@ -142,6 +167,9 @@ impl SpecError {
         }
         out.push_str(": ");
         let mut place = Vec::new();
+        if let Some(joint) = &self.0.joint {
+            place.push(format!("joint '{joint}'"));
+        }
         if let Some(link) = &self.0.link {
             place.push(format!("link '{link}'"));
         }
@@ -174,6 +202,24 @@ mod tests {
             "robots/arm.toml:3: link 'link2', field 'mass': mass must be >= 0, got -3"
         );
         assert_eq!(error.line(), Some(3));
+    }
+
+    #[test]
+    fn displays_the_joint_of_a_urdf() {
+        let error = SpecError::new(SpecErrorKind::Kinematics, "axis must not be zero")
+            .at_field("axis")
+            .in_joint("elbow")
+            .at_span(Some(30..40))
+            .locate(
+                "robots/arm.urdf",
+                "<robot>\n<link/>\n<link/>\n<joint name=\"elbow\">",
+            );
+        assert_eq!(
+            error.to_string(),
+            "robots/arm.urdf:4: joint 'elbow', field 'axis': axis must not be zero"
+        );
+        assert_eq!(error.joint(), Some("elbow"));
+        assert_eq!(error.link(), None);
     }
 
     #[test]

@@ -16,6 +16,10 @@
 //! inertia = { box = ["l1", 0.08, 0.08] }
 //! ```
 //!
+//! [`load_robot`] and [`parse_robot`] read either format of DESIGN §2, a TOML spec (this
+//! module) or a URDF ([`crate::urdf`]), as the file's extension says ([`RobotFormat`]);
+//! [`load_file`] and [`parse_str`] read TOML only.
+//!
 //! # Reading
 //!
 //! 1. The TOML is read into a tree that remembers the line of every key and value
@@ -63,18 +67,20 @@ mod assemble;
 mod document;
 mod error;
 mod expression;
-mod frames;
-mod inertia;
+mod format;
+pub(crate) mod frames;
+pub(crate) mod inertia;
 mod parameters;
 mod rewrite;
 mod schema;
 mod scope;
-mod tree;
-mod validate;
+pub(crate) mod tree;
+pub(crate) mod validate;
 
 use std::path::Path;
 
 pub use error::{SpecError, SpecErrorKind};
+pub use format::{load_robot, parse_robot, RobotFormat};
 
 use self::assemble::Assembled;
 use self::document::Table;
@@ -144,18 +150,14 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
             graph.symbols_mut().push_parameter(p.name.clone());
         }
     }
-    let mut copier = Transplant::new(&scratch, graph, |g: &mut ExprGraph, s: Symbol| match s {
+    let symbol = |g: &mut ExprGraph, s: Symbol| match s {
         Symbol::Parameter(k) if !options.symbolic_parameters => {
             g.constant(parameters.get(k as usize).map_or(f64::NAN, |p| p.value))
         }
         s => g.symbol(s),
-    });
-    let gravity = copier.vector(gravity);
-    let links = built
-        .into_iter()
-        .map(|b| copy_link(&mut copier, b.link))
-        .collect();
-    let graph = copier.finish();
+    };
+    let links = built.into_iter().map(|b| b.link).collect();
+    let (graph, gravity, links) = copy_model(&scratch, graph, symbol, gravity, links);
     Ok(RobotModel {
         name: spec.name,
         graph,
@@ -186,6 +188,27 @@ fn assemble_links(
         built.push(assembled);
     }
     Ok(built)
+}
+
+/// Copies a model's gravity and links, built in `scratch`, into `graph` (the model's own, which
+/// then holds only what the model uses), mapping each symbol through `symbol`. The copy visits
+/// gravity, then each link's rotation, translation, axis, mass, COM and inertia, so two readers
+/// that build the same expressions get the same graph, node for node (a URDF and the same robot
+/// as a TOML spec, whose links are constants).
+pub(crate) fn copy_model<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
+    scratch: &ExprGraph,
+    graph: ExprGraph,
+    symbol: F,
+    gravity: Vec3,
+    links: Vec<Link>,
+) -> (ExprGraph, Vec3, Vec<Link>) {
+    let mut copier = Transplant::new(scratch, graph, symbol);
+    let gravity = copier.vector(gravity);
+    let links = links
+        .into_iter()
+        .map(|link| copy_link(&mut copier, link))
+        .collect();
+    (copier.finish(), gravity, links)
 }
 
 /// A link with its expressions copied into the model's graph.

@@ -228,14 +228,8 @@ fn joint_names(
                 .in_link(&link.name.name)
                 .at_span(span.clone())
         };
-        if !is_identifier(&name) || RESERVED.contains(&name.as_str()) {
-            return Err(error(
-                SpecErrorKind::Format,
-                format!(
-                    "joint variable '{name}' is not a name (letters, digits and _, not {})",
-                    RESERVED.join(", ")
-                ),
-            ));
+        if let Some(problem) = unusable_variable_name(&name) {
+            return Err(error(SpecErrorKind::Format, problem));
         }
         if let Some(other) = owner.get(&name) {
             let message = if other.starts_with("joint variable") {
@@ -256,11 +250,7 @@ fn joint_names(
     }
     for (link, name) in links.iter().zip(&names) {
         let Some(name) = name else { continue };
-        for (what, printed) in [
-            ("velocity", format!("D{name}")),
-            ("acceleration", format!("DD{name}")),
-            ("force", format!("tau_{name}")),
-        ] {
+        for (what, printed) in printed_forms(name) {
             if let Some(other) = owner.get(&printed) {
                 return Err(tree_error(format!(
                     "joint variable '{name}' clashes with {other}: its {what} is printed '{printed}'"
@@ -272,6 +262,27 @@ fn joint_names(
         }
     }
     Ok(names)
+}
+
+/// Why `name` cannot name a joint variable, if it cannot: it must be an identifier (letters,
+/// digits and `_`) and not a word of the expression language.
+pub(crate) fn unusable_variable_name(name: &str) -> Option<String> {
+    (!is_identifier(name) || RESERVED.contains(&name)).then(|| {
+        format!(
+            "joint variable '{name}' is not a name (letters, digits and _, not {})",
+            RESERVED.join(", ")
+        )
+    })
+}
+
+/// How a joint variable's velocity, acceleration and force are printed (`D<q>`, `DD<q>`,
+/// `tau_<q>`, as the thesis's Maple code), each with what it is.
+pub(crate) fn printed_forms(name: &str) -> [(&'static str, String); 3] {
+    [
+        ("velocity", format!("D{name}")),
+        ("acceleration", format!("DD{name}")),
+        ("force", format!("tau_{name}")),
+    ]
 }
 
 fn tree_error(message: impl Into<String>) -> SpecError {

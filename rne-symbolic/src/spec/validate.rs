@@ -92,9 +92,7 @@ pub(crate) fn link(values: &Values<'_>, built: &Assembled) -> Result<(), SpecErr
     }
     let mass = values.scalar(built.link.mass);
     finite(&[mass], "mass")?;
-    if mass < 0.0 {
-        return Err(physics(format!("mass must be >= 0, got {mass}")).at_field("mass"));
-    }
+    non_negative_mass(mass).map_err(|e| e.at_field("mass"))?;
     finite(&values.vector(&built.link.com), built.com_field)?;
     if let Some(edges) = &built.box_edges {
         let edges = values.vector(edges);
@@ -115,9 +113,17 @@ pub(crate) fn link(values: &Values<'_>, built: &Assembled) -> Result<(), SpecErr
     inertia_tensor(&inertia, mass, built.triangle_inequality).map_err(|e| e.at_field("inertia"))
 }
 
+/// A mass of at least zero (the caller names the field).
+pub(crate) fn non_negative_mass(mass: f64) -> Result<(), SpecError> {
+    if mass < 0.0 {
+        return Err(physics(format!("mass must be >= 0, got {mass}")));
+    }
+    Ok(())
+}
+
 /// Positive semi-definiteness and, for a link with mass, the triangle inequality of the
-/// principal moments.
-fn inertia_tensor(
+/// principal moments (the caller names the field).
+pub(crate) fn inertia_tensor(
     inertia: &[[f64; 3]; 3],
     mass: f64,
     triangle_inequality: bool,
@@ -156,7 +162,8 @@ fn symmetric(m: &[[f64; 3]; 3]) -> Result<(), SpecError> {
     Ok(())
 }
 
-fn finite(values: &[f64], field: &str) -> Result<(), SpecError> {
+/// Checks that every value is finite; the error names `field`.
+pub(crate) fn finite(values: &[f64], field: &str) -> Result<(), SpecError> {
     match values.iter().find(|x| !x.is_finite()) {
         None => Ok(()),
         Some(x) => Err(physics(format!("{field} is not finite ({x})")).at_field(field)),
