@@ -18,7 +18,8 @@
 //! `kinetic_energy`, `potential_energy`, and the constants `NDOF` and `JOINTS`. The module is
 //! regenerated when the robot file changes. Scene settings generate only what the
 //! application needs: `gravity: [0.0, 0.0, 0.0]` removes every gravity term,
-//! `lock: { q1: 0.0 }` turns joints into constants, `parameters: runtime` reads the model
+//! `lock: { q1: 0.0 }` turns joints into constants, `velocities: zero` makes a static scene
+//! (q̇ = 0: no Coriolis or centrifugal terms), `parameters: runtime` reads the model
 //! parameters from a `Params` struct at run time, and `scalar: f32 | generic` changes the
 //! scalar type (generic functions take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits).
 //!

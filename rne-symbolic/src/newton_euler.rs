@@ -277,7 +277,9 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
     let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
     for i in (0..n).rev() {
         let link = &links[i];
-        let LinkMotion { alpha, accel_com, .. } = out[i];
+        let LinkMotion {
+            alpha, accel_com, ..
+        } = out[i];
         // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
         let inertial_force = g.vscale(link.mass, accel_com);
         let mut force = inertial_force;

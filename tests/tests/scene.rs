@@ -31,6 +31,14 @@ rne_codegen::derive_dynamics! {
 }
 
 rne_codegen::derive_dynamics! {
+    /// A static scene: the joints move slowly enough that q̇ = 0.
+    mod at_rest {
+        robot: "../rne-models/robots/irb140-3dof.toml",
+        velocities: zero,
+    }
+}
+
+rne_codegen::derive_dynamics! {
     /// Parameters read at run time.
     mod tunable {
         robot: "../rne-models/robots/irb140-3dof.toml",
@@ -106,6 +114,34 @@ fn locked_module_equals_the_full_module_at_the_locked_values() {
 }
 
 #[test]
+fn static_scene_module_equals_the_full_module_at_zero_velocity() {
+    let mut rng = common::rng(14);
+    for _ in 0..1000 {
+        let (q, qd, qdd) = state(&mut rng, 3);
+        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
+        let rest = [0.0; 3];
+        // The velocities passed are ignored.
+        assert_eq!(
+            at_rest::inverse_dynamics(&q, &qd, &qdd),
+            full::inverse_dynamics(&q, &rest, &qdd)
+        );
+        assert_eq!(at_rest::bias_torques(&q, &qd), full::gravity_torques(&q));
+        assert_eq!(at_rest::coriolis_matrix(&q, &qd), [[0.0; 3]; 3]);
+        assert_eq!(at_rest::kinetic_energy(&q, &qd), 0.0);
+        assert!(
+            rel_err(
+                &at_rest::forward_dynamics(&q, &qd, &qdd),
+                &full::forward_dynamics(&q, &rest, &qdd)
+            ) < 1e-13
+        );
+    }
+}
+
+#[test]
 fn runtime_parameters_default_to_the_spec_and_follow_edits() {
     let p = tunable::Params::default();
     assert_eq!(p.m3, 22.0);
@@ -175,7 +211,20 @@ fn specialised_scenes_cost_fewer_operations() {
         "irb140",
     )
     .unwrap();
-    for (variant, name) in [(&weightless, "zero gravity"), (&locked, "locked q1, q2")] {
+    let at_rest = generate(
+        &model,
+        &Scene {
+            zero_velocities: true,
+            ..Scene::default()
+        },
+        "irb140",
+    )
+    .unwrap();
+    for (variant, name) in [
+        (&weightless, "zero gravity"),
+        (&locked, "locked q1, q2"),
+        (&at_rest, "at rest"),
+    ] {
         for (k, (special, general)) in variant.kernels.iter().zip(&full.kernels).enumerate() {
             assert_eq!(special.kernel, general.kernel);
             assert!(

@@ -15,9 +15,10 @@ pub const KEEP_GENERATED_ENV: &str = "RNE_KEEP_GENERATED";
 /// Generates a robot's dynamics module from `build.rs`.
 ///
 /// ```no_run
-/// // build.rs
-/// rne_codegen::Builder::new("robots/arm.toml")
-///     .outputs(&[rne_codegen::Kernel::InverseDynamics, rne_codegen::Kernel::MassMatrix])
+/// // build.rs (users write `rne_codegen::`, which re-exports these)
+/// use rne_codegen_core::{Builder, Kernel};
+/// Builder::new("robots/arm.toml")
+///     .outputs(&[Kernel::InverseDynamics, Kernel::MassMatrix])
 ///     .write("arm.rs")
 ///     .unwrap();
 /// // lib.rs:  mod arm { include!(concat!(env!("OUT_DIR"), "/arm.rs")); }

@@ -6,6 +6,29 @@
 //! subexpressions are shared and constants folded as they are created); each kernel is
 //! lowered to a straight-line [`Program`] (dead code removed, negations absorbed); the
 //! program is emitted with `quote`.
+//!
+//! # Optimisations and their limits
+//! Every rewrite keeps or lowers the operation count ([`rne_symbolic::OpCount`]); none
+//! re-associates floating-point sums or products.
+//! - **Common subexpressions** are shared across all kernels of a module by hash-consing:
+//!   syntactically equal subtrees (commutative operands ordered) are one node. Limit: no
+//!   associativity or distributivity, so `a·b·c` built as `(a·b)·c` and `a·(b·c)` are two
+//!   nodes.
+//! - **Constant folding and identities** as nodes are built: `x·0 = 0`, `x·1 = x`, `x + 0 = x`,
+//!   `x + (−x) = 0`, `−(−x) = x`, constant chains `c₁·(c₂·x)`, division by powers of two as
+//!   multiplication, and exact `sin`/`cos` at multiples of π/2 — which is how structural
+//!   zeros (sparse rotations, zero products of inertia, zero COM components) cost nothing.
+//!   Limit: `x·0 = 0` holds in real arithmetic only, so an output that does not depend on an
+//!   input structurally stays finite when that input is NaN (every output that does depend on
+//!   it is NaN).
+//! - **Trigonometry**: the graph only holds `sin` and `cos` of joint variables (angle sums
+//!   such as `cos(q₁ + q₂)` never arise: the recursion multiplies the rotations out), and
+//!   each joint's pair is computed once with `sin_cos`.
+//! - **Dead code**: only the nodes an output needs are lowered ([`Program::lower`]).
+//! - **Negations** are absorbed into subtractions and computed only when something other
+//!   than an addition uses them.
+//! - **Cost model**: [`rne_symbolic::OpCount::cost`] weighs the operations; `rne stats`
+//!   reports counts and cost per kernel.
 #![deny(missing_docs)]
 
 mod builder;

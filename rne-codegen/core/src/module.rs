@@ -68,6 +68,9 @@ pub fn generate(
         }
     }
     let mut dynamics = SymbolicDynamics::new(&model);
+    if scene.zero_velocities {
+        dynamics = dynamics.at_rest();
+    }
     let ndof = dynamics.dof();
     let joints = dynamics.model.joint_names();
     let mut kernels = Vec::new();

@@ -37,6 +37,9 @@ pub struct Scene {
     pub gravity: Option<[f64; 3]>,
     /// Joints locked at constant values: they become constants and leave the state.
     pub lock: Vec<(String, f64)>,
+    /// A static scene: every joint velocity is 0 (`velocities: zero`), so the Coriolis and
+    /// centrifugal terms vanish. The functions keep their `qd` arguments and ignore them.
+    pub zero_velocities: bool,
     /// Constant or runtime parameters.
     pub parameters: ParameterMode,
     /// The scalar type.
@@ -49,6 +52,7 @@ impl Default for Scene {
             outputs: Kernel::ALL.to_vec(),
             gravity: None,
             lock: Vec::new(),
+            zero_velocities: false,
             parameters: ParameterMode::Constant,
             scalar: ScalarType::F64,
         }

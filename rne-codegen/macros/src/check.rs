@@ -20,11 +20,12 @@ pub struct CheckedModule {
     pub lock_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 6] = [
+const KEYS: [&str; 7] = [
     "robot",
     "outputs",
     "gravity",
     "lock",
+    "velocities",
     "parameters",
     "scalar",
 ];
@@ -120,6 +121,16 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     }
                 }
             }
+            ("velocities", Value::Ident(v)) => match v.to_string().as_str() {
+                "zero" => scene.zero_velocities = true,
+                "free" => scene.zero_velocities = false,
+                other => errors.push(
+                    v.span(),
+                    format!(
+                        "unknown velocities `{other}`; expected `zero` (a static scene) or `free`"
+                    ),
+                ),
+            },
             ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
                 "constant" => scene.parameters = ParameterMode::Constant,
                 "runtime" => scene.parameters = ParameterMode::Runtime,
@@ -174,6 +185,7 @@ fn expected_shape(key: &str) -> String {
         }
         "gravity" => "expected three numbers: `gravity: [0.0, 0.0, -9.81]`".into(),
         "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
+        "velocities" => "expected `zero` or `free`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
         _ => "expected `f64`, `f32` or `generic`".into(),
     }

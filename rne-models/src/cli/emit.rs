@@ -23,15 +23,19 @@ pub struct EmitArgs {
     /// Joints to lock, `q1=0,q2=1.5`.
     #[arg(long, allow_hyphen_values = true)]
     pub lock: Option<String>,
+    /// A static scene: every joint velocity is zero (the macro's `velocities: zero`).
+    #[arg(long)]
+    pub at_rest: bool,
 }
 
 /// Prints the generated module.
 pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let scene = scene(
+    let mut scene = scene(
         args.outputs.as_deref(),
         args.gravity.as_deref(),
         args.lock.as_deref(),
     )?;
+    scene.zero_velocities = args.at_rest;
     let source = RobotSource::resolve(&args.model);
     let model = source.load(&rne_symbolic::spec::LoadOptions::default())?;
     let module = generate(&model, &scene, &source.display_name())?;

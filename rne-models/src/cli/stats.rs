@@ -31,7 +31,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 serde_json::json!({
                     "kernel": k.kernel.name(),
                     "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
-                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt,
+                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "cost": k.ops.cost(),
                     "generation_ms": k.generation_time.as_secs_f64() * 1e3,
                 })
             })
@@ -48,14 +48,14 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
     writeln!(
         out,
-        "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10}",
-        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "gen (ms)"
+        "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>6} {:>10}",
+        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "cost", "gen (ms)"
     )?;
     for k in &module.kernels {
         let o = k.ops;
         writeln!(
             out,
-            "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>10.3}",
+            "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>6} {:>10.3}",
             k.kernel.name(),
             o.mul,
             o.add,
@@ -64,6 +64,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             o.sin,
             o.cos,
             o.sqrt,
+            o.cost(),
             k.generation_time.as_secs_f64() * 1e3
         )?;
     }

@@ -18,6 +18,7 @@ use crate::newton_euler::{newton_euler, JointMotion, JointReaction, NewtonEuler}
 pub struct SymbolicDynamics {
     /// The model (fixed links merged) whose graph holds every expression built so far.
     pub model: RobotModel,
+    at_rest: bool,
     full: Option<NewtonEuler>,
     mass_matrix: Option<Vec<Vec<Id>>>,
     gravity_torques: Option<Vec<Id>>,
@@ -33,6 +34,7 @@ impl SymbolicDynamics {
     pub fn new(model: &RobotModel) -> SymbolicDynamics {
         SymbolicDynamics {
             model: model.merge_fixed_links(),
+            at_rest: false,
             full: None,
             mass_matrix: None,
             gravity_torques: None,
@@ -44,12 +46,23 @@ impl SymbolicDynamics {
         }
     }
 
+    /// The dynamics of a scene where the robot moves slowly enough that q̇ = 0 (a static or
+    /// quasi-static scene): every joint velocity is the constant 0, so Coriolis and
+    /// centrifugal terms vanish and τ = M(q) q̈ + g(q). Must be chosen before anything is built.
+    pub fn at_rest(mut self) -> SymbolicDynamics {
+        self.at_rest = true;
+        self
+    }
+
     /// Number of joint variables.
     pub fn dof(&self) -> usize {
         self.model.dof()
     }
 
     fn joint_symbols(&mut self, make: fn(u16) -> Symbol) -> Vec<Id> {
+        if self.at_rest && make(0) == Symbol::Velocity(0) {
+            return self.zeros();
+        }
         (0..self.dof())
             .map(|k| self.model.graph.symbol(make(k as u16)))
             .collect()

@@ -32,6 +32,15 @@ impl OpCount {
     pub fn total(&self) -> usize {
         self.mul + self.add + self.div + self.neg + self.sin + self.cos + self.sqrt
     }
+
+    /// Estimated cost in units of one addition, the cost model the code generator reports:
+    /// addition, multiplication and negation 1, division and square root 4 (their latency
+    /// relative to a multiplication on current x86-64 and AArch64 cores, throughput aside),
+    /// and a sine–cosine pair 10 (the polynomial evaluation of `trig::sin_cos`, shared by
+    /// the two), i.e. 5 each.
+    pub fn cost(&self) -> usize {
+        self.add + self.mul + self.neg + 4 * (self.div + self.sqrt) + 5 * (self.sin + self.cos)
+    }
 }
 
 impl Add for OpCount {
