@@ -32,8 +32,8 @@
 #![deny(missing_docs)]
 
 pub use rne_codegen_core::{
-    generate, generate_from_path, Builder, CodegenError, GeneratedModule, Kernel, KernelReport,
-    ParameterMode, ScalarType, Scene, KEEP_GENERATED_ENV,
+    generate, generate_from_path, kernel_program, Builder, CodegenError, GeneratedModule, Kernel,
+    KernelReport, ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
 };
 pub use rne_codegen_macros::derive_dynamics;
 pub use rne_symbolic::{DoubleDouble, Real};

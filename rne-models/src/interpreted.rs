@@ -1,17 +1,18 @@
-//! The dynamics evaluated straight from the expression graph, without generating code: what
-//! `rne eval --engine symbolic` uses for robots that are not built in, and the baseline that
-//! shows what code generation buys.
+//! The dynamics evaluated from the optimised straight-line programs, without compiling them:
+//! what `rne eval --engine symbolic` uses for robots that are not built in, and the baseline
+//! that shows what compiling the code buys. The programs are exactly what `derive_dynamics!`
+//! emits, evaluated operation by operation in the same order, so in `f64` the results are
+//! bit-for-bit those of the generated functions.
 
-use rne_codegen::Kernel;
-use rne_symbolic::expr::Evaluator;
+use rne_codegen::{kernel_program, Kernel, Program, Real};
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
 use crate::kernels::{DimensionError, Kernels};
 
-/// Every kernel of a robot as a prepared graph evaluation.
+/// Every kernel of a robot as a straight-line program.
 pub struct Interpreted {
     dynamics: SymbolicDynamics,
-    evaluators: Vec<(Kernel, Evaluator)>,
+    programs: Vec<(Kernel, Program)>,
 }
 
 /// The values of the joint symbols at one state.
@@ -26,18 +27,37 @@ impl Interpreted {
     /// Builds every kernel of `model` (numeric or symbolic parameters).
     pub fn new(model: &RobotModel) -> Interpreted {
         let mut dynamics = SymbolicDynamics::new(model);
-        let roots: Vec<(Kernel, Vec<_>)> = Kernel::ALL
+        let programs = Kernel::ALL
             .iter()
-            .map(|&k| (k, k.build(&mut dynamics)))
+            .map(|&k| (k, kernel_program(&mut dynamics, k)))
             .collect();
-        let evaluators = roots
-            .into_iter()
-            .map(|(k, ids)| (k, Evaluator::new(&dynamics.model.graph, &ids)))
-            .collect();
-        Interpreted {
-            dynamics,
-            evaluators,
-        }
+        Interpreted { dynamics, programs }
+    }
+
+    /// Evaluates one kernel in any scalar type (e.g. `DoubleDouble` for a ≈32-digit value of
+    /// the same model): `q`, `qd`, `qdd`, `tau` as the kernel needs them (others may be empty).
+    pub fn eval_in<T: Real>(
+        &self,
+        kernel: Kernel,
+        q: &[T],
+        qd: &[T],
+        qdd: &[T],
+        tau: &[T],
+    ) -> Vec<T> {
+        let program = &self
+            .programs
+            .iter()
+            .find(|(k, _)| *k == kernel)
+            .expect("every kernel is built")
+            .1;
+        let model = &self.dynamics.model;
+        program.eval(|s| match s {
+            Symbol::Position(k) => q[k as usize],
+            Symbol::Velocity(k) => qd[k as usize],
+            Symbol::Acceleration(k) => qdd[k as usize],
+            Symbol::Force(k) => tau[k as usize],
+            Symbol::Parameter(_) => T::from_f64(model.parameter_value(s).unwrap_or(f64::NAN)),
+        })
     }
 
     fn check(&self, argument: &'static str, values: &[f64]) -> Result<(), DimensionError> {
@@ -54,20 +74,7 @@ impl Interpreted {
     }
 
     fn eval(&self, kernel: Kernel, state: &State) -> Vec<f64> {
-        let evaluator = &self
-            .evaluators
-            .iter()
-            .find(|(k, _)| *k == kernel)
-            .expect("every kernel is built")
-            .1;
-        let model = &self.dynamics.model;
-        evaluator.eval(&model.graph, |s| match s {
-            Symbol::Position(k) => state.q[k as usize],
-            Symbol::Velocity(k) => state.qd[k as usize],
-            Symbol::Acceleration(k) => state.qdd[k as usize],
-            Symbol::Force(k) => state.tau[k as usize],
-            Symbol::Parameter(_) => model.parameter_value(s).unwrap_or(f64::NAN),
-        })
+        self.eval_in(kernel, state.q, state.qd, state.qdd, state.tau)
     }
 
     fn matrix(&self, flat: Vec<f64>) -> Vec<Vec<f64>> {

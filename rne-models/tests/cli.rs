@@ -6,7 +6,8 @@ use clap::Parser;
 use rne_models::cli::{run, Cli};
 
 fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied())).map_err(|e| e.to_string())?;
+    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
+        .map_err(|e| e.to_string())?;
     let mut out = Vec::new();
     run(cli, &mut out).map_err(|e| e.to_string())?;
     Ok(String::from_utf8(out).expect("utf-8 output"))
@@ -19,7 +20,16 @@ fn show_prints_the_planar_elbow_like_the_thesis() {
 
 #[test]
 fn show_prints_latex() {
-    insta::assert_snapshot!(rne(&["show", "planar-elbow", "--symbolic-params", "--format", "latex", "--what", "M"]).unwrap());
+    insta::assert_snapshot!(rne(&[
+        "show",
+        "planar-elbow",
+        "--symbolic-params",
+        "--format",
+        "latex",
+        "--what",
+        "M"
+    ])
+    .unwrap());
 }
 
 #[test]
@@ -29,7 +39,17 @@ fn show_prints_the_irb140_mass_matrix_with_numbers() {
 
 #[test]
 fn eval_json_has_the_documented_keys_and_engines_agree() {
-    let state = ["--q", "0.3,-0.5,1.1", "--qd", "1,2,-0.5", "--qdd", "0.1,0.2,0.3", "--tau", "1,2,3", "--json"];
+    let state = [
+        "--q",
+        "0.3,-0.5,1.1",
+        "--qd",
+        "1,2,-0.5",
+        "--qdd",
+        "0.1,0.2,0.3",
+        "--tau",
+        "1,2,3",
+        "--json",
+    ];
     let mut symbolic = vec!["eval", "irb140-3dof"];
     symbolic.extend(state);
     let mut numeric = symbolic.clone();
@@ -65,11 +85,27 @@ fn eval_json_has_the_documented_keys_and_engines_agree() {
 #[test]
 fn eval_of_a_spec_file_uses_the_expression_graph() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/planar-elbow.toml");
-    let by_file = rne(&["eval", path, "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json"]).unwrap();
-    let builtin = rne(&["eval", "planar-elbow", "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json"]).unwrap();
+    let by_file = rne(&[
+        "eval", path, "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json",
+    ])
+    .unwrap();
+    let builtin = rne(&[
+        "eval",
+        "planar-elbow",
+        "--q",
+        "0.2,0.4",
+        "--qd",
+        "1,-1",
+        "--what",
+        "tau,C",
+        "--json",
+    ])
+    .unwrap();
     let a: serde_json::Value = serde_json::from_str(&by_file).unwrap();
     let b: serde_json::Value = serde_json::from_str(&builtin).unwrap();
-    let close = |x: &serde_json::Value, y: &serde_json::Value| (x.as_f64().unwrap() - y.as_f64().unwrap()).abs() < 1e-12;
+    let close = |x: &serde_json::Value, y: &serde_json::Value| {
+        (x.as_f64().unwrap() - y.as_f64().unwrap()).abs() < 1e-12
+    };
     for i in 0..2 {
         assert!(close(&a["tau"][i], &b["tau"][i]));
         for j in 0..2 {
@@ -81,12 +117,30 @@ fn eval_of_a_spec_file_uses_the_expression_graph() {
 #[test]
 fn bad_input_is_a_clear_error() {
     let cases: [(&[&str], &str); 6] = [
-        (&["eval", "planar-elbow", "--q", "1,2,3"], "`q` has 3 values; the robot has 2 joints"),
-        (&["eval", "planar-elbow", "--q", "1,x"], "--q: `x` is not a number"),
-        (&["eval", "no/such/robot.toml", "--q", "1"], "no/such/robot.toml"),
-        (&["emit", "planar-elbow", "--lock", "q7=0"], "no joint named `q7`"),
-        (&["emit", "planar-elbow", "--outputs", "torques"], "unknown output `torques`"),
-        (&["emit", "planar-elbow", "--gravity", "0,1"], "--gravity needs 3 values"),
+        (
+            &["eval", "planar-elbow", "--q", "1,2,3"],
+            "`q` has 3 values; the robot has 2 joints",
+        ),
+        (
+            &["eval", "planar-elbow", "--q", "1,x"],
+            "--q: `x` is not a number",
+        ),
+        (
+            &["eval", "no/such/robot.toml", "--q", "1"],
+            "no/such/robot.toml",
+        ),
+        (
+            &["emit", "planar-elbow", "--lock", "q7=0"],
+            "no joint named `q7`",
+        ),
+        (
+            &["emit", "planar-elbow", "--outputs", "torques"],
+            "unknown output `torques`",
+        ),
+        (
+            &["emit", "planar-elbow", "--gravity", "0,1"],
+            "--gravity needs 3 values",
+        ),
     ];
     for (args, expected) in cases {
         let error = rne(args).expect_err("should fail");
@@ -96,7 +150,10 @@ fn bad_input_is_a_clear_error() {
 
 #[test]
 fn the_binary_exits_non_zero_with_the_error_on_stderr() {
-    let output = Command::new(env!("CARGO_BIN_EXE_rne")).args(["eval", "planar-elbow", "--q", "1,2,3"]).output().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_rne"))
+        .args(["eval", "planar-elbow", "--q", "1,2,3"])
+        .output()
+        .unwrap();
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.starts_with("error: "), "{stderr}");
@@ -106,7 +163,10 @@ fn the_binary_exits_non_zero_with_the_error_on_stderr() {
 #[test]
 fn emitted_code_is_byte_identical_across_processes() {
     let emit = || {
-        let output = Command::new(env!("CARGO_BIN_EXE_rne")).args(["emit", "irb140-3dof"]).output().unwrap();
+        let output = Command::new(env!("CARGO_BIN_EXE_rne"))
+            .args(["emit", "irb140-3dof"])
+            .output()
+            .unwrap();
         assert!(output.status.success());
         output.stdout
     };

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{rel_err, state};
+use common::{rel_err, rel_err_floor, state};
 use rne_codegen::{generate, Kernel, ParameterMode, Scene};
 use rne_symbolic::spec::{load_file, LoadOptions};
 
@@ -94,12 +94,10 @@ fn locked_module_equals_the_full_module_at_the_locked_values() {
         let qd_full = [0.0, 0.0, qd[0]];
         let qdd_full = [0.0, 0.0, qdd[0]];
         let tau = full::inverse_dynamics(&q_full, &qd_full, &qdd_full);
-        assert!(
-            rel_err(
-                &wrist_pendulum::inverse_dynamics(&q3, &qd3, &qdd3),
-                &[tau[2]]
-            ) < 1e-13
-        );
+        // τ3 can vanish; its error is taken relative to the joint's torque scale M33 + |g3|.
+        let scale = full::mass_matrix(&q_full)[2][2] + full::gravity_torques(&q_full)[2].abs();
+        let locked = wrist_pendulum::inverse_dynamics(&q3, &qd3, &qdd3);
+        assert!(rel_err_floor(&locked, &[tau[2]], scale) < 1e-13);
         let m = full::mass_matrix(&q_full);
         assert!(rel_err(&wrist_pendulum::mass_matrix(&q3)[0], &[m[2][2]]) < 1e-13);
         let g = full::gravity_torques(&q_full);
@@ -125,11 +123,10 @@ fn static_scene_module_equals_the_full_module_at_zero_velocity() {
         );
         let rest = [0.0; 3];
         // The velocities passed are ignored.
-        assert_eq!(
-            at_rest::inverse_dynamics(&q, &qd, &qdd),
-            full::inverse_dynamics(&q, &rest, &qdd)
-        );
-        assert_eq!(at_rest::bias_torques(&q, &qd), full::gravity_torques(&q));
+        let tau = full::inverse_dynamics(&q, &rest, &qdd);
+        assert!(rel_err(&at_rest::inverse_dynamics(&q, &qd, &qdd), &tau) < 1e-14);
+        let g = full::gravity_torques(&q);
+        assert!(rel_err(&at_rest::bias_torques(&q, &qd), &g) < 1e-14);
         assert_eq!(at_rest::coriolis_matrix(&q, &qd), [[0.0; 3]; 3]);
         assert_eq!(at_rest::kinetic_energy(&q, &qd), 0.0);
         assert!(

@@ -25,6 +25,8 @@
 //!   such as `cos(q₁ + q₂)` never arise: the recursion multiplies the rotations out), and
 //!   each joint's pair is computed once with `sin_cos`.
 //! - **Dead code**: only the nodes an output needs are lowered ([`Program::lower`]).
+//! - **Linear combinations**: constant factors are distributed over sums used once, equal
+//!   terms merged and equal coefficients factored out again ([`distribute_constants`]).
 //! - **Negations** are absorbed into subtractions and computed only when something other
 //!   than an addition uses them.
 //! - **Cost model**: [`rne_symbolic::OpCount::cost`] weighs the operations; `rne stats`
@@ -35,6 +37,7 @@ mod builder;
 mod emit;
 mod error;
 mod kernel;
+mod linear;
 mod load;
 mod module;
 mod program;
@@ -44,7 +47,8 @@ pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use emit::{emit_kernel, EmitContext};
 pub use error::CodegenError;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
+pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
-pub use module::{generate, GeneratedModule, KernelReport};
+pub use module::{generate, kernel_program, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use scene::{ParameterMode, ScalarType, Scene};

@@ -9,6 +9,7 @@ use rne_symbolic::{OpCount, RobotModel, SymbolicDynamics};
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_ident, EmitContext};
 use crate::error::CodegenError;
 use crate::kernel::Kernel;
+use crate::linear::distribute_constants;
 use crate::program::Program;
 use crate::scene::{ParameterMode, Scene};
 
@@ -49,6 +50,15 @@ impl GeneratedModule {
     }
 }
 
+/// The optimised straight-line program of one kernel: built into the dynamics' graph, its
+/// linear combinations rewritten ([`distribute_constants`]), lowered ([`Program::lower`]).
+/// This is exactly what [`generate`] emits.
+pub fn kernel_program(dynamics: &mut SymbolicDynamics, kernel: Kernel) -> Program {
+    let roots = kernel.build(dynamics);
+    let roots = distribute_constants(&mut dynamics.model.graph, &roots);
+    Program::lower(&dynamics.model.graph, &roots)
+}
+
 /// Generates the kernels `scene` asks for, for `model` (loaded with symbolic parameters when
 /// the scene wants runtime parameters). `source` names the robot file in the docs.
 pub fn generate(
@@ -79,8 +89,7 @@ pub fn generate(
     outputs.dedup();
     for kernel in outputs {
         let kernel_start = Instant::now();
-        let roots = kernel.build(&mut dynamics);
-        let program = Program::lower(&dynamics.model.graph, &roots);
+        let program = kernel_program(&mut dynamics, kernel);
         let ctx = EmitContext {
             symbols: dynamics.model.graph.symbols(),
             scalar: scene.scalar,

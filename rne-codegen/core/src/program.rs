@@ -8,7 +8,7 @@
 
 use std::collections::HashMap;
 
-use rne_symbolic::{ExprGraph, Id, Node, OpCount, Symbol};
+use rne_symbolic::{ExprGraph, Id, Node, OpCount, Real, Symbol};
 
 /// An operand: a previous instruction's result, a constant or an input.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -152,12 +152,13 @@ impl Program {
         uses
     }
 
-    /// Evaluates the program in `f64`, for tests of the passes and the emitter.
-    pub fn eval(&self, input: impl Fn(Symbol) -> f64) -> Vec<f64> {
-        let mut temps: Vec<f64> = Vec::with_capacity(self.instrs.len());
-        let value = |o: Operand, temps: &[f64]| match o {
+    /// Evaluates the program in any [`Real`] scalar, operation by operation as the emitted Rust
+    /// does — in `f64` the results are bit-for-bit those of the generated function.
+    pub fn eval<T: Real>(&self, input: impl Fn(Symbol) -> T) -> Vec<T> {
+        let mut temps: Vec<T> = Vec::with_capacity(self.instrs.len());
+        let value = |o: Operand, temps: &[T]| match o {
             Operand::Temp(t) => temps[t as usize],
-            Operand::Const(c) => c,
+            Operand::Const(c) => T::from_f64(c),
             Operand::Input(s) => input(s),
         };
         for instr in &self.instrs {

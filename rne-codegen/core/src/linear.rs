@@ -1,0 +1,248 @@
+//! Linear combinations: constant factors distributed over sums that are used once, equal
+//! terms merged, and equal coefficients factored out again.
+//!
+//! The recursion produces sums scaled by constants — `m (a + α × c + ω × (ω × c))`, with
+//! numeric parameters folded — whose terms carry constants of their own. Written out as a
+//! linear combination `Σ cᵢ tᵢ + c₀` of non-linear terms tᵢ, the products of constants fold
+//! into one coefficient per term, terms with the same tᵢ merge, and terms sharing a
+//! coefficient are summed before one multiplication. The pass never adds an operation: every
+//! coefficient group costs at most the multiplications the original tree spent on it, and the
+//! additions are one fewer than the terms, as before. Limits: only sums used once are opened
+//! (a shared sum is computed once and stays a term); no factor other than a constant is
+//! distributed or collected; the evaluation order of the sums changes, which changes
+//! rounding in the last bits.
+
+use std::collections::HashMap;
+
+use rne_symbolic::{ExprGraph, Id, Node};
+
+/// Rewrites the expressions `roots` (kernel outputs) into linear-combination form, adding the
+/// new nodes to `graph`; returns the new roots.
+pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
+    let nodes = graph.reachable(roots);
+    let mut uses: HashMap<Id, u32> = HashMap::new();
+    let mut parent_is_linear: HashMap<Id, bool> = HashMap::new();
+    for &id in &nodes {
+        let node = graph.node(id);
+        let linear = is_linear(graph, node);
+        for child in node.children() {
+            *uses.entry(child).or_default() += 1;
+            *parent_is_linear.entry(child).or_insert(true) &= linear;
+        }
+    }
+    for &root in roots {
+        *uses.entry(root).or_default() += 2;
+    }
+    // A linear node used once, by a linear node, is opened inside its parent's combination.
+    let opened = |id: Id| {
+        is_linear(graph, graph.node(id))
+            && uses.get(&id).copied().unwrap_or(0) == 1
+            && parent_is_linear.get(&id).copied().unwrap_or(false)
+    };
+    let opened: Vec<bool> = {
+        let mut flags = vec![false; nodes.last().map_or(0, |id| id.index() + 1)];
+        for &id in &nodes {
+            flags[id.index()] = opened(id);
+        }
+        flags
+    };
+
+    let mut rebuilt: HashMap<Id, Id> = HashMap::new();
+    for &id in &nodes {
+        if opened[id.index()] {
+            continue;
+        }
+        let node = graph.node(id);
+        let new = if is_linear(graph, node) {
+            let combination = Combination::collect(graph, id, &opened);
+            combination.build(graph, &rebuilt)
+        } else {
+            let r = |c: Id| rebuilt[&c];
+            match node {
+                Node::Const(_) | Node::Symbol(_) => id,
+                Node::Mul(a, b) => graph.mul(r(a), r(b)),
+                Node::Div(a, b) => graph.div(r(a), r(b)),
+                Node::Sin(a) => graph.sin(r(a)),
+                Node::Cos(a) => graph.cos(r(a)),
+                Node::Sqrt(a) => graph.sqrt(r(a)),
+                Node::Add(..) | Node::Neg(_) => unreachable!("linear nodes are handled above"),
+            }
+        };
+        rebuilt.insert(id, new);
+    }
+    roots.iter().map(|r| rebuilt[r]).collect()
+}
+
+/// Additions, negations and products with a constant.
+fn is_linear(graph: &ExprGraph, node: Node) -> bool {
+    match node {
+        Node::Add(..) | Node::Neg(_) => true,
+        Node::Mul(a, b) => graph.as_const(a).is_some() || graph.as_const(b).is_some(),
+        _ => false,
+    }
+}
+
+/// `Σ cᵢ tᵢ + constant`, terms in order of first appearance.
+struct Combination {
+    terms: Vec<(f64, Id)>,
+    constant: f64,
+}
+
+impl Combination {
+    /// Opens `root` and every opened linear node below it.
+    fn collect(graph: &ExprGraph, root: Id, opened: &[bool]) -> Combination {
+        let mut combination = Combination {
+            terms: Vec::new(),
+            constant: 0.0,
+        };
+        let mut stack = vec![(root, 1.0)];
+        while let Some((id, scale)) = stack.pop() {
+            let open = id == root || opened[id.index()];
+            match graph.node(id) {
+                Node::Const(c) => combination.constant += scale * c.value(),
+                Node::Add(a, b) if open => {
+                    stack.push((b, scale));
+                    stack.push((a, scale));
+                }
+                Node::Neg(a) if open => stack.push((a, -scale)),
+                Node::Mul(a, b) if open => {
+                    let (k, x) = match graph.as_const(a) {
+                        Some(k) => (k, b),
+                        None => (
+                            graph.as_const(b).expect("a linear product has a constant"),
+                            a,
+                        ),
+                    };
+                    stack.push((x, scale * k));
+                }
+                _ => combination.terms.push((scale, id)),
+            }
+        }
+        combination
+    }
+
+    /// Builds the combination from the rebuilt terms: equal terms merged, terms grouped by
+    /// the magnitude of their coefficient, one multiplication per group.
+    fn build(self, graph: &mut ExprGraph, rebuilt: &HashMap<Id, Id>) -> Id {
+        let mut merged: Vec<(f64, Id)> = Vec::new();
+        for (c, t) in self.terms {
+            let t = rebuilt[&t];
+            match merged.iter_mut().find(|(_, u)| *u == t) {
+                Some((existing, _)) => *existing += c,
+                None => merged.push((c, t)),
+            }
+        }
+        let mut groups: Vec<(f64, Vec<(bool, Id)>)> = Vec::new();
+        for (c, t) in merged.into_iter().filter(|(c, _)| *c != 0.0) {
+            let negative = c < 0.0;
+            match groups.iter_mut().find(|(m, _)| *m == c.abs()) {
+                Some((_, members)) => members.push((negative, t)),
+                None => groups.push((c.abs(), vec![(negative, t)])),
+            }
+        }
+        let mut total: Option<Id> = None;
+        for (magnitude, members) in groups {
+            // Factor the sign out when every member is negative: c (−x − y) = −(c (x + y)).
+            let all_negative = members.iter().all(|(n, _)| *n);
+            let mut sum: Option<Id> = None;
+            for (negative, t) in members {
+                sum = Some(match sum {
+                    None if negative && !all_negative => graph.neg(t),
+                    None => t,
+                    Some(s) if negative && !all_negative => graph.sub(s, t),
+                    Some(s) => graph.add(s, t),
+                });
+            }
+            let sum = sum.expect("a group has a member");
+            let k = graph.constant(magnitude);
+            let group = graph.mul(k, sum);
+            total = Some(match (total, all_negative) {
+                (None, false) => group,
+                (None, true) => graph.neg(group),
+                (Some(t), false) => graph.add(t, group),
+                (Some(t), true) => graph.sub(t, group),
+            });
+        }
+        let constant = graph.constant(self.constant);
+        match total {
+            Some(t) => graph.add(t, constant),
+            None => constant,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::distribute_constants;
+    use crate::program::Program;
+    use rne_symbolic::{ExprGraph, Symbol, SymbolTable};
+
+    fn graph() -> ExprGraph {
+        ExprGraph::new(SymbolTable::with_joints(["x", "y", "z"]))
+    }
+
+    fn rewrite(text: &str) -> String {
+        let mut g = graph();
+        let root = g.parse_sexpr(text).unwrap();
+        let new = distribute_constants(&mut g, &[root]);
+        g.to_sexpr(new[0])
+    }
+
+    #[test]
+    fn constants_distribute_into_a_sum_used_once() {
+        assert_eq!(rewrite("(* 2 (+ (* 3 x) (* 5 y)))"), "(+ (* x 6) (* y 10))");
+    }
+
+    #[test]
+    fn equal_terms_merge_and_equal_coefficients_group() {
+        assert_eq!(rewrite("(+ (* 2 x) (* 3 x))"), "(* x 5)");
+        assert_eq!(rewrite("(+ (* 2 x) (* 2 (* y z)))"), "(* 2 (+ x (* y z)))");
+        assert_eq!(rewrite("(- (* 2 x) (* 2 y))"), "(* 2 (+ x (- y)))");
+    }
+
+    #[test]
+    fn shared_sums_stay_terms() {
+        let mut g = graph();
+        let shared = g.parse_sexpr("(+ x y)").unwrap();
+        let three = g.constant(3.0);
+        let a = g.mul(three, shared);
+        let b = g.mul(shared, shared);
+        let new = distribute_constants(&mut g, &[a, b]);
+        assert_eq!(g.to_sexpr(new[0]), "(* (+ x y) 3)");
+        assert_eq!(new[1], b);
+    }
+
+    #[test]
+    fn the_rewrite_keeps_the_value_and_never_adds_operations() {
+        let cases = [
+            "(* 0.5 (+ (* 3 (- x y)) (* 1.5 (* x z)) 7))",
+            "(+ (* 2 (sin x)) (- (* 2 (cos y))) (* 4 (* 0.25 (sin x))))",
+            "(* 9.81 (+ (* 0.3 (cos x)) (* 0.15 (+ (* (cos x) (cos y)) (- (* (sin x) (sin y)))))))",
+            "(- (* (+ x (* 2 y)) z) (* 3 (+ (* 2 x) (- z))))",
+        ];
+        for text in cases {
+            let mut g = graph();
+            let root = g.parse_sexpr(text).unwrap();
+            let before = Program::lower(&g, &[root]);
+            let new = distribute_constants(&mut g, &[root]);
+            let after = Program::lower(&g, &new);
+            assert!(
+                after.op_count().total() <= before.op_count().total(),
+                "{text}: {} -> {}",
+                before.op_count(),
+                after.op_count()
+            );
+            for point in [[0.3, -1.2, 2.5], [1.0, 2.0, -0.5]] {
+                let value = |s: Symbol| match s {
+                    Symbol::Position(k) => point[k as usize],
+                    _ => f64::NAN,
+                };
+                let (x, y) = (before.eval(value)[0], after.eval(value)[0]);
+                assert!(
+                    (x - y).abs() <= 1e-14 * x.abs().max(1.0),
+                    "{text}: {x} vs {y}"
+                );
+            }
+        }
+    }
+}
