@@ -128,6 +128,11 @@ macro_rules! robots {
 robots! {
     "planar-elbow" => planar_elbow,
     "irb140-3dof" => irb140_3dof,
+    "puma560" => puma560,
+    "ur5" => ur5,
+    "panda" => panda,
+    "panda-arm" => panda_arm,
+    "irb140" => irb140,
 }
 
 /// The functions of one generated module (DESIGN.md §4), for static dispatch.
