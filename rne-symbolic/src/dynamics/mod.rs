@@ -2,6 +2,7 @@
 //! forward dynamics, each built on demand into the model's expression graph (3.1).
 
 mod christoffel;
+mod crba;
 mod energy;
 mod ldlt;
 
@@ -97,25 +98,14 @@ impl SymbolicDynamics {
         self.full().reactions.clone()
     }
 
-    /// M(q), row-major and symmetric (the same `Id` at (i, j) and (j, i)): column j is the
-    /// torque of the recursion with q̇ = 0, g = 0 and q̈ = e_j.
+    /// M(q), row-major and symmetric (the same `Id` at (i, j) and (j, i)), by the
+    /// composite-rigid-body algorithm ([`crba`]): the coefficients of q̈ in (3.1).
     pub fn mass_matrix(&mut self) -> Vec<Vec<Id>> {
         if let Some(m) = &self.mass_matrix {
             return m.clone();
         }
-        let n = self.dof();
-        let zero_gravity = self.model.graph.zero_vec();
-        let mut m = vec![vec![self.model.graph.zero(); n]; n];
-        for j in 0..n {
-            let mut qdd = self.zeros();
-            qdd[j] = self.model.graph.one();
-            let qd = self.zeros();
-            let column = self.run(qd, qdd, zero_gravity).torques;
-            for i in j..n {
-                m[i][j] = column[i];
-                m[j][i] = column[i];
-            }
-        }
+        let q = self.joint_symbols(Symbol::Position);
+        let m = crba::mass_matrix(&mut self.model, &q);
         self.mass_matrix = Some(m.clone());
         m
     }
