@@ -5,12 +5,14 @@
 //! numeric parameters folded — whose terms carry constants of their own. Written out as a
 //! linear combination `Σ cᵢ tᵢ + c₀` of non-linear terms tᵢ, the products of constants fold
 //! into one coefficient per term, terms with the same tᵢ merge, and terms sharing a
-//! coefficient are summed before one multiplication. The pass never adds an operation: every
-//! coefficient group costs at most the multiplications the original tree spent on it, and the
-//! additions are one fewer than the terms, as before. Limits: only sums used once are opened
-//! (a shared sum is computed once and stays a term); no factor other than a constant is
-//! distributed or collected; the evaluation order of the sums changes, which changes
-//! rounding in the last bits.
+//! coefficient are summed before one multiplication. Sums are rebuilt as balanced trees, so a
+//! sum of n terms is log₂ n additions deep instead of n − 1 — the recursion's long sums sit on
+//! the critical path of the kernels, and their depth is latency. The pass never adds an
+//! operation: every coefficient group costs at most the multiplications the original tree
+//! spent on it, and the additions are one fewer than the terms, as before. Limits: only sums
+//! used once are opened (a shared sum is computed once and stays a term); no factor other
+//! than a constant is distributed or collected; the evaluation order of the sums changes,
+//! which changes rounding in the last bits.
 
 use std::collections::HashMap;
 
@@ -140,35 +142,43 @@ impl Combination {
                 None => groups.push((c.abs(), vec![(negative, t)])),
             }
         }
-        let mut total: Option<Id> = None;
+        let mut terms: Vec<(bool, Id)> = Vec::with_capacity(groups.len() + 1);
         for (magnitude, members) in groups {
-            // Factor the sign out when every member is negative: c (−x − y) = −(c (x + y)).
-            let all_negative = members.iter().all(|(n, _)| *n);
-            let mut sum: Option<Id> = None;
-            for (negative, t) in members {
-                sum = Some(match sum {
-                    None if negative && !all_negative => graph.neg(t),
-                    None => t,
-                    Some(s) if negative && !all_negative => graph.sub(s, t),
-                    Some(s) => graph.add(s, t),
-                });
-            }
-            let sum = sum.expect("a group has a member");
+            let (negative, sum) = balanced_sum(graph, members);
             let k = graph.constant(magnitude);
-            let group = graph.mul(k, sum);
-            total = Some(match (total, all_negative) {
-                (None, false) => group,
-                (None, true) => graph.neg(group),
-                (Some(t), false) => graph.add(t, group),
-                (Some(t), true) => graph.sub(t, group),
-            });
+            terms.push((negative, graph.mul(k, sum)));
         }
-        let constant = graph.constant(self.constant);
-        match total {
-            Some(t) => graph.add(t, constant),
-            None => constant,
+        if self.constant != 0.0 || terms.is_empty() {
+            terms.push((self.constant < 0.0, graph.constant(self.constant.abs())));
+        }
+        let (negative, total) = balanced_sum(graph, terms);
+        if negative {
+            graph.neg(total)
+        } else {
+            total
         }
     }
+}
+
+/// `±(±t₁ ± t₂ ± …)` summed as a balanced tree, so that n terms are log₂ n additions deep
+/// rather than n − 1: the sums of the recursion are long, and their depth is latency on the
+/// critical path of the kernel. Returns the sign to apply and the sum.
+fn balanced_sum(graph: &mut ExprGraph, mut terms: Vec<(bool, Id)>) -> (bool, Id) {
+    assert!(!terms.is_empty(), "a sum has a term");
+    while terms.len() > 1 {
+        let mut next = Vec::with_capacity(terms.len().div_ceil(2));
+        for pair in terms.chunks(2) {
+            next.push(match *pair {
+                [(sa, a), (sb, b)] if sa == sb => (sa, graph.add(a, b)),
+                [(false, a), (true, b)] => (false, graph.sub(a, b)),
+                [(true, a), (false, b)] => (false, graph.sub(b, a)),
+                [single] => single,
+                _ => unreachable!("chunks of two"),
+            });
+        }
+        terms = next;
+    }
+    terms[0]
 }
 
 #[cfg(test)]
