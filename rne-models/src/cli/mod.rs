@@ -5,6 +5,7 @@ mod eval;
 mod list;
 mod options;
 mod show;
+mod simulate;
 mod stats;
 mod verify;
 
@@ -38,6 +39,8 @@ pub enum Command {
     Eval(eval::EvalArgs),
     /// Generate every built-in robot's kernels and check them against the numeric reference.
     Verify(verify::VerifyArgs),
+    /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// Runs one command, writing its output to `out`.
@@ -49,5 +52,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Stats(args) => stats::run(&args, out),
         Command::Eval(args) => eval::run(&args, out),
         Command::Verify(args) => verify::run(&args, out),
+        Command::Simulate(args) => simulate::run(&args, out),
     }
 }

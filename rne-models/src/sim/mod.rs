@@ -54,6 +54,7 @@ pub mod linalg;
 mod metrics;
 mod record;
 mod rk4;
+pub mod scenarios;
 mod simulate;
 mod state;
 

@@ -1,0 +1,781 @@
+//! The named scenarios: every experiment of the thesis's chapter 6, run on the generated
+//! kernels, with its CSV tables, figures titled with the thesis's figure numbers, and its
+//! measurements beside what the thesis reports.
+
+use std::f64::consts::PI;
+
+use super::error::ScenarioError;
+use super::experiments::{
+    damped, elbow_pd, irb140_pd, irb140_pendulum, open_loop, released, upright_torque,
+};
+use super::figures::{energies, energy_error, joint_angles, joint_angles_until, lyapunov, torques};
+use super::measures::{
+    first_flip, largest_lyapunov_increase, separation, settling_time, time_within, turning_points,
+};
+use super::outcome::{Finding, Outcome, Table};
+use super::parameters::*;
+use super::plot::{Curve, Figure, Panel};
+use super::progress::WithProgress;
+use crate::sim::{output_times, GaussLegendre, Integrator, Record, SimError};
+
+/// How to run a scenario.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOptions {
+    /// Show a progress bar per run on standard error (only when it is a terminal).
+    pub progress: bool,
+}
+
+/// Which experiment a scenario runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Experiment {
+    OpenLoopFromZero,
+    OpenLoopNearUpright,
+    DoublePendulum,
+    ReleaseEnergy,
+    Damped,
+    ElbowPd(usize),
+    Irb140Pendulum,
+    Irb140Pd(usize),
+    Lyapunov,
+}
+
+/// A named, built-in scenario: `rne simulate NAME`.
+#[derive(Debug)]
+pub struct Scenario {
+    /// The name on the command line.
+    pub name: &'static str,
+    /// The thesis's figures or section it reproduces.
+    pub figures: &'static str,
+    /// One line about it.
+    pub description: &'static str,
+    experiment: Experiment,
+}
+
+/// Every built-in scenario, in the thesis's order.
+pub static SCENARIOS: &[Scenario] = &[
+    Scenario {
+        name: "open-loop-from-zero",
+        figures: "6.2",
+        description: "planar elbow, open loop tau = g(pi, 0) from q = 0, 5 s",
+        experiment: Experiment::OpenLoopFromZero,
+    },
+    Scenario {
+        name: "open-loop-near-upright",
+        figures: "6.3",
+        description: "planar elbow, open loop tau = g(pi, 0) from q1 = pi - 0.01, 8 s",
+        experiment: Experiment::OpenLoopNearUpright,
+    },
+    Scenario {
+        name: "double-pendulum",
+        figures: "6.4-6.7",
+        description: "released from q = 0 and from q1 = 1e-6, 70 s, and their divergence",
+        experiment: Experiment::DoublePendulum,
+    },
+    Scenario {
+        name: "double-pendulum-energy",
+        figures: "6.8",
+        description: "kinetic, potential and total energy of the release; 1000 s symplectic",
+        experiment: Experiment::ReleaseEnergy,
+    },
+    Scenario {
+        name: "damped-pendulum",
+        figures: "6.10",
+        description: "damping Kd = (1.5, 1.5) from q = 0, 40 s, to (-pi/2, 0)",
+        experiment: Experiment::Damped,
+    },
+    Scenario {
+        name: "elbow-pd-1",
+        figures: "6.12",
+        description: "planar elbow PD, Kp = (22, 45), Kd = (15, 8), +-39.4 N m, set-point 1",
+        experiment: Experiment::ElbowPd(0),
+    },
+    Scenario {
+        name: "elbow-pd-2",
+        figures: "6.13",
+        description: "planar elbow PD, set-point 2",
+        experiment: Experiment::ElbowPd(1),
+    },
+    Scenario {
+        name: "elbow-pd-3",
+        figures: "6.14",
+        description: "planar elbow PD, set-point 3",
+        experiment: Experiment::ElbowPd(2),
+    },
+    Scenario {
+        name: "elbow-pd-4",
+        figures: "6.15",
+        description: "planar elbow PD, set-point 4",
+        experiment: Experiment::ElbowPd(3),
+    },
+    Scenario {
+        name: "irb140-pendulum",
+        figures: "6.16-6.17",
+        description: "IRB 140 joints 1-2 locked, link 3 released from q3 = 0, energy, 20 s",
+        experiment: Experiment::Irb140Pendulum,
+    },
+    Scenario {
+        name: "irb140-pd-1",
+        figures: "6.19",
+        description: "IRB 140 PD, Kp = (25, 18, 100), Kd = (27, 18, 20), set-point 1",
+        experiment: Experiment::Irb140Pd(0),
+    },
+    Scenario {
+        name: "irb140-pd-2",
+        figures: "6.20",
+        description: "IRB 140 PD, set-point 2",
+        experiment: Experiment::Irb140Pd(1),
+    },
+    Scenario {
+        name: "irb140-pd-3",
+        figures: "6.21",
+        description: "IRB 140 PD, set-point 3",
+        experiment: Experiment::Irb140Pd(2),
+    },
+    Scenario {
+        name: "lyapunov",
+        figures: "section 6.4",
+        description: "V = 1/2 qd' M qd + 1/2 e' Kp e along all seven PD runs",
+        experiment: Experiment::Lyapunov,
+    },
+];
+
+/// The built-in scenario called `name`.
+pub fn find(name: &str) -> Option<&'static Scenario> {
+    SCENARIOS.iter().find(|s| s.name == name)
+}
+
+impl Scenario {
+    /// Runs the scenario: its simulations, figures and measurements.
+    pub fn run(&self, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+        match self.experiment {
+            Experiment::OpenLoopFromZero => open_loop_scenario(self.name, "6.2", 0.0, options),
+            Experiment::OpenLoopNearUpright => {
+                open_loop_scenario(self.name, "6.3", NEAR_UPRIGHT_Q1, options)
+            }
+            Experiment::DoublePendulum => double_pendulum(self.name, options),
+            Experiment::ReleaseEnergy => release_energy(self.name, options),
+            Experiment::Damped => damped_pendulum(self.name, options),
+            Experiment::ElbowPd(k) => elbow_pd_scenario(self.name, k, options),
+            Experiment::Irb140Pendulum => irb140_pendulum_scenario(self.name, options),
+            Experiment::Irb140Pd(k) => irb140_pd_scenario(self.name, k, options),
+            Experiment::Lyapunov => lyapunov_scenario(self.name, options),
+        }
+    }
+}
+
+/// Runs one simulation with a progress bar labelled `label`.
+fn run_with<const N: usize, I: Integrator<N>>(
+    options: &RunOptions,
+    label: &str,
+    integrator: &I,
+    run: impl FnOnce(&WithProgress<'_, I>) -> Result<Record<N>, SimError>,
+) -> Result<Record<N>, ScenarioError> {
+    run(&WithProgress::new(integrator, label, options.progress))
+        .map_err(ScenarioError::simulation(label))
+}
+
+/// `(a, b, …)` with three decimals.
+fn vector(v: &[f64]) -> String {
+    let items: Vec<String> = v.iter().map(|x| format!("{x:.3}")).collect();
+    format!("({})", items.join(", "))
+}
+
+/// `q1 a, q2 b, …` with each value formatted by `f`.
+fn per_joint<T: Copy>(values: &[T], f: impl Fn(T) -> String) -> String {
+    let items: Vec<String> = values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| format!("q{} {}", i + 1, f(v)))
+        .collect();
+    items.join(", ")
+}
+
+/// A time in seconds, or what its absence means.
+fn seconds(t: Option<f64>, absent: &str) -> String {
+    t.map_or_else(|| absent.to_owned(), |t| format!("{t:.2} s"))
+}
+
+/// Figures 6.2 and 6.3: the open-loop torque τ = g(π, 0) from (q₁₀, 0).
+fn open_loop_scenario(
+    name: &str,
+    figure: &str,
+    q1_0: f64,
+    options: &RunOptions,
+) -> Result<Outcome, ScenarioError> {
+    let (t_end, simulation) = if figure == "6.2" {
+        (OPEN_LOOP_FROM_ZERO_END, 1)
+    } else {
+        (OPEN_LOOP_NEAR_UPRIGHT_END, 2)
+    };
+    let times = output_times(0.0, t_end, SAMPLE);
+    let solver = thesis_solver();
+    let r = run_with(options, name, &solver, |i| open_loop(q1_0, i, &times))?;
+    let desired = [PI, 0.0];
+    let tau = upright_torque();
+    let distance = |q: &[f64; 2]| (q[0] - PI).abs().max(q[1].abs());
+    let closest = r.q.iter().map(distance).fold(f64::INFINITY, f64::min);
+    let peak_kinetic = r.kinetic.iter().copied().fold(0.0, f64::max);
+    let mut findings = vec![Finding::new(
+        "open-loop torque τ = g(π, 0) (6.27)–(6.28)",
+        format!("{} N·m", vector(&tau)),
+        "τ₁ = −(m₂ l₁ + l_c2 m₂ + m₁ l_c1) g = −88.29, τ₂ = −l_c2 m₂ g = −22.07",
+    )];
+    if simulation == 1 {
+        findings.push(Finding::new(
+            format!("closest approach max |q − (π, 0)| over {t_end} s"),
+            format!("{closest:.3} rad"),
+            "unstable almost instantly",
+        ));
+    } else {
+        let left = r.q.iter().position(|q| distance(q) > 0.1).map(|k| r.t[k]);
+        findings.push(Finding::new(
+            "first time max |q − (π, 0)| > 0.1 rad",
+            seconds(left, "never"),
+            "stays near the desired position for a short time, then collapses",
+        ));
+    }
+    findings.push(Finding::new(
+        format!("peak kinetic energy over {t_end} s"),
+        format!("{peak_kinetic:.0} J (the constant torque keeps doing work)"),
+        "—",
+    ));
+    let title = format!(
+        "Figure {figure} — Open-loop response, simulation {simulation}: τ = g(π, 0) from q = {}",
+        vector(&r.q[0])
+    );
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![Table::of(format!("{name}.csv"), &r)],
+        figures: vec![Figure {
+            file: format!("fig{figure}-{name}"),
+            title,
+            panels: vec![joint_angles(&r, Some(&desired)), torques(&r, None)],
+        }],
+        findings,
+    })
+}
+
+/// Figures 6.4–6.7: the releases from q = 0 and from q₁ = 1e-6 and their divergence.
+fn double_pendulum(name: &str, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let times = output_times(0.0, RELEASE_END, SAMPLE);
+    let solver = thesis_solver();
+    let a = run_with(options, "release from q = 0", &solver, |i| {
+        released([0.0, 0.0], i, &times)
+    })?;
+    let b = run_with(options, "release from q1 = 1e-6", &solver, |i| {
+        released([PERTURBED_Q1, 0.0], i, &times)
+    })?;
+    let gap = separation(&a, &b);
+    let early = gap
+        .iter()
+        .zip(&a.t)
+        .take_while(|(_, &t)| t <= 2.0)
+        .map(|(g, _)| *g)
+        .fold(0.0, f64::max);
+    let apart = gap.iter().position(|&g| g > 1.0).map(|k| a.t[k]);
+    let flips = |r: &Record<2>| {
+        format!(
+            "link 1: {}, link 2: {}",
+            seconds(first_flip(r, 0), "none"),
+            seconds(first_flip(r, 1), "none")
+        )
+    };
+    let findings = vec![
+        Finding::new(
+            "largest separation max |qᵃ − qᵇ| over the first 2 s",
+            format!("{early:.1e} rad"),
+            "—",
+        ),
+        Finding::new(
+            "first time the runs are 1 rad apart",
+            seconds(apart, "never"),
+            "“widely different results” (figures 6.4, 6.5)",
+        ),
+        Finding::new("first flip (|qᵢ − qᵢ(0)| > π), from q = 0", flips(&a), "—"),
+        Finding::new("first flip, from q₁ = 1e-6", flips(&b), "—"),
+        Finding::new(
+            "energy drift max |E − E(0)|, ode45 setting (rtol 1e-10), 70 s",
+            format!("{:.1e} J, {:.1e} J", a.energy_drift(), b.energy_drift()),
+            "“stays constantly zero” (figure 6.8)",
+        ),
+    ];
+    let t = &a.t;
+    let divergence = Figure {
+        file: format!("fig6.4-6.5-{name}-divergence"),
+        title: "Figures 6.4–6.5 — Divergence of the releases from q = 0 and q1 = 1e-6".into(),
+        panels: vec![
+            Panel::new(
+                "q1 (rad)",
+                vec![
+                    Curve::new("q1, from q = 0", t, a.q.iter().map(|q| q[0])),
+                    Curve::new("q1, from q1 = 1e-6", t, b.q.iter().map(|q| q[0])),
+                ],
+            ),
+            Panel::log(
+                "|qa − qb| (rad)",
+                (0..2)
+                    .map(|i| {
+                        let d = a.q.iter().zip(&b.q).map(move |(x, y)| (x[i] - y[i]).abs());
+                        Curve::new(format!("|Δq{}|", i + 1), t, d)
+                    })
+                    .collect(),
+            ),
+        ],
+    };
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![
+            Table::of(format!("{name}-from-zero.csv"), &a),
+            Table::of(format!("{name}-from-1e-6.csv"), &b),
+        ],
+        figures: vec![
+            Figure {
+                file: format!("fig6.4-{name}-from-zero"),
+                title: "Figures 6.4 and 6.7 — Pendulum released from q = 0, 70 s".into(),
+                panels: vec![joint_angles(&a, None)],
+            },
+            Figure {
+                file: format!("fig6.5-{name}-from-1e-6"),
+                title: "Figure 6.5 — Pendulum released from q1 = 0.000001, q2 = 0, 70 s".into(),
+                panels: vec![joint_angles(&b, None)],
+            },
+            Figure {
+                file: format!("fig6.6-{name}-first-20-s"),
+                title: "Figure 6.6 — Joint movements the first 20 seconds (from q = 0)".into(),
+                panels: vec![joint_angles_until(&a, None, 20.0)],
+            },
+            divergence,
+        ],
+        findings,
+    })
+}
+
+/// Figure 6.8: the energy of the release from q = 0, at tight tolerance and at the thesis's,
+/// and over 1000 s with the symplectic integrator.
+fn release_energy(name: &str, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let times = output_times(0.0, RELEASE_END, SAMPLE);
+    let tight = energy_solver(RELEASE_ENERGY_RTOL);
+    let r = run_with(options, "release, rtol 1e-12", &tight, |i| {
+        released([0.0, 0.0], i, &times)
+    })?;
+    let thesis = thesis_solver();
+    let ode45 = run_with(options, "release, rtol 1e-10", &thesis, |i| {
+        released([0.0, 0.0], i, &times)
+    })?;
+    let long_times = output_times(0.0, LONG_RUN_END, 0.1);
+    let gl = GaussLegendre::new(GAUSS_LEGENDRE_STEP);
+    let long = run_with(options, "release, Gauss-Legendre", &gl, |i| {
+        released([0.0, 0.0], i, &long_times)
+    })?;
+    let drift_until = |r: &Record<2>, t_end: f64| {
+        let n = r.t.partition_point(|&t| t <= t_end);
+        r.total[..n]
+            .iter()
+            .map(|e| (e - r.total[0]).abs())
+            .fold(0.0, f64::max)
+    };
+    let half = long.len() / 2;
+    let worst = |e: &[f64]| {
+        e.iter()
+            .map(|e| (e - long.total[0]).abs())
+            .fold(0.0, f64::max)
+    };
+    let (first, second) = (worst(&long.total[..half]), worst(&long.total[half..]));
+    let exchanged = r.kinetic.iter().copied().fold(0.0, f64::max);
+    let findings = vec![
+        Finding::new(
+            "total energy E(0)",
+            format!("{:.3e} J", r.total[0]),
+            "zero by definition",
+        ),
+        Finding::new(
+            "largest kinetic energy (energy exchanged)",
+            format!("{exchanged:.2} J"),
+            "—",
+        ),
+        Finding::new(
+            "energy drift over 20 s, Dormand–Prince rtol 1e-12 sampled at its steps",
+            format!("{:.1e} J", drift_until(&r, 20.0)),
+            "“stays constantly zero for all time”",
+        ),
+        Finding::new(
+            "energy drift over 70 s, same",
+            format!("{:.1e} J", r.energy_drift()),
+            "“stays constantly zero for all time”",
+        ),
+        Finding::new(
+            "energy drift over 70 s, ode45's method at rtol 1e-10, dense output",
+            format!("{:.1e} J", ode45.energy_drift()),
+            "—",
+        ),
+        Finding::new(
+            "Gauss–Legendre (order 4, h = 10 ms), largest |E − E(0)| over 0–500 s and 500–1000 s",
+            format!("{first:.1e} J and {second:.1e} J: bounded, no secular growth"),
+            "—",
+        ),
+    ];
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![
+            Table::of(format!("{name}.csv"), &r),
+            Table::of(format!("{name}-gauss-legendre-1000-s.csv"), &long),
+        ],
+        figures: vec![
+            Figure {
+                file: format!("fig6.8-{name}"),
+                title: "Figure 6.8 — The energy in the system (released from q = 0)".into(),
+                panels: vec![
+                    energies(&r),
+                    energy_error(&[("Dormand–Prince rtol 1e-12, at its steps", &r)]),
+                    energy_error(&[("ode45's method, rtol 1e-10, dense output", &ode45)]),
+                ],
+            },
+            Figure {
+                file: format!("fig6.8b-{name}-gauss-legendre-1000-s"),
+                title: "Figure 6.8, extended — energy error over 1000 s, Gauss–Legendre, h = 10 ms"
+                    .into(),
+                panels: vec![energy_error(&[("Gauss–Legendre, 2 stages", &long)])],
+            },
+        ],
+        findings,
+    })
+}
+
+/// Figure 6.10: the damped double pendulum settles hanging down.
+fn damped_pendulum(name: &str, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let times = output_times(0.0, DAMPED_END, SAMPLE);
+    let solver = thesis_solver();
+    let r = run_with(options, name, &solver, |i| damped(i, &times))?;
+    let end = r.q.last().copied().unwrap_or([f64::NAN; 2]);
+    let error = (end[0] - HANGING_DOWN[0]).abs().max(end[1].abs());
+    let bottom = r.potential.last().copied().unwrap_or(f64::NAN);
+    let findings = vec![
+        Finding::new(
+            "time from which max |q − (−π/2, 0)| ≤ 0.01 rad",
+            seconds(time_within(&r, &HANGING_DOWN, 1e-2), "not within 40 s"),
+            "converges in about 25 s",
+        ),
+        Finding::new(
+            "time from which max |q − (−π/2, 0)| ≤ 1e-3 rad",
+            seconds(time_within(&r, &HANGING_DOWN, 1e-3), "not within 40 s"),
+            "—",
+        ),
+        Finding::new(
+            format!("max |q − (−π/2, 0)| at {DAMPED_END} s"),
+            format!("{error:.1e} rad"),
+            "—",
+        ),
+        Finding::new(
+            "final total energy vs potential energy at the bottom",
+            format!(
+                "{:.4} J vs {bottom:.4} J",
+                r.total.last().copied().unwrap_or(f64::NAN)
+            ),
+            "total ends equal to the potential energy at the equilibrium",
+        ),
+    ];
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![Table::of(format!("{name}.csv"), &r)],
+        figures: vec![Figure {
+            file: format!("fig6.10-{name}"),
+            title: "Figure 6.10 — q1, q2 and the energy of the damped double pendulum, Kd = 1.5"
+                .into(),
+            panels: vec![joint_angles(&r, Some(&HANGING_DOWN)), energies(&r)],
+        }],
+        findings,
+    })
+}
+
+/// What distinguishes the PD runs of the two robots in the report.
+struct PdSetup<'a, const N: usize> {
+    name: &'a str,
+    figure: &'a str,
+    robot: &'a str,
+    simulation: usize,
+    q_ref: [f64; N],
+    u_max: [f64; N],
+    thesis_time: &'a str,
+}
+
+/// The report figures of a set-point run: settling time, overshoot, steady-state error, peak
+/// torque against the limits, and the growth of V (6.57); `thesis_time` is what the thesis
+/// reports for the settling time.
+pub(super) fn pd_findings<const N: usize>(
+    r: &Record<N>,
+    q_ref: &[f64; N],
+    u_max: &[f64; N],
+    thesis_time: &str,
+) -> Vec<Finding> {
+    let s = r.summary(q_ref);
+    let t_end = r.t.last().copied().unwrap_or(0.0);
+    let limits: Vec<String> = s
+        .max_abs_torque
+        .iter()
+        .zip(u_max)
+        .map(|(u, max)| {
+            if max.is_finite() {
+                format!("{u:.1}/{max}")
+            } else {
+                format!("{u:.1}/no limit")
+            }
+        })
+        .collect();
+    let marginal = if thesis_time == "—" {
+        "—"
+    } else {
+        "marginal"
+    };
+    let none = if thesis_time == "—" { "—" } else { "none" };
+    vec![
+        Finding::new(
+            "settling time: all joints within 2 % of their step from then on",
+            format!(
+                "{} ({})",
+                seconds(settling_time(r, q_ref), "not settled"),
+                per_joint(&s.settling_time, |t| seconds(t, "not settled"))
+            ),
+            thesis_time,
+        ),
+        Finding::new(
+            "overshoot, % of the step",
+            per_joint(&s.overshoot, |o| format!("{:.2} %", 100.0 * o)),
+            marginal,
+        ),
+        Finding::new(
+            format!("steady-state error |q − q_ref| at {t_end} s"),
+            per_joint(&s.steady_state_error, |e| format!("{e:.1e} rad")),
+            none,
+        ),
+        Finding::new(
+            "peak |u| / saturation limit",
+            format!("{} N·m", limits.join(", ")),
+            if thesis_time == "—" {
+                "—"
+            } else {
+                "saturation at the motor limits"
+            },
+        ),
+        Finding::new(
+            "largest increase of V (6.57) between samples",
+            format!("{:.1e} J", largest_lyapunov_increase(r).unwrap_or(f64::NAN)),
+            if thesis_time == "—" {
+                "—"
+            } else {
+                "V̇ = −q̇ᵀ Kd q̇ ≤ 0 (6.62)"
+            },
+        ),
+    ]
+}
+
+/// The outcome of one PD run of the thesis: joint angles and torques, and the report figures.
+fn pd_outcome<const N: usize>(setup: &PdSetup<'_, N>, r: &Record<N>) -> Outcome {
+    let mut findings = vec![Finding::new(
+        "set-point q_ref (chosen by rne), from q = q̇ = 0",
+        format!("{} rad", vector(&setup.q_ref)),
+        "not stated",
+    )];
+    findings.extend(pd_findings(
+        r,
+        &setup.q_ref,
+        &setup.u_max,
+        setup.thesis_time,
+    ));
+    let title = format!(
+        "Figure {} — {} PD control, simulation {}: q_ref = {}",
+        setup.figure,
+        setup.robot,
+        setup.simulation,
+        vector(&setup.q_ref)
+    );
+    Outcome {
+        scenario: setup.name.to_owned(),
+        tables: vec![Table::of(format!("{}.csv", setup.name), r)],
+        figures: vec![Figure {
+            file: format!("fig{}-{}", setup.figure, setup.name),
+            title,
+            panels: vec![
+                joint_angles(r, Some(&setup.q_ref)),
+                torques(r, Some(&setup.u_max)),
+            ],
+        }],
+        findings,
+    }
+}
+
+/// Figures 6.12–6.15: planar-elbow PD run `k`.
+fn elbow_pd_scenario(name: &str, k: usize, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let q_ref = ELBOW_SET_POINTS[k];
+    let times = output_times(0.0, ELBOW_PD_END, SAMPLE);
+    let solver = thesis_solver();
+    let r = run_with(options, name, &solver, |i| elbow_pd(q_ref, i, &times))?;
+    let figure = format!("6.{}", 12 + k);
+    let setup = PdSetup {
+        name,
+        figure: &figure,
+        robot: "planar elbow",
+        simulation: k + 1,
+        q_ref,
+        u_max: ELBOW_U_MAX,
+        thesis_time: "steady state in 3–4 s",
+    };
+    Ok(pd_outcome(&setup, &r))
+}
+
+/// Figures 6.19–6.21: IRB 140 PD run `k`.
+fn irb140_pd_scenario(
+    name: &str,
+    k: usize,
+    options: &RunOptions,
+) -> Result<Outcome, ScenarioError> {
+    let q_ref = IRB140_SET_POINTS[k];
+    let times = output_times(0.0, IRB140_PD_END, SAMPLE);
+    let solver = thesis_solver();
+    let r = run_with(options, name, &solver, |i| irb140_pd(q_ref, i, &times))?;
+    let figure = format!("6.{}", 19 + k);
+    let setup = PdSetup {
+        name,
+        figure: &figure,
+        robot: "IRB 140",
+        simulation: k + 1,
+        q_ref,
+        u_max: IRB140_U_MAX,
+        thesis_time: "converges in about 5 s",
+    };
+    Ok(pd_outcome(&setup, &r))
+}
+
+/// Figures 6.16 and 6.17: the IRB 140 joint-3 pendulum and its energy.
+fn irb140_pendulum_scenario(name: &str, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let times = output_times(0.0, IRB140_PENDULUM_END, SAMPLE);
+    let tight = energy_solver(IRB140_ENERGY_RTOL);
+    let r = run_with(options, "joint-3 pendulum, rtol 1e-13", &tight, |i| {
+        irb140_pendulum(i, &times)
+    })?;
+    let matlab = matlab_ode45();
+    let ode45 = run_with(options, "joint-3 pendulum, ode45", &matlab, |i| {
+        irb140_pendulum(i, &times)
+    })?;
+    let spread = |r: &Record<1>| {
+        let highs = turning_points(r, 0, true);
+        let lows = turning_points(r, 0, false);
+        let dev = |p: &[f64], target: f64| p.iter().map(|q| (q - target).abs()).fold(0.0, f64::max);
+        dev(&highs, 0.0).max(dev(&lows, -PI))
+    };
+    let swings = turning_points(&r, 0, false).len();
+    let findings = vec![
+        Finding::new(
+            "total energy E(0) (link 3 horizontal)",
+            format!("{:.4} J", r.total[0]),
+            "—",
+        ),
+        Finding::new(
+            "energy drift over 20 s, Dormand–Prince rtol 1e-13 sampled at its steps",
+            format!("{:.1e} J", r.energy_drift()),
+            "oscillates with an amplitude of about 2 J (figure 6.17)",
+        ),
+        Finding::new(
+            "energy drift over 20 s, ode45 as MATLAB runs it (RelTol 1e-10, default AbsTol 1e-6), interpolated",
+            format!("{:.1e} J", ode45.energy_drift()),
+            "about 2 J",
+        ),
+        Finding::new(
+            format!(
+                "turning points of q₃ ({swings} swings): largest distance from 0 and −π, parabola-refined"
+            ),
+            format!("{:.1e} rad (ode45 setting: {:.1e} rad)", spread(&r), spread(&ode45)),
+            "angle error less than 0.003 rad, varying periodically",
+        ),
+    ];
+    let t = &r.t;
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![
+            Table::of(format!("{name}.csv"), &r),
+            Table::of(format!("{name}-ode45.csv"), &ode45),
+        ],
+        figures: vec![
+            Figure {
+                file: format!("fig6.16-{name}"),
+                title:
+                    "Figure 6.16 — Oscillations in q3 in open loop (IRB 140, q1 = q2 = 0 locked)"
+                        .into(),
+                panels: vec![Panel::new(
+                    "q3 (rad)",
+                    vec![Curve::new("q3", t, r.q.iter().map(|q| q[0]))],
+                )],
+            },
+            Figure {
+                file: format!("fig6.17-{name}-energy"),
+                title: "Figure 6.17 — Energy in open loop (IRB 140 joint-3 pendulum)".into(),
+                panels: vec![
+                    energies(&r),
+                    energy_error(&[("Dormand–Prince rtol 1e-13, at its steps", &r)]),
+                    energy_error(&[("ode45: RelTol 1e-10, AbsTol 1e-6, interpolated", &ode45)]),
+                ],
+            },
+        ],
+        findings,
+    })
+}
+
+/// Section 6.4: the Lyapunov function along every PD run.
+fn lyapunov_scenario(name: &str, options: &RunOptions) -> Result<Outcome, ScenarioError> {
+    let solver = thesis_solver();
+    let elbow_times = output_times(0.0, ELBOW_PD_END, SAMPLE);
+    let mut elbow = Vec::new();
+    for (k, q_ref) in ELBOW_SET_POINTS.into_iter().enumerate() {
+        let label = format!("elbow {}", k + 1);
+        let r = run_with(options, &label, &solver, |i| {
+            elbow_pd(q_ref, i, &elbow_times)
+        })?;
+        elbow.push((label, r));
+    }
+    let irb_times = output_times(0.0, IRB140_PD_END, SAMPLE);
+    let mut irb = Vec::new();
+    for (k, q_ref) in IRB140_SET_POINTS.into_iter().enumerate() {
+        let label = format!("IRB 140 {}", k + 1);
+        let r = run_with(options, &label, &solver, |i| {
+            irb140_pd(q_ref, i, &irb_times)
+        })?;
+        irb.push((label, r));
+    }
+    let mut findings: Vec<Finding> = elbow.iter().map(|(l, r)| lyapunov_finding(l, r)).collect();
+    findings.extend(irb.iter().map(|(l, r)| lyapunov_finding(l, r)));
+    let elbow_refs: Vec<(String, &Record<2>)> = elbow.iter().map(|(l, r)| (l.clone(), r)).collect();
+    let irb_refs: Vec<(String, &Record<3>)> = irb.iter().map(|(l, r)| (l.clone(), r)).collect();
+    let mut tables: Vec<Table> = elbow
+        .iter()
+        .enumerate()
+        .map(|(k, (_, r))| Table::of(format!("{name}-elbow-pd-{}.csv", k + 1), r))
+        .collect();
+    tables.extend(
+        irb.iter()
+            .enumerate()
+            .map(|(k, (_, r))| Table::of(format!("{name}-irb140-pd-{}.csv", k + 1), r)),
+    );
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables,
+        figures: vec![Figure {
+            file: format!("sec6.4-{name}"),
+            title: "Section 6.4 — V = T + 1/2 e'Kp e (e = q − q_ref) along the PD runs".into(),
+            panels: vec![lyapunov(&elbow_refs), lyapunov(&irb_refs)],
+        }],
+        findings,
+    })
+}
+
+/// How V (6.57) evolved along one PD run.
+fn lyapunov_finding<const N: usize>(label: &str, r: &Record<N>) -> Finding {
+    let v = r.lyapunov.as_deref().unwrap_or(&[]);
+    let ratio = v.last().zip(v.first()).map_or(f64::NAN, |(l, f)| l / f);
+    Finding::new(
+        format!("{label}: largest increase of V between samples; V(end)/V(0)"),
+        format!(
+            "{:.1e} J; {ratio:.1e}",
+            largest_lyapunov_increase(r).unwrap_or(f64::NAN)
+        ),
+        "V̇ = −q̇ᵀ Kd q̇ ≤ 0 (6.62)",
+    )
+}

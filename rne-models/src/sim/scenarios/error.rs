@@ -1,0 +1,69 @@
+//! Why a scenario could not be run or written.
+
+use std::path::PathBuf;
+
+use crate::sim::SimError;
+
+/// A scenario that failed: an unknown name, a bad scenario file, a failed simulation, or output
+/// that could not be written. Every message names what it is about.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    /// No built-in scenario has this name and it is not a `.toml` file.
+    #[error(
+        "unknown scenario `{0}`; `rne simulate --list` lists them, or pass a .toml scenario file"
+    )]
+    Unknown(String),
+    /// A scenario file is malformed or inconsistent.
+    #[error("{}: {message}", path.display())]
+    File {
+        /// The scenario file.
+        path: PathBuf,
+        /// What is wrong, naming the key.
+        message: String,
+    },
+    /// The robot of a scenario file could not be read.
+    #[error("{}: model: {source}", path.display())]
+    Model {
+        /// The scenario file.
+        path: PathBuf,
+        /// The spec reader's error.
+        #[source]
+        source: rne_symbolic::spec::SpecError,
+    },
+    /// The simulation stopped early.
+    #[error("{run}: {source}")]
+    Simulation {
+        /// The run that failed.
+        run: String,
+        /// Why it stopped.
+        #[source]
+        source: SimError,
+    },
+    /// A file could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn.
+    #[error("cannot draw figure {figure}: {message}")]
+    Plot {
+        /// The figure's file name.
+        figure: String,
+        /// plotters' error.
+        message: String,
+    },
+}
+
+impl ScenarioError {
+    /// Wraps a simulation error with the name of the run.
+    pub(crate) fn simulation(run: &str) -> impl FnOnce(SimError) -> Self + '_ {
+        move |source| Self::Simulation {
+            run: run.to_owned(),
+            source,
+        }
+    }
+}
