@@ -28,6 +28,12 @@ pub trait Real:
     fn sin_cos(self) -> (Self, Self);
     /// Square root.
     fn sqrt(self) -> Self;
+    /// `(sin xᵢ, cos xᵢ)` of every element (bit for bit [`Real::sin_cos`] of each); the
+    /// kernels call it once for all joint angles, which lets `f64` use vector instructions.
+    fn sin_cos_array<const N: usize>(x: &[Self; N]) -> ([Self; N], [Self; N]) {
+        let pairs = x.map(Self::sin_cos);
+        (pairs.map(|p| p.0), pairs.map(|p| p.1))
+    }
     /// Sine.
     fn sin(self) -> Self {
         self.sin_cos().0
@@ -68,6 +74,10 @@ impl Real for f64 {
     #[inline]
     fn sin_cos(self) -> (f64, f64) {
         crate::trig::sin_cos(self)
+    }
+    #[inline]
+    fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+        crate::trig::sin_cos_array(x)
     }
     #[inline]
     fn sqrt(self) -> f64 {
