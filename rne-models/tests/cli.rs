@@ -63,7 +63,7 @@ fn eval_json_has_the_documented_keys_and_engines_agree() {
     }
     let flat = |v: &serde_json::Value| -> Vec<f64> {
         match v {
-            serde_json::Value::Array(items) => items.iter().flat_map(|x| flat_one(x)).collect(),
+            serde_json::Value::Array(items) => items.iter().flat_map(flat_one).collect(),
             other => vec![other.as_f64().unwrap()],
         }
     };

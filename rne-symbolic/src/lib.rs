@@ -5,6 +5,8 @@
 //! runs on those expressions; the joint torques are then taken apart into M(q), the
 //! Christoffel C(q, q̇), g(q), the bias and the energies.
 #![deny(missing_docs)]
+// Index loops over 0..3 mirror the vector and matrix notation of the equations they implement.
+#![allow(clippy::needless_range_loop)]
 
 pub mod canonical;
 mod double_double;

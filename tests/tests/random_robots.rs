@@ -167,9 +167,9 @@ proptest! {
             let rebuilt: Vec<f64> = mat_vec(&m, qdd).iter().zip(&c_qd).zip(&g).map(|((a, b), c)| a + b + c).collect();
             prop_assert!(err(&rebuilt, &tau) < 1e-12, "tau = M qdd + C qd + g");
             // M symmetric positive definite (Cholesky succeeds).
-            for i in 0..n {
-                for j in 0..n {
-                    prop_assert_eq!(m[i][j], m[j][i]);
+            for (i, row) in m.iter().enumerate() {
+                for (j, &entry) in row.iter().enumerate() {
+                    prop_assert_eq!(entry, m[j][i]);
                 }
             }
             prop_assert!(nalgebra::DMatrix::from_row_slice(n, n, &m.concat()).cholesky().is_some(), "M not SPD");

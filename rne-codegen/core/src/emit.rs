@@ -180,7 +180,22 @@ impl Emitter<'_> {
         }
     }
 
+    /// The sines and cosines of the joint angles: of all joints at once with
+    /// `Real::sin_cos_array` (vectorised for `f64`) when two or more are needed, else one.
     fn trig_bindings(&self) -> TokenStream {
+        if self.trig.len() >= 2 {
+            let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
+                let index = Literal::usize_unsuffixed(k as usize);
+                let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
+                let s = sin.then(|| quote!(let #s = sin_q[#index];));
+                let c = cos.then(|| quote!(let #c = cos_q[#index];));
+                quote!(#s #c)
+            });
+            return quote! {
+                let (sin_q, cos_q) = ::rne_codegen::Real::sin_cos_array(q);
+                #(#lines)*
+            };
+        }
         let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
             let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
             let angle = self.input(Symbol::Position(k));
