@@ -9,3 +9,4 @@ pub mod interpreted;
 pub mod kernels;
 pub mod reference;
 pub mod sim;
+pub mod stress;

@@ -7,6 +7,7 @@ mod options;
 mod show;
 mod simulate;
 mod stats;
+mod stress;
 mod verify;
 
 use std::io::Write;
@@ -41,6 +42,9 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
     Simulate(simulate::SimulateArgs),
+    /// Numerical stability report: extreme masses, lengths, angles, speeds, ill-conditioning,
+    /// chaotic runs, large robots and non-finite inputs.
+    Stress(stress::StressArgs),
 }
 
 /// Runs one command, writing its output to `out`.
@@ -53,5 +57,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Eval(args) => eval::run(&args, out),
         Command::Verify(args) => verify::run(&args, out),
         Command::Simulate(args) => simulate::run(&args, out),
+        Command::Stress(args) => stress::run(&args, out),
     }
 }

@@ -1,0 +1,290 @@
+//! The report's figures: errors on a logarithmic vertical axis against a logarithmic or linear
+//! horizontal one, as scattered points, lines and dashed reference lines (such as ε·cond),
+//! rendered with plotters as SVG and PNG.
+//!
+//! Text needs a font even for the SVG backend (plotters measures labels to lay out the
+//! chart), and no system font is assumed: Hack Regular, shipped by the `epaint_default_fonts`
+//! crate, is registered as plotters' `sans-serif` family before the first figure is drawn.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::error::StressError;
+
+/// Size of a rendered figure in pixels.
+const SIZE: (u32, u32) = (960, 600);
+
+/// Series colours, in order (Tableau 10).
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+/// How a series is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mark {
+    /// Unconnected dots: one measurement each.
+    Points,
+    /// A solid line through the points in order.
+    Line,
+    /// A dashed grey line: a bound or a reference, such as ε·cond(M).
+    Reference,
+}
+
+/// One labelled set of points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// The legend entry.
+    pub label: String,
+    /// The points (x, y).
+    pub points: Vec<(f64, f64)>,
+    /// How they are drawn.
+    pub mark: Mark,
+}
+
+impl Series {
+    /// A series of `points` drawn with `mark`.
+    pub fn new(label: impl Into<String>, mark: Mark, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            label: label.into(),
+            points,
+            mark,
+        }
+    }
+}
+
+/// The horizontal axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// Linear.
+    Linear,
+    /// Logarithmic; points with x ≤ 0 are left out.
+    Log,
+}
+
+/// A figure with a logarithmic vertical axis: points with y ≤ 0 or non-finite coordinates
+/// are left out. Labels should avoid combining characters (q̈) and subscripts, which the
+/// embedded font lacks.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogPlot {
+    /// The file name without extension, `stress-...`.
+    pub file: String,
+    /// The title.
+    pub title: String,
+    /// The horizontal axis label, with its unit.
+    pub x_label: String,
+    /// The vertical axis label, with its unit.
+    pub y_label: String,
+    /// The horizontal scale.
+    pub x_axis: Axis,
+    /// The series, drawn in order.
+    pub series: Vec<Series>,
+}
+
+impl LogPlot {
+    /// Writes `DIR/FILE.svg` and `DIR/FILE.png` and returns their paths.
+    pub fn render(&self, dir: &Path) -> Result<Vec<PathBuf>, StressError> {
+        register_font().map_err(|message| StressError::Plot {
+            figure: self.file.clone(),
+            message,
+        })?;
+        let svg = dir.join(format!("{}.svg", self.file));
+        self.draw(SVGBackend::new(&svg, SIZE).into_drawing_area())?;
+        let png = dir.join(format!("{}.png", self.file));
+        self.draw(BitMapBackend::new(&png, SIZE).into_drawing_area())?;
+        Ok(vec![svg, png])
+    }
+
+    /// The points of each series that the axes can show.
+    fn visible(&self) -> Vec<Vec<(f64, f64)>> {
+        self.series
+            .iter()
+            .map(|s| {
+                s.points
+                    .iter()
+                    .copied()
+                    .filter(|&(x, y)| {
+                        x.is_finite()
+                            && y.is_finite()
+                            && y > 0.0
+                            && (self.x_axis == Axis::Linear || x > 0.0)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Draws the figure on `root` and presents it (writes the file).
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), StressError> {
+        let failed = |e: DrawingAreaErrorKind<DB::ErrorType>| StressError::Plot {
+            figure: self.file.clone(),
+            message: e.to_string(),
+        };
+        root.fill(&WHITE).map_err(failed)?;
+        let visible = self.visible();
+        let ((x0, x1), (y0, y1)) = bounds(&visible);
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(14)
+            .margin_right(28)
+            .x_label_area_size(48)
+            .y_label_area_size(90);
+        // Decades padded by a quarter on each side.
+        let (y0, y1) = (y0 / 10f64.powf(0.25), y1 * 10f64.powf(0.25));
+        match self.x_axis {
+            Axis::Log => {
+                let (x0, x1) = (x0 / 10f64.powf(0.1), x1 * 10f64.powf(0.1));
+                let mut chart = builder
+                    .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                    .map_err(failed)?;
+                chart
+                    .configure_mesh()
+                    .x_desc(self.x_label.as_str())
+                    .y_desc(self.y_label.as_str())
+                    .x_label_formatter(&|x| format!("{x:.0e}"))
+                    .y_label_formatter(&|y| format!("{y:.0e}"))
+                    .light_line_style(WHITE.mix(0.0))
+                    .draw()
+                    .map_err(failed)?;
+                draw_series(&mut chart, &self.series, &visible).map_err(failed)?;
+            }
+            Axis::Linear => {
+                let pad = 0.03 * (x1 - x0);
+                let mut chart = builder
+                    .build_cartesian_2d((x0 - pad)..(x1 + pad), (y0..y1).log_scale())
+                    .map_err(failed)?;
+                chart
+                    .configure_mesh()
+                    .x_desc(self.x_label.as_str())
+                    .y_desc(self.y_label.as_str())
+                    .x_label_formatter(&|x| format!("{x:.0}"))
+                    .y_label_formatter(&|y| format!("{y:.0e}"))
+                    .light_line_style(WHITE.mix(0.0))
+                    .draw()
+                    .map_err(failed)?;
+                draw_series(&mut chart, &self.series, &visible).map_err(failed)?;
+            }
+        }
+        root.present().map_err(failed)
+    }
+}
+
+/// The smallest and largest x and y over the visible points (a unit box if there are none, a
+/// decade around a single value).
+fn bounds(visible: &[Vec<(f64, f64)>]) -> ((f64, f64), (f64, f64)) {
+    let mut points = visible.iter().flatten();
+    let Some(&(x, y)) = points.next() else {
+        return ((1.0, 10.0), (1.0, 10.0));
+    };
+    let ((x0, x1), (y0, y1)) = points.fold(((x, x), (y, y)), |((a, b), (c, d)), &(x, y)| {
+        ((a.min(x), b.max(x)), (c.min(y), d.max(y)))
+    });
+    let widen = |lo: f64, hi: f64| {
+        if hi > lo {
+            (lo, hi)
+        } else {
+            (lo / 10f64.sqrt(), hi * 10f64.sqrt())
+        }
+    };
+    (widen(x0, x1), widen(y0, y1))
+}
+
+/// Draws the series on a chart, with a legend.
+fn draw_series<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    series: &[Series],
+    visible: &[Vec<(f64, f64)>],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let mut colour = 0;
+    for (s, points) in series.iter().zip(visible) {
+        let grey = RGBColor(110, 110, 110);
+        let c = PALETTE[colour % PALETTE.len()];
+        if s.mark != Mark::Reference {
+            colour += 1;
+        }
+        let drawn = match s.mark {
+            Mark::Points => chart.draw_series(
+                points
+                    .iter()
+                    .map(|&p| Circle::new(p, 3, c.mix(0.75).filled())),
+            )?,
+            Mark::Line => {
+                chart.draw_series(LineSeries::new(points.iter().copied(), c.stroke_width(2)))?
+            }
+            Mark::Reference => chart.draw_series(DashedLineSeries::new(
+                points.iter().copied(),
+                6,
+                4,
+                grey.stroke_width(1),
+            ))?,
+        };
+        let legend_colour = if s.mark == Mark::Reference { grey } else { c };
+        drawn.label(s.label.as_str()).legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + 22, y)], legend_colour.stroke_width(2))
+        });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+}
+
+/// Registers the embedded font as the `sans-serif` family, once per process.
+fn register_font() -> Result<(), String> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::HACK_REGULAR,
+        )
+        .is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err("the embedded font could not be read".into())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points a log axis cannot show are left out; bounds widen a single value to a decade.
+    #[test]
+    fn visible_points_and_bounds() {
+        let plot = LogPlot {
+            file: "t".into(),
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            x_axis: Axis::Log,
+            series: vec![Series::new(
+                "s",
+                Mark::Points,
+                vec![(1.0, 1e-16), (0.0, 1.0), (2.0, 0.0), (3.0, f64::NAN)],
+            )],
+        };
+        let visible = plot.visible();
+        assert_eq!(visible, vec![vec![(1.0, 1e-16)]]);
+        let ((x0, x1), _) = bounds(&visible);
+        assert!(x0 < 1.0 && x1 > 1.0);
+    }
+}
