@@ -2,6 +2,7 @@
 #![deny(missing_docs)]
 
 pub mod accuracy;
+pub mod bench;
 pub mod builtin;
 pub mod cli;
 pub mod generated;

@@ -1,5 +1,6 @@
 //! The `rne` command line: one file per subcommand.
 
+mod bench;
 mod emit;
 mod eval;
 mod list;
@@ -45,6 +46,9 @@ pub enum Command {
     /// Numerical stability report: extreme masses, lengths, angles, speeds, ill-conditioning,
     /// chaotic runs, large robots and non-finite inputs.
     Stress(stress::StressArgs),
+    /// Run time against error: every kernel implementation of every built-in robot, scene
+    /// savings and integrators, as markdown tables and SVG/PNG work-precision figures.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs one command, writing its output to `out`.
@@ -58,5 +62,6 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Verify(args) => verify::run(&args, out),
         Command::Simulate(args) => simulate::run(&args, out),
         Command::Stress(args) => stress::run(&args, out),
+        Command::Bench(args) => bench::run(&args, out),
     }
 }

@@ -1,0 +1,85 @@
+//! Why a benchmark could not run or its report could not be written.
+
+use std::path::PathBuf;
+
+use rne_codegen::CodegenError;
+use rne_symbolic::spec::SpecError;
+
+use crate::kernels::DimensionError;
+use crate::reference::ReferenceError;
+use crate::sim::SimError;
+
+/// A benchmark that failed. Every message names the robot, run or file it is about.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    /// A built-in robot's spec was rejected by the reader.
+    #[error("{robot}: {source}")]
+    Spec {
+        /// The robot.
+        robot: String,
+        /// The reader's error.
+        #[source]
+        source: SpecError,
+    },
+    /// A scene could not be applied or generated.
+    #[error("{robot}: {source}")]
+    Codegen {
+        /// The robot.
+        robot: String,
+        /// The generator's error.
+        #[source]
+        source: CodegenError,
+    },
+    /// The numeric reference rejected the model.
+    #[error("{robot}: {source}")]
+    Reference {
+        /// The robot.
+        robot: String,
+        /// The reference's error.
+        #[source]
+        source: ReferenceError,
+    },
+    /// A generated variant and the sampled states disagree on the number of joints.
+    #[error("{robot}: {source}")]
+    Dimension {
+        /// The robot.
+        robot: String,
+        /// The mismatch.
+        #[source]
+        source: DimensionError,
+    },
+    /// The benchmark has no generated variants for a built-in robot, or they do not match it.
+    #[error("{robot}: {problem}")]
+    Variants {
+        /// The robot.
+        robot: String,
+        /// What is missing or wrong.
+        problem: String,
+    },
+    /// A simulation of the integrator benchmark stopped.
+    #[error("{run}: {source}")]
+    Simulation {
+        /// The run.
+        run: String,
+        /// Why it stopped.
+        #[source]
+        source: SimError,
+    },
+    /// A file could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn.
+    #[error("cannot draw figure {figure}: {message}")]
+    Plot {
+        /// The figure's file name.
+        figure: String,
+        /// plotters' error.
+        message: String,
+    },
+}

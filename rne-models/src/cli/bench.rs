@@ -1,0 +1,53 @@
+//! `rne bench [--quick] [--out DIR]`: run time against error for the kernels and the
+//! integrators (DESIGN.md §5), written as markdown with SVG and PNG figures.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+
+use super::CliError;
+use crate::bench::{self, Effort};
+
+/// Arguments of `rne bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    /// Few states, short batches and short runs: a check in seconds instead of the report.
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for bench-report.md and the figures (created if missing).
+    #[arg(long, default_value = "out/bench")]
+    pub out: PathBuf,
+    /// No progress lines on stderr.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs the benchmarks, writes the report and prints it.
+pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let effort = if args.quick {
+        Effort::Quick
+    } else {
+        Effort::Full
+    };
+    let start = Instant::now();
+    let report = bench::run(effort, |step| {
+        if !args.quiet {
+            eprintln!("[{:7.1} s] {step}", start.elapsed().as_secs_f64());
+        }
+    })
+    .map_err(|e| CliError::Argument(e.to_string()))?;
+    let written = report
+        .write(&args.out)
+        .map_err(|e| CliError::Argument(e.to_string()))?;
+    write!(out, "{}", report.markdown())?;
+    writeln!(
+        out,
+        "\nwrote {} files to {} in {:.1} s",
+        written.len(),
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    )?;
+    Ok(())
+}
