@@ -65,6 +65,14 @@ pub enum BenchError {
         #[source]
         source: SimError,
     },
+    /// Pinocchio's timing script failed or printed something unexpected.
+    #[error("{robot}: Pinocchio: {problem}")]
+    Pinocchio {
+        /// The robot.
+        robot: String,
+        /// What went wrong.
+        problem: String,
+    },
     /// A file could not be written.
     #[error("cannot write {}: {source}", path.display())]
     Io {

@@ -19,6 +19,7 @@ pub mod error;
 pub mod implementation;
 pub mod integrators;
 pub mod kernels;
+pub mod pinocchio;
 pub mod plot;
 pub mod precision;
 pub mod report;
@@ -33,6 +34,7 @@ use std::time::{Duration, Instant};
 
 pub use error::BenchError;
 pub use implementation::{Case, Implementation};
+pub use pinocchio::{PinocchioScript, PinocchioTimes};
 pub use report::Report;
 
 use crate::builtin::BUILTIN_ROBOTS;
@@ -126,20 +128,44 @@ impl Effort {
     }
 }
 
-/// Runs the three studies with `effort`, calling `progress` with the name of each step as it
-/// starts.
-pub fn run(effort: Effort, mut progress: impl FnMut(&str)) -> Result<Report, BenchError> {
+/// Runs the three studies with `effort`, and the comparison with Pinocchio when `pinocchio`
+/// names its script (URDF copies go to `scratch`), calling `progress` with the name of each
+/// step as it starts.
+pub fn run(
+    effort: Effort,
+    pinocchio: Option<(&PinocchioScript, &std::path::Path)>,
+    mut progress: impl FnMut(&str),
+) -> Result<Report, BenchError> {
     let start = Instant::now();
     let (plan, pool) = (effort.kernel_plan(), effort.pool());
     let mut kernel_results = Vec::new();
     let mut scene_results = Vec::new();
+    let mut pinocchio_results = Vec::new();
     for robot in BUILTIN_ROBOTS {
+        let compared = pinocchio.filter(|_| pinocchio::COMPARED.contains(&robot.name));
+        let mut pinocchio_runs = Vec::new();
+        let run_pinocchio = |runs: &mut Vec<[f64; 4]>| -> Result<(), BenchError> {
+            if let Some((script, scratch)) = compared {
+                runs.push(script.run_once(robot, scratch)?);
+            }
+            Ok(())
+        };
         progress(&format!("{}: models and samples", robot.name));
         let cases = robots::Cases::new(robot, effort.samples())?;
+        run_pinocchio(&mut pinocchio_runs)?;
         progress(&format!("{}: kernels", robot.name));
         kernel_results.push(kernels::measure(&cases, &plan, pool)?);
+        run_pinocchio(&mut pinocchio_runs)?;
         progress(&format!("{}: scenes", robot.name));
         scene_results.push(scenes::measure(&cases, &plan, pool)?);
+        run_pinocchio(&mut pinocchio_runs)?;
+        if let Some((script, _)) = compared {
+            pinocchio_results.push(PinocchioTimes {
+                robot: robot.name,
+                ns: pinocchio::median_of(&pinocchio_runs),
+                calls: script.calls,
+            });
+        }
     }
     let plan = effort.integrator_plan();
     progress("integrators: double pendulum");
@@ -151,6 +177,7 @@ pub fn run(effort: Effort, mut progress: impl FnMut(&str)) -> Result<Report, Ben
         kernels: kernel_results,
         scenes: scene_results,
         integrators: vec![double, irb],
+        pinocchio: pinocchio_results,
         elapsed: start.elapsed(),
     })
 }

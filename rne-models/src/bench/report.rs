@@ -11,6 +11,7 @@ use super::error::BenchError;
 use super::implementation::Implementation;
 use super::integrators::{Family, IntegratorStudy, REFERENCE_TOLERANCE};
 use super::kernels::RobotKernels;
+use super::pinocchio::{self, PinocchioTimes, ALGORITHMS};
 use super::plot::{Chart, Marker, Panel, Point, Series};
 use super::robots::{BENCHED, SEED};
 use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
@@ -35,6 +36,8 @@ pub struct Report {
     pub scenes: Vec<RobotScenes>,
     /// Integrator work-precision, one entry per problem.
     pub integrators: Vec<IntegratorStudy>,
+    /// Pinocchio's times on the URDF robots, when its script was given.
+    pub pinocchio: Vec<PinocchioTimes>,
     /// Wall-clock time of the whole run.
     pub elapsed: Duration,
 }
@@ -151,6 +154,7 @@ impl Report {
             plan.rounds,
             plan.batch.as_micros(),
         );
+        self.pinocchio_table(&mut md);
         self.kernel_tables(&mut md);
         self.scene_table(&mut md);
         self.published_table(&mut md);
@@ -181,6 +185,42 @@ impl Report {
         let mut charts: Vec<Chart> = self.kernels.iter().map(kernel_chart).collect();
         charts.extend(self.integrators.iter().map(integrator_chart));
         charts
+    }
+
+    fn pinocchio_table(&self, md: &mut String) {
+        if self.pinocchio.is_empty() {
+            return;
+        }
+        let calls = self.pinocchio[0].calls;
+        let _ = writeln!(
+            md,
+            "## Beside Pinocchio\n\nPinocchio 4.1.0's algorithms timed by \
+             `../shared/tools/pinocchio/run.sh ROBOT.urdf {calls}` (header-only C++, -O3 \
+             -march=native, seeded states; mean over {calls} calls) on the same URDF as the \
+             built-in robot, three times during this run (before, between and after rne's \
+             timings of that robot), median kept; rne's time is the generated f64 kernel's median \
+             from the tables below. Speed-up = Pinocchio's time / rne's.\n\n\
+             | robot | Pinocchio | ns/call | rne kernel | ns/call | speed-up |\n|---|---|---:|---|---:|---:|"
+        );
+        for times in &self.pinocchio {
+            let Some(robot) = self.kernels.iter().find(|k| k.robot == times.robot) else {
+                continue;
+            };
+            let speedups = pinocchio::speedups(times, robot);
+            for (i, (algorithm, kernel)) in ALGORITHMS.iter().enumerate() {
+                let ours = times.ns[i] / speedups[i];
+                let _ = writeln!(
+                    md,
+                    "| {} | {algorithm} | {} | {} | {} | {} |",
+                    times.robot,
+                    ns(times.ns[i]),
+                    kernel.name(),
+                    ns(ours),
+                    ratio(speedups[i]),
+                );
+            }
+        }
+        let _ = writeln!(md);
     }
 
     fn kernel_tables(&self, md: &mut String) {
