@@ -107,6 +107,10 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
     }
     assert!(markdown.contains("## Scene savings"));
     assert!(markdown.contains("| puma560 | "));
-    assert!(written.len() >= 2 * (BUILTIN_ROBOTS.len() + 2) + 1);
+    assert_eq!(
+        written.len(),
+        2 * (BUILTIN_ROBOTS.len() + 2) + 1,
+        "SVG and PNG per chart, and the report"
+    );
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
