@@ -180,19 +180,33 @@ impl Emitter<'_> {
         }
     }
 
-    /// The sines and cosines of the joint angles: of all joints at once with
-    /// `Real::sin_cos_array` (vectorised for `f64`) when two or more are needed, else one.
+    /// The sines and cosines of the joint angles the kernel uses (a mass matrix never needs
+    /// the first joint's), all at once with `Real::sin_cos_array` when two or more are needed,
+    /// else one. `f64` evaluates the array two lanes per vector instruction, so an odd count
+    /// is padded with a repeat of the last angle: a lane of its own costs more than a pair.
     fn trig_bindings(&self) -> TokenStream {
         if self.trig.len() >= 2 {
-            let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
-                let index = Literal::usize_unsuffixed(k as usize);
-                let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
-                let s = sin.then(|| quote!(let #s = sin_q[#index];));
-                let c = cos.then(|| quote!(let #c = cos_q[#index];));
-                quote!(#s #c)
-            });
+            let mut angles: Vec<TokenStream> = self
+                .trig
+                .keys()
+                .map(|&k| self.input(Symbol::Position(k)))
+                .collect();
+            if self.ctx.scalar == ScalarType::F64 && angles.len() % 2 == 1 {
+                angles.push(angles[angles.len() - 1].clone());
+            }
+            let lines = self
+                .trig
+                .iter()
+                .enumerate()
+                .map(|(lane, (&k, &(sin, cos)))| {
+                    let lane = Literal::usize_unsuffixed(lane);
+                    let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
+                    let s = sin.then(|| quote!(let #s = sin_q[#lane];));
+                    let c = cos.then(|| quote!(let #c = cos_q[#lane];));
+                    quote!(#s #c)
+                });
             return quote! {
-                let (sin_q, cos_q) = ::rne_codegen::Real::sin_cos_array(q);
+                let (sin_q, cos_q) = ::rne_codegen::Real::sin_cos_array(&[#(#angles),*]);
                 #(#lines)*
             };
         }
