@@ -32,8 +32,9 @@
 #![deny(missing_docs)]
 
 pub use rne_codegen_core::{
-    generate, generate_from_path, kernel_program, Builder, CodegenError, GeneratedModule, Kernel,
-    KernelReport, ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
+    build_kernel, generate, generate_from_path, kernel_program, Builder, BuiltKernel, CodegenError,
+    GeneratedModule, Kernel, KernelReport, ParameterMode, Program, ScalarType, Scene,
+    KEEP_GENERATED_ENV,
 };
 pub use rne_codegen_macros::derive_dynamics;
 pub use rne_symbolic::{DoubleDouble, Real};

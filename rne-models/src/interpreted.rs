@@ -26,10 +26,10 @@ struct State<'a> {
 impl Interpreted {
     /// Builds every kernel of `model` (numeric or symbolic parameters).
     pub fn new(model: &RobotModel) -> Interpreted {
-        let mut dynamics = SymbolicDynamics::new(model);
+        let dynamics = SymbolicDynamics::new(model);
         let programs = Kernel::ALL
             .iter()
-            .map(|&k| (k, kernel_program(&mut dynamics, k)))
+            .map(|&k| (k, kernel_program(&dynamics, k)))
             .collect();
         Interpreted { dynamics, programs }
     }

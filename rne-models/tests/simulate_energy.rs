@@ -11,7 +11,7 @@ use rne_models::sim::scenarios::parameters::{
     energy_solver, matlab_ode45, thesis_solver, GAUSS_LEGENDRE_STEP, IRB140_ENERGY_RTOL,
     LONG_RUN_END, PERTURBED_Q1, RELEASE_ENERGY_RTOL, SAMPLE,
 };
-use rne_models::sim::{output_times, GaussLegendre};
+use rne_models::sim::{output_times, GaussLegendre, Rk4};
 
 /// Figure 6.8: the double pendulum released from q = 0 (no input, no friction) keeps its total
 /// energy E = 0 to max |E(t) − E(0)| ≤ 1e-9 J over 20 s with Dormand–Prince at rtol 1e-12
@@ -32,10 +32,12 @@ fn released_double_pendulum_drifts_at_most_1e_9_j_over_20_s() {
     assert!(r.kinetic.iter().copied().fold(0.0, f64::max) > 30.0);
 }
 
-/// Figure 6.8 over 1000 s: the symplectic 2-stage Gauss–Legendre method (h = 10 ms, 10⁵ steps)
-/// keeps the energy error of the chaotic release bounded, with no secular growth: the largest
-/// |E − E(0)| over the last 500 s is at most twice that over the first 500 s, and both are below
-/// 0.1 J (the error is O(h⁴); 66 J are exchanged). About 2–3 s in a debug build.
+/// Figure 6.8 over 1000 s: the symplectic 2-stage Gauss–Legendre method (h = 5 ms, 2·10⁵
+/// steps) keeps the energy error of the chaotic release bounded, with no secular growth: the
+/// largest |E − E(0)| over the last 500 s is at most twice that over the first 500 s, and both
+/// are below 2e-3 J (the error is O(h⁴); 88 J are exchanged). RK4 at the same step, not
+/// symplectic, loses energy steadily, over 0.5 J (1.3 J measured): the bound is the method's,
+/// not the problem's.
 #[test]
 fn released_double_pendulum_energy_stays_bounded_over_1000_s_with_gauss_legendre() {
     let times = output_times(0.0, LONG_RUN_END, 0.1);
@@ -48,7 +50,12 @@ fn released_double_pendulum_energy_stays_bounded_over_1000_s_with_gauss_legendre
         second <= 2.0 * first,
         "secular growth: {first:e} -> {second:e}"
     );
-    assert!(first.max(second) <= 0.1, "{first:e} {second:e}");
+    assert!(first.max(second) <= 2e-3, "{first:e} {second:e}");
+
+    let rk4 = released([0.0, 0.0], &Rk4::new(GAUSS_LEGENDRE_STEP), &times).unwrap();
+    let lost = rk4.total[0] - rk4.total[rk4.len() - 1];
+    eprintln!("RK4, 1000 s: E(0) - E(end) = {lost:e} J");
+    assert!(lost > 0.5, "RK4 drifted only {lost:e} J");
 }
 
 /// Figures 6.16–6.17: the IRB 140 with joints 1–2 locked and link 3 released from q₃ = 0

@@ -49,6 +49,8 @@ pub use error::CodegenError;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
-pub use module::{generate, kernel_program, GeneratedModule, KernelReport};
+pub use module::{
+    build_kernel, generate, kernel_program, BuiltKernel, GeneratedModule, KernelReport,
+};
 pub use program::{Instr, Operand, Program};
 pub use scene::{ParameterMode, ScalarType, Scene};

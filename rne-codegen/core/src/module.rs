@@ -4,7 +4,7 @@ use std::time::{Duration, Instant};
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
-use rne_symbolic::{OpCount, RobotModel, SymbolicDynamics};
+use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_ident, EmitContext};
 use crate::error::CodegenError;
@@ -20,8 +20,7 @@ pub struct KernelReport {
     pub kernel: Kernel,
     /// Operations per call of the emitted function.
     pub ops: OpCount,
-    /// Time spent building and emitting this kernel (after the ones before it, whose shared
-    /// subexpressions it reuses).
+    /// Time spent building and emitting this kernel.
     pub generation_time: Duration,
 }
 
@@ -50,13 +49,38 @@ impl GeneratedModule {
     }
 }
 
-/// The optimised straight-line program of one kernel: built into the dynamics' graph, its
-/// linear combinations rewritten ([`distribute_constants`]), lowered ([`Program::lower`]).
-/// This is exactly what [`generate`] emits.
-pub fn kernel_program(dynamics: &mut SymbolicDynamics, kernel: Kernel) -> Program {
-    let roots = kernel.build(dynamics);
-    let roots = distribute_constants(&mut dynamics.model.graph, &roots);
-    Program::lower(&dynamics.model.graph, &roots)
+/// One kernel built in an expression graph of its own.
+#[derive(Clone, Debug)]
+pub struct BuiltKernel {
+    /// The dynamics whose graph holds this kernel's expressions and nothing of other kernels.
+    pub dynamics: SymbolicDynamics,
+    /// The kernel's outputs as built (flattened row-major for matrices), before optimisation.
+    pub roots: Vec<Id>,
+    /// The optimised straight-line program: the outputs with their linear combinations
+    /// rewritten ([`distribute_constants`]), lowered ([`Program::lower`]). This is exactly what
+    /// [`generate`] emits.
+    pub program: Program,
+}
+
+/// Builds `kernel` into a copy of `dynamics` and optimises it. Given dynamics in which nothing
+/// has been built yet, the result depends on the model and the kernel alone: the order of
+/// the terms of rewritten sums follows node ids, so kernels sharing one graph would round
+/// differently depending on which others were generated before them.
+pub fn build_kernel(dynamics: &SymbolicDynamics, kernel: Kernel) -> BuiltKernel {
+    let mut dynamics = dynamics.clone();
+    let roots = kernel.build(&mut dynamics);
+    let outputs = distribute_constants(&mut dynamics.model.graph, &roots);
+    let program = Program::lower(&dynamics.model.graph, &outputs);
+    BuiltKernel {
+        dynamics,
+        roots,
+        program,
+    }
+}
+
+/// The optimised straight-line program of one kernel ([`build_kernel`]).
+pub fn kernel_program(dynamics: &SymbolicDynamics, kernel: Kernel) -> Program {
+    build_kernel(dynamics, kernel).program
 }
 
 /// Generates the kernels `scene` asks for, for `model` (loaded with symbolic parameters when
@@ -89,9 +113,10 @@ pub fn generate(
     outputs.dedup();
     for kernel in outputs {
         let kernel_start = Instant::now();
-        let program = kernel_program(&mut dynamics, kernel);
+        let built = build_kernel(&dynamics, kernel);
+        let program = built.program;
         let ctx = EmitContext {
-            symbols: dynamics.model.graph.symbols(),
+            symbols: built.dynamics.model.graph.symbols(),
             scalar: scene.scalar,
             parameters: scene.parameters,
         };

@@ -71,21 +71,24 @@ fn halves(errors: &[f64]) -> (f64, f64) {
     (max(&errors[..half]), max(&errors[half..]))
 }
 
-/// Property: the symplectic Gauss–Legendre integrator (2 stages, h = 10 ms) keeps the energy
-/// error of the chaotic released double pendulum bounded over 1000 s (10⁵ steps) with no
+/// Property: the symplectic Gauss–Legendre integrator (2 stages, h = 5 ms) keeps the energy
+/// error of the chaotic released double pendulum bounded over 1000 s (2·10⁵ steps) with no
 /// secular growth: the worst error over the last 500 s is within twice the worst over the first
-/// 500 s, and below 0.1 J of the 66 J exchanged between potential and kinetic energy (the
-/// error is O(h⁴): 6e-4 J at h = 5 ms, 2e-6 J at h = 1.25 ms). About 2 s in a debug build.
+/// 500 s, and below 2e-3 J of the 66 J exchanged between potential and kinetic energy (the
+/// error is O(h⁴): 2e-6 J at h = 1.25 ms). At h = 10 ms the fast phases of the motion leave
+/// the regime where the bound holds: the worst error grows 2–7 times over 1000 s, depending
+/// on rounding-level differences of the start (see `GAUSS_LEGENDRE_STEP`). About 4 s in a
+/// debug build.
 #[test]
 fn gauss_legendre_energy_bounded_over_1000_s() {
-    let errors = released_energy_errors(&GaussLegendre::new(0.01), 1000.0);
+    let errors = released_energy_errors(&GaussLegendre::new(0.005), 1000.0);
     let (first, second) = halves(&errors);
     eprintln!("GL4: max |E - E0| {first:e} J over the first half, {second:e} J over the second");
     assert!(
         second <= 2.0 * first,
         "secular growth: {first:e} -> {second:e}"
     );
-    assert!(first.max(second) <= 0.1, "{first:e} {second:e}");
+    assert!(first.max(second) <= 2e-3, "{first:e} {second:e}");
 }
 
 /// Property: what symplecticity buys. At the same step h = 10 ms over 100 s, classical RK4

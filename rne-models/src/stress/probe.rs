@@ -2,12 +2,12 @@
 //! computes them, and in double-double, the ≥ 30-digit reference.
 //!
 //! - The `f64` value comes from the kernel's optimised straight-line program
-//!   ([`kernel_program`]: the dynamics' graph with its linear combinations rewritten, lowered
-//!   to instructions), evaluated operation by operation in the emitted order with the same
+//!   ([`build_kernel`]: the kernel built in a graph of its own, its linear combinations
+//!   rewritten, lowered to instructions), evaluated operation by operation in the emitted order with the same
 //!   `Real::sin_cos`. The generated Rust performs the same operations in the same order (no
 //!   re-association, no fused multiply–add), so this is bit for bit what a compiled kernel
 //!   returns — checked on every built-in robot by [`super::cases::compiled`].
-//! - The reference is the dynamics' expression graph *before* code optimisation (the model as
+//! - The reference is the kernel's expression graph *before* code optimisation (the model as
 //!   the spec defines it, with its `f64` constants), evaluated in
 //!   [`DoubleDouble`](rne_symbolic::DoubleDouble) at the same `f64` inputs: the exact value of
 //!   the `f64` model to about 10⁻³¹ relative.
@@ -16,7 +16,7 @@
 //! operations and of the constants the optimiser folds anew, not an error of the model or of
 //! the inputs.
 
-use rne_codegen::{kernel_program, Kernel, Program, Real};
+use rne_codegen::{build_kernel, BuiltKernel, Kernel, Real};
 use rne_codegen_core::Operand;
 use rne_symbolic::expr::Evaluator;
 use rne_symbolic::{DoubleDouble, RobotModel, Symbol, SymbolicDynamics};
@@ -71,10 +71,10 @@ pub struct Sweep {
     pub fd_over_estimate: Spread,
 }
 
-/// One kernel: its emitted program and the evaluation of its outputs in the model's graph.
+/// One kernel: its graph, its emitted program and the evaluation of its outputs in the graph.
 struct Prepared {
     kernel: Kernel,
-    program: Program,
+    built: BuiltKernel,
     reference: Evaluator,
 }
 
@@ -86,27 +86,21 @@ pub struct Probe {
 }
 
 impl Probe {
-    /// Prepares `kernels` of `model`. Every kernel of the default module is built, in the
-    /// order `derive_dynamics!` builds them (`Kernel::ALL`), into one graph, exactly as code
-    /// generation does: a kernel's program depends on the nodes earlier kernels left in the
-    /// graph (their ids order the terms of rebuilt sums), so this is what makes the `f64`
-    /// values those of the compiled default module, bit for bit.
+    /// Prepares `kernels` of `model`, each built in a graph of its own exactly as code
+    /// generation builds it ([`build_kernel`]), so that the `f64` values are those of the
+    /// compiled kernels, bit for bit, whichever other kernels a module holds.
     pub fn new(model: &RobotModel, kernels: &[Kernel]) -> Probe {
-        let mut dynamics = SymbolicDynamics::new(model);
-        let built: Vec<_> = Kernel::ALL
+        let dynamics = SymbolicDynamics::new(model);
+        let prepared = kernels
             .iter()
-            .map(|&k| {
-                let roots = k.build(&mut dynamics);
-                (k, roots, kernel_program(&mut dynamics, k))
-            })
-            .collect();
-        let prepared = built
-            .into_iter()
-            .filter(|(k, _, _)| kernels.contains(k))
-            .map(|(kernel, roots, program)| Prepared {
-                kernel,
-                program,
-                reference: Evaluator::new(&dynamics.model.graph, &roots),
+            .map(|&kernel| {
+                let built = build_kernel(&dynamics, kernel);
+                let reference = Evaluator::new(&built.dynamics.model.graph, &built.roots);
+                Prepared {
+                    kernel,
+                    built,
+                    reference,
+                }
             })
             .collect();
         Probe { dynamics, prepared }
@@ -115,11 +109,6 @@ impl Probe {
     /// Number of joint variables.
     pub fn dof(&self) -> usize {
         self.dynamics.dof()
-    }
-
-    /// The robot (fixed links merged) whose graph holds the kernels.
-    pub fn model(&self) -> &RobotModel {
-        &self.dynamics.model
     }
 
     /// The kernels this probe evaluates.
@@ -149,13 +138,13 @@ impl Probe {
     /// evaluated in emitted order. `None` if the probe was not built with this kernel.
     pub fn eval_f64(&self, kernel: Kernel, state: &JointState) -> Option<Vec<f64>> {
         let prepared = self.prepared(kernel)?;
-        Some(prepared.program.eval(|s| self.input(state, s)))
+        Some(prepared.built.program.eval(|s| self.input(state, s)))
     }
 
     /// The double-double reference at `state`: the model's graph, before optimisation.
     pub fn eval_dd(&self, kernel: Kernel, state: &JointState) -> Option<Vec<DoubleDouble>> {
         let prepared = self.prepared(kernel)?;
-        let graph = &self.dynamics.model.graph;
+        let graph = &prepared.built.dynamics.model.graph;
         Some(prepared.reference.eval(graph, |s| self.input(state, s)))
     }
 
@@ -247,7 +236,7 @@ impl Probe {
     /// reads: the outputs a non-finite input must reach. `None` if the probe was not built
     /// with this kernel.
     pub fn dependencies(&self, kernel: Kernel) -> Option<Vec<Vec<Symbol>>> {
-        let program = &self.prepared(kernel)?.program;
+        let program = &self.prepared(kernel)?.built.program;
         // Every input the program reads, numbered; each instruction's inputs, direct or
         // through earlier instructions, as a bit set over that numbering.
         let mut inputs: Vec<Symbol> = program
