@@ -51,11 +51,13 @@ fn kernels_take_no_sine_of_a_joint_they_do_not_depend_on() {
 }
 
 #[test]
-fn f64_kernels_batch_an_even_number_of_angles() {
-    // Five angles in two-lane vectors leave one lane alone; the f64 kernel repeats the last.
+fn f64_and_f32_kernels_batch_an_even_number_of_angles() {
+    // Five angles in two-lane vectors leave one lane alone; the kernel repeats the last.
     let vertical = [0.0, 0.0, -9.81];
-    let angles = batched_angles(Kernel::MassMatrix, ScalarType::F64, vertical);
-    assert_eq!(angles, ["q[1]", "q[2]", "q[3]", "q[4]", "q[5]", "q[5]"]);
+    for scalar in [ScalarType::F64, ScalarType::F32] {
+        let angles = batched_angles(Kernel::MassMatrix, scalar, vertical);
+        assert_eq!(angles, ["q[1]", "q[2]", "q[3]", "q[4]", "q[5]", "q[5]"]);
+    }
     let sideways = [9.81, 0.0, 0.0];
     let angles = batched_angles(Kernel::InverseDynamics, ScalarType::F64, sideways);
     assert_eq!(angles, ["q[0]", "q[1]", "q[2]", "q[3]", "q[4]", "q[5]"]);

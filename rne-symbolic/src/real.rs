@@ -100,8 +100,31 @@ impl Real for f32 {
         let (s, c) = crate::trig::sin_cos(self as f64);
         (s as f32, c as f32)
     }
+    /// Through the vectorised `f64` [`crate::trig::sin_cos_array`], each rounded once to `f32`.
+    #[inline]
+    fn sin_cos_array<const N: usize>(x: &[f32; N]) -> ([f32; N], [f32; N]) {
+        let (s, c) = crate::trig::sin_cos_array(&x.map(f64::from));
+        (s.map(|v| v as f32), c.map(|v| v as f32))
+    }
     #[inline]
     fn sqrt(self) -> f32 {
         f32::sqrt(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Real;
+
+    #[test]
+    fn f32_arrays_give_the_scalar_results_bit_for_bit() {
+        let xs: [f32; 7] = [0.3, -2.0, 7.5, 1e3, -0.0, 3.0e5, f32::NAN];
+        let (s, c) = Real::sin_cos_array(&xs);
+        for (i, &x) in xs.iter().enumerate() {
+            let (es, ec) = Real::sin_cos(x);
+            let same = |a: f32, b: f32| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+            assert!(same(s[i], es) && same(c[i], ec), "sin_cos({x})");
+        }
+        assert!(s[0] > 0.29 && c[0] > 0.95, "the values are those of 0.3");
     }
 }

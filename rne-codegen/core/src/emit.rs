@@ -182,8 +182,9 @@ impl Emitter<'_> {
 
     /// The sines and cosines of the joint angles the kernel uses (a mass matrix never needs
     /// the first joint's), all at once with `Real::sin_cos_array` when two or more are needed,
-    /// else one. `f64` evaluates the array two lanes per vector instruction, so an odd count
-    /// is padded with a repeat of the last angle: a lane of its own costs more than a pair.
+    /// else one. `f64` and `f32` evaluate the array in `f64`, two lanes per vector
+    /// instruction, so an odd count is padded with a repeat of the last angle: a lane of its
+    /// own costs more than a pair. Generic kernels, mostly evaluated in double-double, are not.
     fn trig_bindings(&self) -> TokenStream {
         if self.trig.len() >= 2 {
             let mut angles: Vec<TokenStream> = self
@@ -191,7 +192,7 @@ impl Emitter<'_> {
                 .keys()
                 .map(|&k| self.input(Symbol::Position(k)))
                 .collect();
-            if self.ctx.scalar == ScalarType::F64 && angles.len() % 2 == 1 {
+            if self.ctx.scalar != ScalarType::Generic && angles.len() % 2 == 1 {
                 angles.push(angles[angles.len() - 1].clone());
             }
             let lines = self
