@@ -60,6 +60,28 @@ fn a_kernel_is_the_same_code_whichever_other_kernels_are_generated() {
 }
 
 #[test]
+fn a_kernel_listed_twice_is_generated_once() {
+    let scene = Scene {
+        outputs: vec![
+            Kernel::MassMatrix,
+            Kernel::InverseDynamics,
+            Kernel::MassMatrix,
+        ],
+        ..Scene::default()
+    };
+    let module = generate_from_path(&robot(), &scene).unwrap();
+    let kernels: Vec<Kernel> = module.kernels.iter().map(|r| r.kernel).collect();
+    assert_eq!(kernels, [Kernel::MassMatrix, Kernel::InverseDynamics]);
+    assert_eq!(
+        module
+            .to_pretty_string()
+            .matches("pub fn mass_matrix(")
+            .count(),
+        1
+    );
+}
+
+#[test]
 fn builder_writes_the_module_to_out_dir_and_a_readable_copy_on_request() {
     let root = std::env::temp_dir().join(format!("rne-builder-test-{}", std::process::id()));
     let out_dir = root.join("out");

@@ -109,8 +109,13 @@ pub fn generate(
     let joints = dynamics.model.joint_names();
     let mut kernels = Vec::new();
     let mut functions = Vec::new();
-    let mut outputs = scene.outputs.clone();
-    outputs.dedup();
+    // Each kernel once, at its first mention (a Builder or `rne emit` may repeat one).
+    let mut outputs: Vec<Kernel> = Vec::new();
+    for &kernel in &scene.outputs {
+        if !outputs.contains(&kernel) {
+            outputs.push(kernel);
+        }
+    }
     for kernel in outputs {
         let kernel_start = Instant::now();
         let built = build_kernel(&dynamics, kernel);

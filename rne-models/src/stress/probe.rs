@@ -3,10 +3,10 @@
 //!
 //! - The `f64` value comes from the kernel's optimised straight-line program
 //!   ([`build_kernel`]: the kernel built in a graph of its own, its linear combinations
-//!   rewritten, lowered to instructions), evaluated operation by operation in the emitted order with the same
-//!   `Real::sin_cos`. The generated Rust performs the same operations in the same order (no
-//!   re-association, no fused multiply–add), so this is bit for bit what a compiled kernel
-//!   returns — checked on every built-in robot by [`super::cases::compiled`].
+//!   rewritten, lowered to instructions), evaluated operation by operation in the emitted
+//!   order with the same `Real::sin_cos`. The generated Rust performs the same operations in
+//!   the same order (no re-association, no fused multiply–add), so this is bit for bit what a
+//!   compiled kernel returns — checked on every built-in robot by [`super::cases::compiled`].
 //! - The reference is the kernel's expression graph *before* code optimisation (the model as
 //!   the spec defines it, with its `f64` constants), evaluated in
 //!   [`DoubleDouble`](rne_symbolic::DoubleDouble) at the same `f64` inputs: the exact value of
