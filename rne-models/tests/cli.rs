@@ -116,7 +116,7 @@ fn eval_of_a_spec_file_uses_the_expression_graph() {
 
 #[test]
 fn bad_input_is_a_clear_error() {
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 12] = [
         (
             &["eval", "planar-elbow", "--q", "1,2,3"],
             "`q` has 3 values; the robot has 2 joints",
@@ -140,6 +140,30 @@ fn bad_input_is_a_clear_error() {
         (
             &["emit", "planar-elbow", "--gravity", "0,1"],
             "--gravity needs 3 values",
+        ),
+        (
+            &["emit", "planar-elbow", "--gravity", "nan,0,0"],
+            "gravity must be finite",
+        ),
+        (
+            &["emit", "planar-elbow", "--lock", "q1=inf"],
+            "joint `q1` cannot be locked at inf: not a finite number",
+        ),
+        (
+            &["emit", "planar-elbow", "--lock", "q1=0,q1=1"],
+            "joint `q1` is locked twice",
+        ),
+        (
+            &["verify", "planar-elbow", "--tolerance", "nan"],
+            "--tolerance must be a finite, non-negative number",
+        ),
+        (
+            &["verify", "planar-elbow", "--samples", "0"],
+            "--samples must be at least 1",
+        ),
+        (
+            &["simulate", "double-pendulum", "--time", "--repeat", "0"],
+            "--repeat must be at least 1",
         ),
     ];
     for (args, expected) in cases {

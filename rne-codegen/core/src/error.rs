@@ -19,6 +19,12 @@ pub enum CodegenError {
     /// A `lock` names no joint.
     #[error(transparent)]
     Lock(#[from] rne_symbolic::model::LockError),
+    /// A joint is locked twice.
+    #[error("joint `{0}` is locked twice")]
+    LockedTwice(String),
+    /// The gravity vector has a NaN or infinite component.
+    #[error("gravity must be finite, got {0:?}")]
+    Gravity([f64; 3]),
     /// An `outputs` entry is not a kernel.
     #[error(transparent)]
     UnknownKernel(#[from] crate::kernel::UnknownKernel),

@@ -60,13 +60,20 @@ impl Default for Scene {
 }
 
 impl Scene {
-    /// The model as this scene sees it: gravity overridden, joints locked.
+    /// The model as this scene sees it: gravity overridden, joints locked. Gravity must be
+    /// finite, and each joint locked once at a finite position.
     pub fn apply(&self, model: &RobotModel) -> Result<RobotModel, CodegenError> {
         let mut model = model.clone();
         if let Some(gravity) = self.gravity {
+            if !gravity.iter().all(|g| g.is_finite()) {
+                return Err(CodegenError::Gravity(gravity));
+            }
             model.set_gravity(gravity);
         }
-        for (joint, value) in &self.lock {
+        for (i, (joint, value)) in self.lock.iter().enumerate() {
+            if self.lock[..i].iter().any(|(earlier, _)| earlier == joint) {
+                return Err(CodegenError::LockedTwice(joint.clone()));
+            }
             model.lock_joint(joint, *value)?;
         }
         Ok(model)

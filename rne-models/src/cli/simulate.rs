@@ -124,6 +124,9 @@ fn time(name: &str, repeat: usize, out: &mut dyn Write) -> Result<(), CliError> 
             "--time measures the thesis's 70 s run: use it with `double-pendulum`".into(),
         ));
     }
+    if repeat == 0 {
+        return Err(CliError::Argument("--repeat must be at least 1".into()));
+    }
     let timing = scenarios::time_thesis_release(repeat)
         .map_err(|e| CliError::Argument(format!("double-pendulum: {e}")))?;
     writeln!(

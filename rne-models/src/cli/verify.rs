@@ -29,6 +29,17 @@ pub struct VerifyArgs {
 
 /// Generates, counts and checks; fails if any error exceeds the tolerance.
 pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    if !(args.tolerance.is_finite() && args.tolerance >= 0.0) {
+        return Err(CliError::Argument(format!(
+            "--tolerance must be a finite, non-negative number, got {}",
+            args.tolerance
+        )));
+    }
+    if args.samples == 0 {
+        return Err(CliError::Argument(
+            "--samples must be at least 1: no states would check nothing".into(),
+        ));
+    }
     let robots = if args.models.is_empty() {
         BUILTIN_ROBOTS.iter().collect::<Vec<_>>()
     } else {

@@ -13,6 +13,14 @@ pub enum LockError {
         /// The model's joint names, comma-separated.
         known: String,
     },
+    /// The position is NaN or infinite.
+    #[error("joint `{name}` cannot be locked at {value}: not a finite number")]
+    NotFinite {
+        /// The joint.
+        name: String,
+        /// The position asked for, as given.
+        value: String,
+    },
 }
 
 impl RobotModel {
@@ -20,6 +28,12 @@ impl RobotModel {
     /// translation is folded into the link's placement and the joint leaves the state; later
     /// joints are renumbered.
     pub fn lock_joint(&mut self, name: &str, value: f64) -> Result<(), LockError> {
+        if !value.is_finite() {
+            return Err(LockError::NotFinite {
+                name: name.to_owned(),
+                value: value.to_string(),
+            });
+        }
         let k = self
             .joints
             .iter()

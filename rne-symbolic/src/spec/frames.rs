@@ -288,18 +288,38 @@ fn affine(g: &mut ExprGraph, expr: Id, q: Symbol) -> Result<(f64, Id), SpecError
 /// exact), symbolically otherwise. A constant zero axis is an error.
 fn normalise(g: &mut ExprGraph, axis: Vec3) -> Result<Vec3, SpecError> {
     if let [Some(x), Some(y), Some(z)] = axis.map(|a| g.as_const(a)) {
-        let length = (x * x + y * y + z * z).sqrt();
-        if length == 0.0 {
-            return Err(kinematics("axis must not be zero").at_field("axis"));
-        }
-        if length == 1.0 {
+        let unit = unit_vector([x, y, z])
+            .ok_or_else(|| kinematics("axis must not be zero").at_field("axis"))?;
+        if unit == [x, y, z] {
             return Ok(axis);
         }
-        return Ok([x, y, z].map(|c| g.constant(c / length)));
+        return Ok(unit.map(|c| g.constant(c)));
     }
     let squared = g.dot(axis, axis);
     let length = g.sqrt(squared);
     Ok(axis.map(|a| g.div(a, length)))
+}
+
+/// `v / ‖v‖`, `None` for a zero vector. When ‖v‖² would overflow or lose digits to underflow
+/// (components beyond about 1e154 or all below about 1e-154), `v` is first divided by its
+/// largest component, after which the squares can do neither.
+fn unit_vector(v: [f64; 3]) -> Option<[f64; 3]> {
+    let squared: f64 = v.iter().map(|c| c * c).sum();
+    if squared.is_finite() && squared >= f64::MIN_POSITIVE {
+        let length = squared.sqrt();
+        return Some(if length == 1.0 {
+            v
+        } else {
+            v.map(|c| c / length)
+        });
+    }
+    let largest = v.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return None;
+    }
+    let scaled = v.map(|c| c / largest);
+    let length = scaled.iter().map(|c| c * c).sum::<f64>().sqrt();
+    Some(scaled.map(|c| c / length))
 }
 
 /// The product of elementary rotations, the identity for none.
@@ -365,7 +385,7 @@ fn kinematics(message: impl Into<String>) -> SpecError {
 mod tests {
     use super::*;
     use crate::expr::SymbolTable;
-    use std::f64::consts::FRAC_PI_2;
+    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 
     fn graph() -> (ExprGraph, Symbol, Id) {
         let mut g = ExprGraph::new(SymbolTable::with_joints(["q1"]));
@@ -495,5 +515,24 @@ mod tests {
         assert_eq!(constants(&g, &f.axis), [0.0, 0.0, 1.0]);
         let error = urdf(&mut g, Motion::Revolute(q), zero, zero, zero).unwrap_err();
         assert_eq!(error.message(), "axis must not be zero");
+    }
+
+    #[test]
+    fn axes_whose_squared_length_overflows_or_underflows_are_normalised_exactly() {
+        let (mut g, q, _) = graph();
+        let zero = g.zero_vec();
+        // As [1, 1, 0] normalises: 1 / fl(√2), one ulp below FRAC_1_SQRT_2.
+        let half = 1.0 / 2f64.sqrt();
+        assert!((half - FRAC_1_SQRT_2).abs() <= f64::EPSILON);
+        for (given, unit) in [
+            ([1e308, 1e308, 0.0], [half, half, 0.0]),
+            ([f64::MAX, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            ([0.0, 1e-160, 0.0], [0.0, 1.0, 0.0]),
+            ([0.0, 0.0, -f64::MIN_POSITIVE / 4.0], [0.0, 0.0, -1.0]),
+        ] {
+            let axis = g.const_vec(given);
+            let f = urdf(&mut g, Motion::Revolute(q), zero, zero, axis).unwrap();
+            assert_eq!(constants(&g, &f.axis), unit, "axis {given:?}");
+        }
     }
 }

@@ -50,6 +50,10 @@ use rne_symbolic::spec::LoadOptions;
 /// The largest number of output samples a scenario file may ask for.
 const MAX_SAMPLES: f64 = 1e7;
 
+/// The largest number of fixed steps a scenario file may ask for: Dormand–Prince's own cap
+/// ([`Dopri5::max_steps`]), minutes of computing even for the smallest arm.
+const MAX_FIXED_STEPS: f64 = 1e8;
+
 /// How gravity is compensated (section 6.2.5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -362,6 +366,15 @@ fn check(file: &ScenarioFile) -> Result<Method, String> {
             "`duration` / `sample` asks for more than {MAX_SAMPLES:e} samples"
         ));
     }
+    let fixed_step = |step: f64| {
+        positive("integrator.step", step)?;
+        if file.duration / step > MAX_FIXED_STEPS {
+            return Err(format!(
+                "`duration` / `integrator.step` asks for more than {MAX_FIXED_STEPS:e} steps"
+            ));
+        }
+        Ok(())
+    };
     finite("q0", &file.q0)?;
     finite("qd0", file.qd0.as_deref().unwrap_or(&[]))?;
     let c = &file.controller;
@@ -406,15 +419,15 @@ fn check(file: &ScenarioFile) -> Result<Method, String> {
             })
         }
         IntegratorSpec::Rk4 { step } => {
-            positive("integrator.step", step)?;
+            fixed_step(step)?;
             Method::Rk4(Rk4::new(step))
         }
         IntegratorSpec::GaussLegendre { step } => {
-            positive("integrator.step", step)?;
+            fixed_step(step)?;
             Method::GaussLegendre(GaussLegendre::new(step))
         }
         IntegratorSpec::ImplicitMidpoint { step } => {
-            positive("integrator.step", step)?;
+            fixed_step(step)?;
             Method::GaussLegendre(GaussLegendre::midpoint(step))
         }
     };
@@ -458,6 +471,20 @@ mod tests {
         assert!(sat.contains("saturation"), "{sat}");
         let gravity = parse(&format!("{base}[controller]\ngravity = \"up\"\n")).unwrap_err();
         assert!(gravity.contains("up"), "{gravity}");
+    }
+
+    /// A step so small that the run would never end is refused before it starts; a step
+    /// within the cap is accepted.
+    #[test]
+    fn fixed_steps_beyond_the_cap_are_errors() {
+        let base = "model = \"planar-elbow\"\nduration = 1.0\nq0 = [0, 0]\n";
+        for method in ["rk4", "gauss-legendre", "implicit-midpoint"] {
+            let tiny = format!("{base}[integrator]\nmethod = \"{method}\"\nstep = 1e-300\n");
+            let e = parse(&tiny).unwrap_err();
+            assert!(e.contains("integrator.step") && e.contains("1e8"), "{e}");
+            let fine = format!("{base}[integrator]\nmethod = \"{method}\"\nstep = 1e-8\n");
+            assert!(parse(&fine).is_ok(), "{method}: {:?}", parse(&fine).err());
+        }
     }
 
     /// Vectors must have one entry per joint of the model, checked when the model is known;
