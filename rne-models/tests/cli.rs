@@ -206,3 +206,48 @@ fn models_lists_the_builtin_robots() {
         assert!(listing.contains(name), "{listing}");
     }
 }
+
+/// A joint that moves no mass makes M(q) singular: forward dynamics asked for by name is an
+/// error naming the joint and link, `all` leaves it out and says why, and a simulation of
+/// the model is refused before it starts.
+#[test]
+fn forward_dynamics_of_a_joint_that_moves_no_mass_is_refused_by_name() {
+    let dir = std::env::temp_dir().join(format!("rne-cli-massless-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let spec = dir.join("massless.toml");
+    let arm = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/ui/specs/massless_tool.toml"
+    ))
+    .unwrap();
+    std::fs::write(&spec, arm).unwrap();
+    let spec = spec.to_str().unwrap();
+    let expected = "joint `q2` moves no mass: link `tool`";
+
+    let error = rne(&["eval", spec, "--q", "0.1,0.2", "--what", "fd"]).unwrap_err();
+    assert!(error.contains(expected) && error.contains(spec), "{error}");
+    let all = rne(&["eval", spec, "--q", "0.1,0.2"]).unwrap();
+    assert!(
+        all.contains("qdd_undefined") && all.contains(expected),
+        "{all}"
+    );
+    assert!(all.contains("M:") && !all.contains("qdd:"), "{all}");
+
+    let scenario = dir.join("run.toml");
+    std::fs::write(
+        &scenario,
+        "model = \"massless.toml\"\nduration = 0.1\nq0 = [0.1, 0.2]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let error = rne(&[
+        "simulate",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ])
+    .unwrap_err();
+    assert!(error.contains(expected), "{error}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

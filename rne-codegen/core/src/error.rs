@@ -25,6 +25,14 @@ pub enum CodegenError {
     /// The gravity vector has a NaN or infinite component.
     #[error("gravity must be finite, got {0:?}")]
     Gravity([f64; 3]),
+    /// Forward dynamics was asked for a model whose M(q) is singular at every q.
+    #[error("{robot}: forward_dynamics cannot be generated: {joint}")]
+    Massless {
+        /// The robot file.
+        robot: String,
+        /// The joint that moves no mass.
+        joint: rne_symbolic::model::MasslessJoint,
+    },
     /// An `outputs` entry is not a kernel.
     #[error(transparent)]
     UnknownKernel(#[from] crate::kernel::UnknownKernel),

@@ -92,6 +92,14 @@ pub fn generate(
 ) -> Result<GeneratedModule, CodegenError> {
     let start = Instant::now();
     let model = scene.apply(model)?;
+    if scene.outputs.contains(&Kernel::ForwardDynamics) {
+        model
+            .check_mass_matrix_invertible()
+            .map_err(|joint| CodegenError::Massless {
+                robot: source.to_owned(),
+                joint,
+            })?;
+    }
     if scene.parameters == ParameterMode::Runtime {
         if let Some(bad) = model
             .parameters

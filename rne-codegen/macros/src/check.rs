@@ -18,6 +18,9 @@ pub struct CheckedModule {
     pub scene: Scene,
     /// The span of each locked joint's name, for errors about joints the robot lacks.
     pub lock_spans: Vec<Span>,
+    /// The span of each listed output (empty when `outputs` is left to its default), for
+    /// errors about a kernel the robot cannot have.
+    pub output_spans: Vec<Span>,
 }
 
 const KEYS: [&str; 7] = [
@@ -48,6 +51,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
     let mut robot = None;
     let mut scene = Scene::default();
     let mut lock_spans = Vec::new();
+    let mut output_spans = Vec::new();
     for setting in &input.settings {
         let key = setting.key.to_string();
         if !KEYS.contains(&key.as_str()) {
@@ -74,7 +78,10 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                             Ok(kernel) if outputs.contains(&kernel) => {
                                 errors.push(name.span(), format!("output `{name}` is listed twice"))
                             }
-                            Ok(kernel) => outputs.push(kernel),
+                            Ok(kernel) => {
+                                outputs.push(kernel);
+                                output_spans.push(name.span());
+                            }
                             Err(e) => errors.push(name.span(), e),
                         },
                         Element::Number(n) => errors.push(n.span, "expected an output name"),
@@ -163,6 +170,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
             robot,
             scene,
             lock_spans,
+            output_spans,
         }),
         (None, None) => Err(syn::Error::new(input.name.span(), "missing `robot`")),
     }

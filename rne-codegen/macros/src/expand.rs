@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use quote::quote;
-use rne_codegen_core::{generate, read_robot, CodegenError};
+use rne_codegen_core::{generate, read_robot, CodegenError, Kernel};
 
 use crate::check::CheckedModule;
 
@@ -30,6 +30,16 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
                     .iter()
                     .position(|(joint, _)| joint == name)
                     .map_or(module.robot.span(), |k| module.lock_spans[k]);
+                syn::Error::new(span, e.to_string())
+            }
+            CodegenError::Massless { .. } => {
+                let span = module
+                    .scene
+                    .outputs
+                    .iter()
+                    .position(|&k| k == Kernel::ForwardDynamics)
+                    .and_then(|k| module.output_spans.get(k).copied())
+                    .unwrap_or_else(|| module.robot.span());
                 syn::Error::new(span, e.to_string())
             }
             _ => syn::Error::new(module.robot.span(), e.to_string()),

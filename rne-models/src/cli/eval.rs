@@ -89,7 +89,16 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         state("qdd", &args.qdd)?,
         state("tau", &args.tau)?,
     );
-    let wants = |q: Quantity| args.what.contains(&q) || args.what.contains(&Quantity::All);
+    // Forward dynamics of a model with a joint that moves no mass is undefined: an error when
+    // asked for by name, left out (and said why) from `all`.
+    let singular = model.check_mass_matrix_invertible().err();
+    if let (Some(e), true) = (&singular, args.what.contains(&Quantity::Fd)) {
+        return Err(CliError::Argument(format!("{}: {e}", args.model)));
+    }
+    let wants = |q: Quantity| {
+        (args.what.contains(&q) || args.what.contains(&Quantity::All))
+            && !(q == Quantity::Fd && singular.is_some())
+    };
 
     let mut results: Vec<(&str, serde_json::Value)> = Vec::new();
     let vector = |v: Vec<f64>| serde_json::json!(v);
@@ -205,6 +214,9 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
     }
 
+    if let Some(e) = &singular {
+        results.push(("qdd_undefined", serde_json::json!(e.to_string())));
+    }
     if args.json {
         let mut object = serde_json::Map::new();
         object.insert("model".into(), serde_json::json!(source.display_name()));

@@ -21,6 +21,7 @@
 
 mod geometry;
 mod lock;
+mod massless;
 mod merge;
 mod numeric;
 
@@ -29,6 +30,7 @@ pub use geometry::{
     Axis, Transform,
 };
 pub use lock::LockError;
+pub use massless::MasslessJoint;
 pub use numeric::{NumericLink, NumericModel};
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};

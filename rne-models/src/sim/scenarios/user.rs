@@ -180,6 +180,9 @@ impl UserScenario {
                         source,
                     }
                 })?;
+                model
+                    .check_mass_matrix_invertible()
+                    .map_err(|e| self.error(format!("model `{}`: {e}", self.file.model)))?;
                 interpreted = Interpreted::new(&model);
                 &interpreted
             }
