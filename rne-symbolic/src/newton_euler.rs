@@ -318,7 +318,7 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
             torques[k] = match link.kind {
                 JointKind::Revolute => g.dot(link.axis, reaction.torque),
                 JointKind::Prismatic => g.dot(link.axis, reaction.force),
-                JointKind::Fixed => g.zero(),
+                JointKind::Fixed | JointKind::FreeFlyer => g.zero(),
             };
         }
     }

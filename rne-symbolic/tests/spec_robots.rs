@@ -132,6 +132,7 @@ fn inverse_dynamics(model: &NumericModel, q: &[f64], qd: &[f64], qdd: &[f64]) ->
                 add(link.translation, mv(&link.rotation, scale(qi, u))),
             ),
             JointKind::Fixed => (link.rotation, link.translation),
+            JointKind::FreeFlyer => unreachable!("the specs read here have a fixed base"),
         };
         let parent_accel = add(acc0, add(cross(a0, p), cross(w0, cross(w0, p))));
         let w_in = mtv(&r, w0);

@@ -44,7 +44,7 @@ pub fn kinetic_energy(model: &mut RobotModel, q: &[Id], qd: &[Id]) -> Id {
             match link.kind {
                 JointKind::Revolute => omega = g.vadd(omega, rate),
                 JointKind::Prismatic => v = g.vadd(v, rate),
-                JointKind::Fixed => {}
+                JointKind::Fixed | JointKind::FreeFlyer => {}
             }
         }
         let spin = g.cross(omega, link.com);

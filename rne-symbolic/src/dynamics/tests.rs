@@ -43,6 +43,10 @@ fn planar_elbow() -> RobotModel {
         mass: p[0],
         com: [p[4], z, z],
         inertia: inertia(&mut graph, p[6]),
+        mimic: None,
+        coupling: None,
+        friction: None,
+        armature: None,
     };
     let link2 = Link {
         name: "link2".into(),
@@ -55,6 +59,10 @@ fn planar_elbow() -> RobotModel {
         mass: p[1],
         com: [p[5], z, z],
         inertia: inertia(&mut graph, p[7]),
+        mimic: None,
+        coupling: None,
+        friction: None,
+        armature: None,
     };
     let minus_g = graph.neg(p[8]);
     let values = table_6_1();
@@ -81,6 +89,7 @@ fn planar_elbow() -> RobotModel {
                 link: 1,
             },
         ],
+        base: crate::model::Base::Fixed,
     }
 }
 

@@ -57,7 +57,9 @@ impl RobotModel {
                 let moved = g.mat_vec(&link.rotation, offset);
                 link.translation = g.vadd(link.translation, moved);
             }
-            JointKind::Fixed => unreachable!("fixed joints have no variable"),
+            JointKind::Fixed | JointKind::FreeFlyer => {
+                unreachable!("fixed joints and the free-flyer have no joint variable")
+            }
         }
         link.kind = JointKind::Fixed;
         link.joint = None;

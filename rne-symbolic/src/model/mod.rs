@@ -44,6 +44,57 @@ pub enum JointKind {
     Prismatic,
     /// No motion: the link is rigidly attached to its parent.
     Fixed,
+    /// A free-flyer: six degrees of freedom relative to the world, only as the root of a model
+    /// with a floating base ([`Base::Floating`]). Its configuration is the position and the
+    /// unit quaternion `[x, y, z, qx, qy, qz, qw]` of the body frame in the world, its velocity
+    /// `[v, ω]` of the body-frame origin in body-frame axes (Pinocchio's conventions).
+    FreeFlyer,
+}
+
+/// How the model is attached to the world.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Base {
+    /// The root is bolted to the world (the thesis's arms).
+    #[default]
+    Fixed,
+    /// The root body moves freely: a free-flyer joint between the world and the root, in front
+    /// of the joint variables (DESIGN.md §4). Legged robots and humanoids.
+    Floating,
+}
+
+/// A mimic joint as read from the robot file: its coordinate follows another joint's,
+/// `q = multiplier · q_leader + offset` (URDF `<mimic>`, TOML `mimic = {..}`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mimic {
+    /// The joint variable followed (a URDF joint name, a TOML `q`).
+    pub leader: String,
+    /// Multiplier (URDF default 1).
+    pub multiplier: Id,
+    /// Offset, rad or m (URDF default 0).
+    pub offset: Id,
+}
+
+/// How a link's joint coordinate depends on the joint variable that drives it, once mimic
+/// joints are constrained: `q_link = multiplier · q_variable + offset`, so
+/// `q̇_link = multiplier · q̇_variable` and the link's generalised force reaches the variable
+/// multiplied by `multiplier` (the chain rule: M ← Jᵀ M J, τ ← Jᵀ τ).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Coupling {
+    /// ∂q_link / ∂q_variable.
+    pub multiplier: Id,
+    /// q_link at q_variable = 0.
+    pub offset: Id,
+}
+
+/// Joint friction `τ_f = viscous · q̇ + coulomb · sign(q̇) + offset` (DESIGN.md §2).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Friction {
+    /// Viscous coefficient f_v (N·m·s/rad or N·s/m); URDF `damping`.
+    pub viscous: Id,
+    /// Coulomb coefficient f_c (N·m or N); URDF `friction`.
+    pub coulomb: Id,
+    /// Constant offset (N·m or N).
+    pub offset: Id,
 }
 
 /// A named model parameter and its value.
@@ -62,9 +113,10 @@ pub struct Link {
     pub name: String,
     /// Index of the parent link in [`RobotModel::links`]; `None` for a link on the base.
     pub parent: Option<usize>,
-    /// Revolute, prismatic or fixed.
+    /// Revolute, prismatic, fixed, or the free-flyer of a floating base.
     pub kind: JointKind,
-    /// Index of the joint variable in the model's joint order (`None` for fixed joints).
+    /// Index of the joint variable in the model's joint order (`None` for fixed joints and the
+    /// free-flyer, whose coordinates come before the joint variables).
     pub joint: Option<usize>,
     /// `E_i`: orientation of the joint frame in the parent's body frame.
     pub rotation: Mat3,
@@ -78,6 +130,19 @@ pub struct Link {
     pub com: Vec3,
     /// Inertia tensor about the centre of mass, in body-frame axes (I_i of (3.5)).
     pub inertia: Mat3,
+    /// The mimic element as read (`None` for an ordinary joint). While the follower keeps
+    /// `joint` as its own variable it is free ("mimic: free", Pinocchio's default); once
+    /// constrained ([`RobotModel::constrain_mimic_joints`]) `joint` names the leader's
+    /// variable and [`Link::coupling`] says how it follows.
+    pub mimic: Option<Mimic>,
+    /// `q_link = multiplier · q_joint + offset` for a constrained mimic follower; `None` when
+    /// the link's coordinate is its variable itself.
+    pub coupling: Option<Coupling>,
+    /// Joint friction, when the robot file gives it.
+    pub friction: Option<Friction>,
+    /// Armature: the rotor inertia reflected through the gear (kg·m² or kg), added to M's
+    /// diagonal entry of the joint; `None` when the robot file gives none.
+    pub armature: Option<Id>,
 }
 
 /// A joint variable of the model.
@@ -109,6 +174,8 @@ pub struct RobotModel {
     pub links: Vec<Link>,
     /// The joint variables, in joint order.
     pub joints: Vec<JointVariable>,
+    /// Fixed to the world, or floating (a free-flyer root link).
+    pub base: Base,
 }
 
 impl RobotModel {

@@ -105,6 +105,10 @@ pub(crate) fn link(
         mass,
         com,
         inertia,
+        mimic: None,
+        coupling: None,
+        friction: None,
+        armature: None,
     };
     Ok(Assembled {
         link,

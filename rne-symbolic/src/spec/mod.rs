@@ -165,6 +165,7 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
         gravity,
         links,
         joints: tree.joints,
+        base: crate::model::Base::Fixed,
     })
 }
 

@@ -70,6 +70,7 @@ pub(crate) fn model(robot: &Robot, tree: &Tree, origin: &str) -> Result<RobotMod
         gravity,
         links,
         joints,
+        base: crate::model::Base::Fixed,
     })
 }
 
@@ -108,6 +109,10 @@ fn model_link(
         mass,
         com,
         inertia,
+        mimic: None,
+        coupling: None,
+        friction: None,
+        armature: None,
     })
 }
 
