@@ -13,6 +13,7 @@ mod double_double;
 pub mod dynamics;
 pub mod expr;
 pub mod model;
+pub mod motion;
 pub mod newton_euler;
 mod real;
 pub mod spec;

@@ -12,19 +12,9 @@
 //! links they carry, exactly as in (3.21) and (3.24).
 
 use crate::expr::{ExprGraph, Id, Vec3};
-use crate::model::{axis_angle_rotation, JointKind, RobotModel};
-
-/// The motion of every joint variable: q, q̇ and q̈ as expressions (symbols, constants, or
-/// zeros for the special cases M, g and the bias).
-#[derive(Clone, Debug)]
-pub struct JointMotion {
-    /// Joint positions q, in joint order.
-    pub q: Vec<Id>,
-    /// Joint velocities q̇.
-    pub qd: Vec<Id>,
-    /// Joint accelerations q̈.
-    pub qdd: Vec<Id>,
-}
+use crate::model::{JointKind, RobotModel};
+pub use crate::motion::JointMotion;
+use crate::motion::{LinkCoordinate, LinkPlacement};
 
 /// Velocities and accelerations of one link, in its body frame.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -59,34 +49,10 @@ pub struct NewtonEuler {
     pub motion: Vec<LinkMotion>,
     /// Per link: the joint reaction.
     pub reactions: Vec<JointReaction>,
-    /// Per joint variable: the generalised force `u_iᵀ τ_i` (revolute) or `u_iᵀ f_i`
-    /// (prismatic), the left-hand side of (3.1).
+    /// The generalised forces, the left-hand side of (3.1): per joint variable `u_iᵀ τ_i`
+    /// (revolute) or `u_iᵀ f_i` (prismatic), summed over the links it drives with their mimic
+    /// multipliers, after the free-flyer's `[f; τ]` (base frame) on a floating base.
     pub torques: Vec<Id>,
-}
-
-/// The rotation R_i^p(q) = E_i · Rot(u_i, q_i) of one link, applied without forming the
-/// product: `Rᵀ v = Rot(u, q)ᵀ (Eᵀ v)` and `R v = E (Rot(u, q) v)`.
-struct LinkRotation {
-    fixed: crate::expr::Mat3,
-    joint: Option<crate::expr::Mat3>,
-}
-
-impl LinkRotation {
-    fn to_child(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
-        let v = g.mat_t_vec(&self.fixed, v);
-        match &self.joint {
-            Some(r) => g.mat_t_vec(r, v),
-            None => v,
-        }
-    }
-
-    fn to_parent(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
-        let v = match &self.joint {
-            Some(r) => g.mat_vec(r, v),
-            None => v,
-        };
-        g.mat_vec(&self.fixed, v)
-    }
 }
 
 /// The six products ω_a ω_b (a ≤ b) of an angular velocity, shared by every
@@ -163,41 +129,20 @@ impl OmegaProducts {
 /// (base frame): forward (3.26), (3.30), (3.35), (3.34) from the base outwards, backward
 /// (3.21), (3.24) from the leaves inwards, with the errata of DESIGN.md §7 applied and
 /// prismatic joints handled (no angular velocity; `u q̈ + 2 ω × u q̇` added to the linear
-/// acceleration).
+/// acceleration). A floating base's free-flyer moves with the motion's base velocity and
+/// acceleration (its generalised force is its joint reaction); a mimic follower moves with its
+/// coupled coordinate and passes its force to its leader times the multiplier; armature adds
+/// `I_a q̈` to a joint's force.
 pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3) -> NewtonEuler {
     let n = model.links.len();
+    let layout = model.state_layout();
     let g = &mut model.graph;
     let links = &model.links;
 
-    let rotations: Vec<LinkRotation> = links
+    let placements = LinkPlacement::all(g, links, motion);
+    let coordinates: Vec<Option<LinkCoordinate>> = links
         .iter()
-        .map(|link| {
-            let joint = match (link.kind, link.joint) {
-                (JointKind::Revolute, Some(k)) => {
-                    let (c, s) = (g.cos(motion.q[k]), g.sin(motion.q[k]));
-                    Some(axis_angle_rotation(g, link.axis, c, s))
-                }
-                _ => None,
-            };
-            LinkRotation {
-                fixed: link.rotation,
-                joint,
-            }
-        })
-        .collect();
-
-    // Attachment point of each link on its parent (s_i in the parent's body frame):
-    // t_i, moved along E_i u_i by q for a prismatic joint.
-    let attachment: Vec<Vec3> = links
-        .iter()
-        .map(|link| match (link.kind, link.joint) {
-            (JointKind::Prismatic, Some(k)) => {
-                let slide = g.vscale(motion.q[k], link.axis);
-                let moved = g.mat_vec(&link.rotation, slide);
-                g.vadd(link.translation, moved)
-            }
-            _ => link.translation,
-        })
+        .map(|link| LinkCoordinate::of(g, link, motion))
         .collect();
 
     // Forward recursion.
@@ -211,10 +156,8 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
             Some(p) => (out[p].omega, out[p].alpha, out[p].accel, products[p]),
             None => (zero, zero, base_accel, base_products),
         };
-        let rot = &rotations[i];
-        let joint = link
-            .joint
-            .map(|k| (link.kind, motion.q[k], motion.qd[k], motion.qdd[k]));
+        let rot = &placements[i];
+        let joint = coordinates[i].map(|c| (link.kind, c.q, c.qd, c.qdd));
 
         // (3.26): ω_i = (R_i^{i−1})ᵀ ω_{i−1} + b_i q̇_i.
         let mut omega = rot.to_child(g, omega_p);
@@ -239,6 +182,17 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
             g.vadd(a, centripetal)
         };
         let mut accel = rot.to_child(g, attach_accel);
+        if let (JointKind::FreeFlyer, Some(base)) = (link.kind, motion.base) {
+            // The free-flyer's velocity and acceleration are its coordinates' (body frame):
+            // ω, ω̇, and the classical acceleration of the origin v̇ + ω × v.
+            let [vx, vy, vz, wx, wy, wz] = base.velocity;
+            let [ax, ay, az, bx, by, bz] = base.acceleration;
+            omega = [wx, wy, wz];
+            alpha = [bx, by, bz];
+            let transport = g.cross(omega, [vx, vy, vz]);
+            accel = g.vadd(accel, [ax, ay, az]);
+            accel = g.vadd(accel, transport);
+        }
         if let Some((JointKind::Prismatic, q, qd, qdd)) = joint {
             // The joint slides the body origin by u q along u: the same rigid-motion terms
             // for that offset, plus the relative acceleration u q̈ and Coriolis 2 ω × u q̇.
@@ -298,9 +252,9 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         torque = g.vadd(torque, own_moment);
         for child in (i + 1..n).filter(|&c| links[c].parent == Some(i)) {
             let reaction = reactions[child].expect("children are processed before their parent");
-            let f = rotations[child].to_parent(g, reaction.force);
-            let t = rotations[child].to_parent(g, reaction.torque);
-            let moment = g.cross(attachment[child], f);
+            let f = placements[child].to_parent(g, reaction.force);
+            let t = placements[child].to_parent(g, reaction.torque);
+            let moment = g.cross(placements[child].attachment, f);
             force = g.vadd(force, f);
             torque = g.vadd(torque, t);
             torque = g.vadd(torque, moment);
@@ -312,16 +266,29 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         .map(|r| r.expect("every link was visited"))
         .collect();
 
-    let mut torques = vec![g.zero(); model.joints.len()];
-    for (link, reaction) in links.iter().zip(&reactions) {
-        if let Some(k) = link.joint {
-            torques[k] = match link.kind {
-                JointKind::Revolute => g.dot(link.axis, reaction.torque),
+    let mut terms: Vec<Vec<Id>> = vec![Vec::new(); layout.nv()];
+    for (i, (link, reaction)) in links.iter().zip(&reactions).enumerate() {
+        if link.kind == JointKind::FreeFlyer {
+            for a in 0..3 {
+                terms[a].push(reaction.force[a]);
+                terms[3 + a].push(reaction.torque[a]);
+            }
+        }
+        if let Some(c) = coordinates[i] {
+            let along = match link.kind {
                 JointKind::Prismatic => g.dot(link.axis, reaction.force),
-                JointKind::Fixed | JointKind::FreeFlyer => g.zero(),
+                _ => g.dot(link.axis, reaction.torque),
             };
+            let mut force = along;
+            if let Some(armature) = link.armature {
+                // The rotor's reflected inertia: Ia q̈ of the link's coordinate.
+                let rotor = g.mul(armature, c.qdd);
+                force = g.add(force, rotor);
+            }
+            terms[layout.v_offset() + c.variable].push(c.project(g, force));
         }
     }
+    let torques = terms.into_iter().map(|t| g.sum(t)).collect();
     NewtonEuler {
         motion: out,
         reactions,

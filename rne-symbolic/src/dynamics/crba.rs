@@ -9,7 +9,8 @@
 //! operations: the recursion evaluates every link's inertial terms once per column.
 
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
-use crate::model::{axis_angle_rotation, JointKind, RobotModel};
+use crate::model::{JointKind, RobotModel};
+use crate::motion::{JointMotion, LinkPlacement};
 
 /// Mass, first moment h = m c and inertia about the body origin, in body-frame axes.
 #[derive(Copy, Clone, Debug)]
@@ -19,30 +20,14 @@ struct Composite {
     inertia: Mat3,
 }
 
-/// R_i^p(q) = E Rot(u, q) applied as two factors, and the attachment point of each link.
-struct Placement {
-    fixed: Mat3,
-    joint: Option<Mat3>,
-    attachment: Vec3,
-}
-
-impl Placement {
-    fn to_parent(&self, g: &mut ExprGraph, v: Vec3) -> Vec3 {
-        let v = match &self.joint {
-            Some(r) => g.mat_vec(r, v),
-            None => v,
-        };
-        g.mat_vec(&self.fixed, v)
-    }
-
-    /// `R I Rᵀ` of a symmetric `I`, keeping the result symmetric (one node per pair).
-    fn similarity(&self, g: &mut ExprGraph, inertia: &Mat3) -> Mat3 {
-        let rotated = match &self.joint {
-            Some(r) => symmetric_similarity(g, r, inertia),
-            None => *inertia,
-        };
-        symmetric_similarity(g, &self.fixed, &rotated)
-    }
+/// `R I Rᵀ` of a symmetric `I` through a placement's two factors, keeping the result
+/// symmetric (one node per pair).
+fn similarity(g: &mut ExprGraph, placement: &LinkPlacement, inertia: &Mat3) -> Mat3 {
+    let rotated = match &placement.joint {
+        Some(r) => symmetric_similarity(g, r, inertia),
+        None => *inertia,
+    };
+    symmetric_similarity(g, &placement.fixed, &rotated)
 }
 
 /// `R S Rᵀ` for symmetric S, computing each of the six distinct entries once.
@@ -87,12 +72,12 @@ fn about_origin(g: &mut ExprGraph, m: Id, c: Vec3, inertia: &Mat3) -> (Vec3, Mat
 /// The composite `child` (in its own frame) expressed in its parent's frame and origin:
 /// `h' = R h + m s`, `I' = R I Rᵀ + m (|s|² 1 − s sᵀ) + 2 (s·h_r) 1 − s h_rᵀ − h_r sᵀ`
 /// with `h_r = R h` (the parallel-axis theorem for a body whose COM is not at its origin).
-fn to_parent(g: &mut ExprGraph, child: &Composite, placement: &Placement) -> Composite {
+fn to_parent(g: &mut ExprGraph, child: &Composite, placement: &LinkPlacement) -> Composite {
     let s = placement.attachment;
     let h_r = placement.to_parent(g, child.first_moment);
     let ms = g.vscale(child.mass, s);
     let first_moment = g.vadd(h_r, ms);
-    let rotated = placement.similarity(g, &child.inertia);
+    let rotated = similarity(g, placement, &child.inertia);
     // Cross terms with the moved first moment: for i, j
     //   δ_ij (m |s|² + 2 s·h_r) − m s_i s_j − s_i h_r,j − h_r,i s_j
     // = δ_ij (s · (m s + 2 h_r)) − s_i (m s_j + h_r,j) − h_r,i s_j.
@@ -124,37 +109,64 @@ fn to_parent(g: &mut ExprGraph, child: &Composite, placement: &Placement) -> Com
     }
 }
 
-/// M(q) of `model` at joint positions `q` (row-major, symmetric: one `Id` per pair).
-pub fn mass_matrix(model: &mut RobotModel, q: &[Id]) -> Vec<Vec<Id>> {
+/// One column of a link's motion subspace: a unit rate of one velocity coordinate turns the
+/// body about (`angular`) or moves it along `axis`, through the body origin.
+#[derive(Copy, Clone, Debug)]
+struct Column {
+    /// The entry of v it belongs to.
+    index: usize,
+    /// The mimic multiplier of the coordinate (`None`: the variable itself).
+    multiplier: Option<Id>,
+    angular: bool,
+    axis: Vec3,
+}
+
+/// The motion-subspace columns of every link: one for a revolute or prismatic joint, six for
+/// the free-flyer (linear then angular, along the body axes), none for a fixed joint.
+fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
+    let layout = model.state_layout();
+    let g = &mut model.graph;
+    let unit = |g: &mut ExprGraph, a: usize| {
+        let mut e = [0.0; 3];
+        e[a] = 1.0;
+        g.const_vec(e)
+    };
+    model
+        .links
+        .iter()
+        .map(|link| match (link.kind, link.joint) {
+            (JointKind::FreeFlyer, _) => (0..6)
+                .map(|a| Column {
+                    index: a,
+                    multiplier: None,
+                    angular: a >= 3,
+                    axis: unit(g, a % 3),
+                })
+                .collect(),
+            (JointKind::Revolute | JointKind::Prismatic, Some(k)) => vec![Column {
+                index: layout.v_offset() + k,
+                multiplier: link.coupling.map(|c| c.multiplier),
+                angular: link.kind == JointKind::Revolute,
+                axis: link.axis,
+            }],
+            _ => Vec::new(),
+        })
+        .collect()
+}
+
+/// M(q) of `model` at `motion`'s positions (row-major, symmetric: one `Id` per pair; NV × NV).
+///
+/// Entry (a, b) is `S_bᵀ I^c_i S_a` for column a of link i and column b of link i or of one of
+/// its ancestors. With mimic joints several links share a variable, and the entries of their
+/// coordinates are summed with the multipliers (M ← Jᵀ M J); armature adds `I_a m²` to the
+/// variable's diagonal entry.
+pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
     let n = model.links.len();
-    let dof = model.joints.len();
+    let nv = model.state_layout().nv();
+    let columns = columns(model);
     let g = &mut model.graph;
     let links = &model.links;
-    let placements: Vec<Placement> = links
-        .iter()
-        .map(|link| {
-            let (joint, attachment) = match (link.kind, link.joint) {
-                (JointKind::Revolute, Some(k)) => {
-                    let (c, s) = (g.cos(q[k]), g.sin(q[k]));
-                    (
-                        Some(axis_angle_rotation(g, link.axis, c, s)),
-                        link.translation,
-                    )
-                }
-                (JointKind::Prismatic, Some(k)) => {
-                    let slide = g.vscale(q[k], link.axis);
-                    let moved = g.mat_vec(&link.rotation, slide);
-                    (None, g.vadd(link.translation, moved))
-                }
-                _ => (None, link.translation),
-            };
-            Placement {
-                fixed: link.rotation,
-                joint,
-                attachment,
-            }
-        })
-        .collect();
+    let placements = LinkPlacement::all(g, links, motion);
 
     // Composite bodies, leaves first (children come after their parent).
     let mut composites: Vec<Composite> = links
@@ -190,37 +202,68 @@ pub fn mass_matrix(model: &mut RobotModel, q: &[Id]) -> Vec<Vec<Id>> {
         }
     }
 
-    // Columns: the momentum (n, f) of composite i for a unit rate of joint i, carried down.
-    let zero = g.zero();
-    let mut m = vec![vec![zero; dof]; dof];
+    // Columns: the momentum (n, f) of composite i for a unit rate of each of its columns,
+    // carried down and projected on the columns of i and of every ancestor. `terms[a][b]`
+    // (a ≤ b) collects the contributions to M_ab.
+    let mut terms: Vec<Vec<Vec<Id>>> = vec![vec![Vec::new(); nv]; nv];
     for i in 0..n {
-        let Some(ki) = links[i].joint else { continue };
-        let u = links[i].axis;
         let c = composites[i];
-        let (mut angular, mut linear) = match links[i].kind {
-            // Unit angular velocity u about the origin: n = I u, f = u × h.
-            JointKind::Revolute => (g.mat_vec(&c.inertia, u), g.cross(u, c.first_moment)),
-            // Unit linear velocity u: n = h × u, f = m u.
-            _ => (g.cross(c.first_moment, u), g.vscale(c.mass, u)),
-        };
-        let mut j = i;
-        loop {
-            if let Some(kj) = links[j].joint {
-                let along = match links[j].kind {
-                    JointKind::Revolute => angular,
-                    _ => linear,
-                };
-                let entry = g.dot(links[j].axis, along);
-                m[kj][ki] = entry;
-                m[ki][kj] = entry;
+        for (ca_position, ca) in columns[i].iter().enumerate() {
+            let u = ca.axis;
+            let (mut angular, mut linear) = if ca.angular {
+                // Unit angular velocity u about the origin: n = I u, f = u × h.
+                (g.mat_vec(&c.inertia, u), g.cross(u, c.first_moment))
+            } else {
+                // Unit linear velocity u: n = h × u, f = m u.
+                (g.cross(c.first_moment, u), g.vscale(c.mass, u))
+            };
+            let mut j = i;
+            loop {
+                for (cb_position, cb) in columns[j].iter().enumerate() {
+                    // Within link i each unordered pair of columns once.
+                    if j == i && cb_position > ca_position {
+                        continue;
+                    }
+                    let along = if cb.angular { angular } else { linear };
+                    let mut entry = g.dot(cb.axis, along);
+                    for m in [ca.multiplier, cb.multiplier].into_iter().flatten() {
+                        entry = g.mul(m, entry);
+                    }
+                    let (a, b) = (ca.index.min(cb.index), ca.index.max(cb.index));
+                    // Two coordinates of one variable meet twice in Jᵀ M J: (a, b) and (b, a).
+                    let twice = j != i && a == b;
+                    terms[a][b].push(entry);
+                    if twice {
+                        terms[a][b].push(entry);
+                    }
+                }
+                let Some(p) = links[j].parent else { break };
+                let f = placements[j].to_parent(g, linear);
+                let t = placements[j].to_parent(g, angular);
+                let moment = g.cross(placements[j].attachment, f);
+                angular = g.vadd(t, moment);
+                linear = f;
+                j = p;
             }
-            let Some(p) = links[j].parent else { break };
-            let f = placements[j].to_parent(g, linear);
-            let t = placements[j].to_parent(g, angular);
-            let moment = g.cross(placements[j].attachment, f);
-            angular = g.vadd(t, moment);
-            linear = f;
-            j = p;
+        }
+    }
+    for (i, link) in links.iter().enumerate() {
+        if let (Some(armature), Some(column)) = (link.armature, columns[i].first()) {
+            let mut entry = armature;
+            if let Some(m) = column.multiplier {
+                let m2 = g.mul(m, m);
+                entry = g.mul(entry, m2);
+            }
+            terms[column.index][column.index].push(entry);
+        }
+    }
+    let zero = g.zero();
+    let mut m = vec![vec![zero; nv]; nv];
+    for a in 0..nv {
+        for b in a..nv {
+            let entry = g.sum(std::mem::take(&mut terms[a][b]));
+            m[a][b] = entry;
+            m[b][a] = entry;
         }
     }
     m

@@ -1,33 +1,22 @@
 //! Kinetic and potential energy from link velocities and positions.
 
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
-use crate::model::{axis_angle_rotation, JointKind, Link, RobotModel};
+use crate::model::{JointKind, Link, RobotModel};
+use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
 /// R_i^p(q) and the position of B_i's origin in B_p for every link.
-fn placements(g: &mut ExprGraph, links: &[Link], q: &[Id]) -> Vec<(Mat3, Vec3)> {
-    links
+fn placements(g: &mut ExprGraph, links: &[Link], motion: &JointMotion) -> Vec<(Mat3, Vec3)> {
+    LinkPlacement::all(g, links, motion)
         .iter()
-        .map(|link| match (link.kind, link.joint) {
-            (JointKind::Revolute, Some(k)) => {
-                let (c, s) = (g.cos(q[k]), g.sin(q[k]));
-                let motion = axis_angle_rotation(g, link.axis, c, s);
-                (g.mat_mul(&link.rotation, &motion), link.translation)
-            }
-            (JointKind::Prismatic, Some(k)) => {
-                let slide = g.vscale(q[k], link.axis);
-                let moved = g.mat_vec(&link.rotation, slide);
-                (link.rotation, g.vadd(link.translation, moved))
-            }
-            _ => (link.rotation, link.translation),
-        })
+        .map(|p| (p.rotation(g), p.attachment))
         .collect()
 }
 
 /// T = ½ Σ_i (m_i v_ci · v_ci + ω_iᵀ I_i ω_i), with ω_i from (3.26) and the COM velocity
 /// v_ci = v_i + ω_i × r_{i−1,ci} (the velocity form of (3.31)), in body frames.
-pub fn kinetic_energy(model: &mut RobotModel, q: &[Id], qd: &[Id]) -> Id {
+pub fn kinetic_energy(model: &mut RobotModel, motion: &JointMotion) -> Id {
     let g = &mut model.graph;
-    let placements = placements(g, &model.links, q);
+    let placements = placements(g, &model.links, motion);
     let zero = g.zero_vec();
     let mut velocities: Vec<(Vec3, Vec3)> = Vec::with_capacity(model.links.len());
     let mut twice_energy = Vec::new();
@@ -39,13 +28,22 @@ pub fn kinetic_energy(model: &mut RobotModel, q: &[Id], qd: &[Id]) -> Id {
         let v_point = g.vadd(v_p, transport);
         let mut v = g.mat_t_vec(&r, v_point);
         let mut omega = g.mat_t_vec(&r, omega_p);
-        if let Some(k) = link.joint {
-            let rate = g.vscale(qd[k], link.axis);
+        if let Some(c) = LinkCoordinate::of(g, link, motion) {
+            let rate = g.vscale(c.qd, link.axis);
             match link.kind {
-                JointKind::Revolute => omega = g.vadd(omega, rate),
                 JointKind::Prismatic => v = g.vadd(v, rate),
-                JointKind::Fixed | JointKind::FreeFlyer => {}
+                _ => omega = g.vadd(omega, rate),
             }
+            if let Some(armature) = link.armature {
+                // The rotor spinning with the joint rate through the gear: Ia q̇².
+                let spin = g.square(c.qd);
+                twice_energy.push(g.mul(armature, spin));
+            }
+        }
+        if let (JointKind::FreeFlyer, Some(base)) = (link.kind, motion.base) {
+            let [vx, vy, vz, wx, wy, wz] = base.velocity;
+            v = [vx, vy, vz];
+            omega = [wx, wy, wz];
         }
         let spin = g.cross(omega, link.com);
         let v_com = g.vadd(v, spin);
@@ -62,9 +60,9 @@ pub fn kinetic_energy(model: &mut RobotModel, q: &[Id], qd: &[Id]) -> Id {
 }
 
 /// V = −Σ_i m_i g_0 · p_ci, with p_ci the COM of link i in the base frame.
-pub fn potential_energy(model: &mut RobotModel, q: &[Id]) -> Id {
+pub fn potential_energy(model: &mut RobotModel, motion: &JointMotion) -> Id {
     let g = &mut model.graph;
-    let placements = placements(g, &model.links, q);
+    let placements = placements(g, &model.links, motion);
     let mut poses: Vec<(Mat3, Vec3)> = Vec::with_capacity(model.links.len());
     let mut terms = Vec::new();
     for (i, link) in model.links.iter().enumerate() {

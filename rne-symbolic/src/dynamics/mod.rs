@@ -7,8 +7,9 @@ mod energy;
 mod ldlt;
 
 use crate::expr::{Id, Symbol, Vec3};
-use crate::model::RobotModel;
-use crate::newton_euler::{newton_euler, JointMotion, JointReaction, NewtonEuler};
+use crate::model::{RobotModel, StateLayout};
+use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
+use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
 
 /// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
 ///
@@ -55,33 +56,79 @@ impl SymbolicDynamics {
         self
     }
 
-    /// Number of joint variables.
+    /// Number of joint variables (NDOF).
     pub fn dof(&self) -> usize {
         self.model.dof()
     }
 
-    fn joint_symbols(&mut self, make: fn(u16) -> Symbol) -> Vec<Id> {
+    /// Where the joint variables and the free-flyer sit in q and v.
+    pub fn layout(&self) -> StateLayout {
+        self.model.state_layout()
+    }
+
+    /// The symbols of a velocity-sized vector (q̇, q̈ or the generalised forces): one per entry
+    /// of v. Velocities are the constant 0 in a scene at rest.
+    fn velocity_symbols(&mut self, make: fn(u16) -> Symbol) -> Vec<Id> {
         if self.at_rest && make(0) == Symbol::Velocity(0) {
             return self.zeros();
         }
-        (0..self.dof())
+        (0..self.layout().nv())
             .map(|k| self.model.graph.symbol(make(k as u16)))
             .collect()
     }
 
+    /// For each entry of v, the position symbol it is the rate of (`None` for the free-flyer's
+    /// body-frame velocities).
+    fn rate_positions(&self) -> Vec<Option<Symbol>> {
+        let layout = self.layout();
+        (0..layout.nv())
+            .map(|k| {
+                (k >= layout.v_offset())
+                    .then(|| Symbol::Position((k - layout.v_offset() + layout.q_offset()) as u16))
+            })
+            .collect()
+    }
+
+    /// Zeros of the length of v.
     fn zeros(&mut self) -> Vec<Id> {
-        vec![self.model.graph.zero(); self.dof()]
+        vec![self.model.graph.zero(); self.layout().nv()]
+    }
+
+    /// The motion whose positions are the configuration symbols and whose velocities and
+    /// accelerations are `v` and `a` (velocity-sized: the free-flyer's six first).
+    fn motion(&mut self, v: Vec<Id>, a: Vec<Id>) -> JointMotion {
+        let layout = self.layout();
+        let g = &mut self.model.graph;
+        let q: Vec<Id> = (0..layout.ndof)
+            .map(|k| g.symbol(Symbol::Position((layout.q_offset() + k) as u16)))
+            .collect();
+        let base = layout.floating.then(|| {
+            let p: [Id; 7] = std::array::from_fn(|k| g.symbol(Symbol::Position(k as u16)));
+            BaseMotion {
+                rotation: quaternion_rotation(g, [p[3], p[4], p[5], p[6]]),
+                position: [p[0], p[1], p[2]],
+                velocity: std::array::from_fn(|k| v[k]),
+                acceleration: std::array::from_fn(|k| a[k]),
+            }
+        });
+        let offset = layout.v_offset();
+        JointMotion {
+            q,
+            qd: v[offset..].to_vec(),
+            qdd: a[offset..].to_vec(),
+            base,
+        }
     }
 
     fn run(&mut self, qd: Vec<Id>, qdd: Vec<Id>, gravity: Vec3) -> NewtonEuler {
-        let q = self.joint_symbols(Symbol::Position);
-        newton_euler(&mut self.model, &JointMotion { q, qd, qdd }, gravity)
+        let motion = self.motion(qd, qdd);
+        newton_euler(&mut self.model, &motion, gravity)
     }
 
     fn full(&mut self) -> &NewtonEuler {
         if self.full.is_none() {
-            let qd = self.joint_symbols(Symbol::Velocity);
-            let qdd = self.joint_symbols(Symbol::Acceleration);
+            let qd = self.velocity_symbols(Symbol::Velocity);
+            let qdd = self.velocity_symbols(Symbol::Acceleration);
             let gravity = self.model.gravity;
             self.full = Some(self.run(qd, qdd, gravity));
         }
@@ -104,8 +151,9 @@ impl SymbolicDynamics {
         if let Some(m) = &self.mass_matrix {
             return m.clone();
         }
-        let q = self.joint_symbols(Symbol::Position);
-        let m = crba::mass_matrix(&mut self.model, &q);
+        let zeros = self.zeros();
+        let motion = self.motion(zeros.clone(), zeros);
+        let m = crba::mass_matrix(&mut self.model, &motion);
         self.mass_matrix = Some(m.clone());
         m
     }
@@ -126,7 +174,7 @@ impl SymbolicDynamics {
         if let Some(b) = &self.bias_torques {
             return b.clone();
         }
-        let qd = self.joint_symbols(Symbol::Velocity);
+        let qd = self.velocity_symbols(Symbol::Velocity);
         let (qdd, gravity) = (self.zeros(), self.model.gravity);
         let b = self.run(qd, qdd, gravity).torques;
         self.bias_torques = Some(b.clone());
@@ -139,8 +187,9 @@ impl SymbolicDynamics {
             return c.clone();
         }
         let m = self.mass_matrix();
-        let qd = self.joint_symbols(Symbol::Velocity);
-        let c = christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd);
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let positions = self.rate_positions();
+        let c = christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd, &positions);
         self.coriolis_matrix = Some(c.clone());
         c
     }
@@ -148,8 +197,9 @@ impl SymbolicDynamics {
     /// Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k.
     pub fn mass_matrix_derivative(&mut self) -> Vec<Vec<Id>> {
         let m = self.mass_matrix();
-        let qd = self.joint_symbols(Symbol::Velocity);
-        christoffel::time_derivative(&mut self.model.graph, &m, &qd)
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let positions = self.rate_positions();
+        christoffel::time_derivative(&mut self.model.graph, &m, &qd, &positions)
     }
 
     /// Kinetic energy ½ Σ (m_i v_ci · v_ci + ω_iᵀ I_i ω_i), from the link velocities.
@@ -157,9 +207,10 @@ impl SymbolicDynamics {
         if let Some(t) = self.kinetic_energy {
             return t;
         }
-        let q = self.joint_symbols(Symbol::Position);
-        let qd = self.joint_symbols(Symbol::Velocity);
-        let t = energy::kinetic_energy(&mut self.model, &q, &qd);
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let zeros = self.zeros();
+        let motion = self.motion(qd, zeros);
+        let t = energy::kinetic_energy(&mut self.model, &motion);
         self.kinetic_energy = Some(t);
         t
     }
@@ -169,8 +220,9 @@ impl SymbolicDynamics {
         if let Some(v) = self.potential_energy {
             return v;
         }
-        let q = self.joint_symbols(Symbol::Position);
-        let v = energy::potential_energy(&mut self.model, &q);
+        let zeros = self.zeros();
+        let motion = self.motion(zeros.clone(), zeros);
+        let v = energy::potential_energy(&mut self.model, &motion);
         self.potential_energy = Some(v);
         v
     }
@@ -183,7 +235,7 @@ impl SymbolicDynamics {
         }
         let m = self.mass_matrix();
         let bias = self.bias_torques();
-        let u = self.joint_symbols(Symbol::Force);
+        let u = self.velocity_symbols(Symbol::Force);
         let g = &mut self.model.graph;
         let rhs: Vec<Id> = u.iter().zip(&bias).map(|(&u, &b)| g.sub(u, b)).collect();
         let factor = ldlt::LtdlFactor::new(g, &m);
@@ -195,3 +247,9 @@ impl SymbolicDynamics {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod floating_tests;
+
+#[cfg(test)]
+mod mimic_tests;

@@ -26,7 +26,8 @@ pub enum LockError {
 impl RobotModel {
     /// Turns joint `name` into a fixed joint at position `value` (rad or m): its rotation or
     /// translation is folded into the link's placement and the joint leaves the state; later
-    /// joints are renumbered.
+    /// joints are renumbered. The mimic followers it drives are fixed with it, each at
+    /// `multiplier · value + offset`.
     pub fn lock_joint(&mut self, name: &str, value: f64) -> Result<(), LockError> {
         if !value.is_finite() {
             return Err(LockError::NotFinite {
@@ -42,27 +43,39 @@ impl RobotModel {
                 name: name.to_owned(),
                 known: self.joint_names().join(", "),
             })?;
-        let i = self.joints[k].link;
+        // The variable's own link and every mimic follower it drives.
+        let driven: Vec<usize> = (0..self.links.len())
+            .filter(|&i| self.links[i].joint == Some(k))
+            .collect();
         let g = &mut self.graph;
-        let link = &mut self.links[i];
-        let angle = g.constant(value);
-        match link.kind {
-            JointKind::Revolute => {
-                let (c, s) = (g.cos(angle), g.sin(angle));
-                let motion = axis_angle_rotation(g, link.axis, c, s);
-                link.rotation = g.mat_mul(&link.rotation, &motion);
+        let value = g.constant(value);
+        for i in driven {
+            let link = &mut self.links[i];
+            let position = match link.coupling.take() {
+                Some(c) => {
+                    let scaled = g.mul(c.multiplier, value);
+                    g.add(scaled, c.offset)
+                }
+                None => value,
+            };
+            match link.kind {
+                JointKind::Revolute => {
+                    let (c, s) = (g.cos(position), g.sin(position));
+                    let motion = axis_angle_rotation(g, link.axis, c, s);
+                    link.rotation = g.mat_mul(&link.rotation, &motion);
+                }
+                JointKind::Prismatic => {
+                    let offset = g.vscale(position, link.axis);
+                    let moved = g.mat_vec(&link.rotation, offset);
+                    link.translation = g.vadd(link.translation, moved);
+                }
+                JointKind::Fixed | JointKind::FreeFlyer => {
+                    unreachable!("fixed joints and the free-flyer have no joint variable")
+                }
             }
-            JointKind::Prismatic => {
-                let offset = g.vscale(angle, link.axis);
-                let moved = g.mat_vec(&link.rotation, offset);
-                link.translation = g.vadd(link.translation, moved);
-            }
-            JointKind::Fixed | JointKind::FreeFlyer => {
-                unreachable!("fixed joints and the free-flyer have no joint variable")
-            }
+            link.kind = JointKind::Fixed;
+            link.joint = None;
         }
-        link.kind = JointKind::Fixed;
-        link.joint = None;
         self.joints.remove(k);
         for link in &mut self.links {
             if let Some(j) = link.joint.as_mut() {

@@ -19,18 +19,22 @@
 //! All geometric and inertial quantities are expressions in the model's [`ExprGraph`], so a
 //! parameter is either a folded number or a symbol, as the caller chose when loading.
 
+mod base;
 mod geometry;
 mod lock;
 mod massless;
 mod merge;
+mod mimic;
 mod numeric;
 
+pub use base::{StateLayout, FREE_FLYER_NQ, FREE_FLYER_NV};
 pub use geometry::{
     as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation,
     Axis, Transform,
 };
 pub use lock::LockError;
 pub use massless::MasslessJoint;
+pub use mimic::MimicError;
 pub use numeric::{NumericLink, NumericModel};
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};

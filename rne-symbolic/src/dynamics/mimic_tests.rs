@@ -1,0 +1,160 @@
+//! Mimic joints and armature: the constrained model is the free one seen through the chain
+//! rule (M ← Jᵀ M J, τ ← Jᵀ τ), and armature adds I_a to M's diagonal and I_a q̈ to τ.
+
+use super::SymbolicDynamics;
+use crate::expr::{Id, Symbol};
+use crate::model::{Mimic, RobotModel};
+use crate::spec::{parse_str, LoadOptions};
+
+/// A gripper: a revolute wrist, a prismatic finger, and a second finger (a revolute joint)
+/// whose coordinate follows the first finger's: `q_f2 = −2 q_f1 + 0.3` when constrained.
+fn gripper(constrained: bool) -> RobotModel {
+    let text = r#"
+name = "gripper"
+[[link]]
+name = "wrist"
+q = "w"
+joint = "revolute"
+origin = { xyz = [0, 0, 0.1], rpy = [0.3, 0, 0] }
+axis = [0, 0.6, 0.8]
+mass = 1.2
+com = [0.01, 0.02, 0.05]
+inertia = { xx = 0.01, yy = 0.012, zz = 0.008, xy = 0.001 }
+[[link]]
+name = "finger1"
+parent = "wrist"
+q = "f1"
+joint = "prismatic"
+origin = { xyz = [0.05, 0, 0.1] }
+axis = [1, 0, 0]
+mass = 0.2
+com = [0, 0, 0.03]
+inertia = { xx = 0.001, yy = 0.001, zz = 0.0005 }
+[[link]]
+name = "finger2"
+parent = "wrist"
+q = "f2"
+joint = "revolute"
+origin = { xyz = [-0.05, 0, 0.1] }
+axis = [0, 1, 0]
+mass = 0.3
+com = [0, 0, 0.04]
+inertia = { xx = 0.002, yy = 0.002, zz = 0.0007 }
+"#;
+    let mut model = parse_str(text, "gripper.toml", &LoadOptions::default()).expect("valid spec");
+    let g = &mut model.graph;
+    model.links[2].mimic = Some(Mimic {
+        leader: "f1".into(),
+        multiplier: g.constant(-2.0),
+        offset: g.constant(0.3),
+    });
+    if constrained {
+        model.constrain_mimic_joints().expect("no loop");
+    }
+    model
+}
+
+fn eval(d: &SymbolicDynamics, ids: &[Id], q: &[f64], qd: &[f64], qdd: &[f64]) -> Vec<f64> {
+    d.model.graph.eval::<f64>(ids, |sym| match sym {
+        Symbol::Position(k) => q[k as usize],
+        Symbol::Velocity(k) => qd[k as usize],
+        Symbol::Acceleration(k) => qdd[k as usize],
+        _ => f64::NAN,
+    })
+}
+
+#[test]
+fn a_constrained_follower_enters_through_the_chain_rule() {
+    let mut free = SymbolicDynamics::new(&gripper(false));
+    let mut constrained = SymbolicDynamics::new(&gripper(true));
+    assert_eq!(constrained.dof(), 2);
+    let (tau_f, m_f, g_f) = (
+        free.inverse_dynamics(),
+        free.mass_matrix().concat(),
+        free.gravity_torques(),
+    );
+    let (tau_c, m_c, g_c) = (
+        constrained.inverse_dynamics(),
+        constrained.mass_matrix().concat(),
+        constrained.gravity_torques(),
+    );
+    // J maps (w, f1) to (w, f1, f2): f2 = −2 f1 + 0.3.
+    let j = [[1.0, 0.0], [0.0, 1.0], [0.0, -2.0]];
+    for k in 0..30 {
+        let f = |a: f64| ((k as f64 + 1.0) * a).fract() * 2.0 - 1.0;
+        let (q, qd, qdd) = (
+            [2.0 * f(0.37), 0.05 * f(0.71)],
+            [3.0 * f(0.13), 0.5 * f(0.29)],
+            [4.0 * f(0.47), 2.0 * f(0.83)],
+        );
+        let lift = |x: [f64; 2], offset: f64| [x[0], x[1], -2.0 * x[1] + offset];
+        let (qf, qdf, qddf) = (lift(q, 0.3), lift(qd, 0.0), lift(qdd, 0.0));
+        let t_free = eval(&free, &tau_f, &qf, &qdf, &qddf);
+        let m_free = eval(&free, &m_f, &qf, &qdf, &qddf);
+        let g_free = eval(&free, &g_f, &qf, &qdf, &qddf);
+        let t_con = eval(&constrained, &tau_c, &q, &qd, &qdd);
+        let m_con = eval(&constrained, &m_c, &q, &qd, &qdd);
+        let g_con = eval(&constrained, &g_c, &q, &qd, &qdd);
+        for a in 0..2 {
+            let jt = |x: &[f64]| (0..3).map(|i| j[i][a] * x[i]).sum::<f64>();
+            assert!(
+                (t_con[a] - jt(&t_free)).abs() < 1e-12,
+                "τ[{a}] at state {k}"
+            );
+            assert!(
+                (g_con[a] - jt(&g_free)).abs() < 1e-12,
+                "g[{a}] at state {k}"
+            );
+            for b in 0..2 {
+                let jmj: f64 = (0..3)
+                    .flat_map(|i| (0..3).map(move |l| (i, l)))
+                    .map(|(i, l)| j[i][a] * m_free[i * 3 + l] * j[l][b])
+                    .sum();
+                assert!((m_con[a * 2 + b] - jmj).abs() < 1e-12, "M[{a}][{b}]");
+            }
+        }
+    }
+}
+
+#[test]
+fn locking_a_leader_fixes_its_followers_too() {
+    let mut model = gripper(true);
+    model.lock_joint("f1", 0.02).expect("f1 is a variable");
+    assert_eq!(model.joint_names(), ["w"]);
+    assert!(!model.has_couplings(), "the follower is fixed, not coupled");
+    let mut locked = SymbolicDynamics::new(&model);
+    let mut full = SymbolicDynamics::new(&gripper(true));
+    let (a, b) = (locked.mass_matrix(), full.mass_matrix());
+    let m_locked = eval(&locked, &[a[0][0]], &[0.4], &[0.0], &[0.0])[0];
+    let m_full = eval(&full, &[b[0][0]], &[0.4, 0.02], &[0.0; 2], &[0.0; 2])[0];
+    assert!((m_locked - m_full).abs() < 1e-15);
+}
+
+#[test]
+fn armature_adds_to_the_diagonal_and_to_the_torque() {
+    let plain = gripper(true);
+    let mut geared = plain.clone();
+    geared.links[2].armature = Some(geared.graph.constant(0.05));
+    let (mut d0, mut d1) = (
+        SymbolicDynamics::new(&plain),
+        SymbolicDynamics::new(&geared),
+    );
+    let (m0, m1) = (d0.mass_matrix().concat(), d1.mass_matrix().concat());
+    let (t0, t1) = (d0.inverse_dynamics(), d1.inverse_dynamics());
+    let (k0, k1) = (d0.kinetic_energy(), d1.kinetic_energy());
+    let (q, qd, qdd) = ([0.3, 0.01], [0.7, -0.2], [1.1, 0.4]);
+    let (a, b) = (eval(&d0, &m0, &q, &qd, &qdd), eval(&d1, &m1, &q, &qd, &qdd));
+    // The follower's rotor turns at −2 q̇_f1: I_a m² = 0.05 · 4 on the leader's diagonal.
+    for i in 0..4 {
+        let expected = if i == 3 { a[i] + 0.2 } else { a[i] };
+        assert!((b[i] - expected).abs() < 1e-15, "M entry {i}");
+    }
+    let (x, y) = (eval(&d0, &t0, &q, &qd, &qdd), eval(&d1, &t1, &q, &qd, &qdd));
+    assert!((y[0] - x[0]).abs() < 1e-15);
+    assert!((y[1] - x[1] - 0.2 * qdd[1]).abs() < 1e-14);
+    let (e0, e1) = (
+        eval(&d0, &[k0], &q, &qd, &qdd)[0],
+        eval(&d1, &[k1], &q, &qd, &qdd)[0],
+    );
+    assert!((e1 - e0 - 0.5 * 0.2 * qd[1] * qd[1]).abs() < 1e-15);
+}
