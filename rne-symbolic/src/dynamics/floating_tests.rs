@@ -7,7 +7,7 @@ use crate::model::{Base, RobotModel};
 use crate::spec::{parse_str, LoadOptions};
 
 /// A trunk with a two-joint leg; the trunk is fixed to the world in the spec.
-fn legged() -> RobotModel {
+pub(super) fn legged() -> RobotModel {
     let text = r#"
 name = "hopper"
 gravity = [0.3, -0.2, -9.81]
@@ -41,14 +41,14 @@ inertia = { xx = 0.005, yy = 0.005, zz = 0.001 }
 }
 
 /// A state of the floating model: q (NQ = 9, unit quaternion), v, a, u (NV = 8).
-struct State {
-    q: Vec<f64>,
-    v: Vec<f64>,
-    a: Vec<f64>,
-    u: Vec<f64>,
+pub(super) struct State {
+    pub(super) q: Vec<f64>,
+    pub(super) v: Vec<f64>,
+    pub(super) a: Vec<f64>,
+    pub(super) u: Vec<f64>,
 }
 
-fn state(k: usize) -> State {
+pub(super) fn state(k: usize) -> State {
     let f = |a: f64| ((k as f64 + 1.0) * a).fract() * 2.0 - 1.0;
     let quaternion = [f(0.31), f(0.57), f(0.77), f(0.13)];
     let norm = quaternion.iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -61,7 +61,7 @@ fn state(k: usize) -> State {
     State { q, v, a, u }
 }
 
-fn eval(d: &SymbolicDynamics, ids: &[Id], s: &State) -> Vec<f64> {
+pub(super) fn eval(d: &SymbolicDynamics, ids: &[Id], s: &State) -> Vec<f64> {
     d.model.graph.eval::<f64>(ids, |sym| match sym {
         Symbol::Position(k) => s.q[k as usize],
         Symbol::Velocity(k) => s.v[k as usize],
@@ -72,7 +72,7 @@ fn eval(d: &SymbolicDynamics, ids: &[Id], s: &State) -> Vec<f64> {
 }
 
 /// The base orientation of a state, row-major.
-fn rotation(s: &State) -> [[f64; 3]; 3] {
+pub(super) fn rotation(s: &State) -> [[f64; 3]; 3] {
     let [x, y, z, w] = [s.q[3], s.q[4], s.q[5], s.q[6]];
     [
         [

@@ -3,10 +3,11 @@
 
 mod christoffel;
 mod crba;
+pub mod derivatives;
 mod energy;
 mod ldlt;
 
-use crate::expr::{Id, Symbol, Vec3};
+use crate::expr::{ExprGraph, Id, Symbol, Vec3};
 use crate::model::{RobotModel, StateLayout};
 use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
@@ -29,6 +30,8 @@ pub struct SymbolicDynamics {
     kinetic_energy: Option<Id>,
     potential_energy: Option<Id>,
     forward_dynamics: Option<Vec<Id>>,
+    mass_matrix_inverse: Option<Vec<Vec<Id>>>,
+    inverse_dynamics_derivatives: Option<(Vec<Vec<Id>>, Vec<Vec<Id>>)>,
 }
 
 impl SymbolicDynamics {
@@ -45,6 +48,8 @@ impl SymbolicDynamics {
             kinetic_energy: None,
             potential_energy: None,
             forward_dynamics: None,
+            mass_matrix_inverse: None,
+            inverse_dynamics_derivatives: None,
         }
     }
 
@@ -243,6 +248,56 @@ impl SymbolicDynamics {
         self.forward_dynamics = Some(qdd.clone());
         qdd
     }
+
+    /// M(q)⁻¹, symmetric (one `Id` per pair), from the LᵀDL factorisation of M.
+    pub fn mass_matrix_inverse(&mut self) -> Vec<Vec<Id>> {
+        if let Some(m) = &self.mass_matrix_inverse {
+            return m.clone();
+        }
+        let m = self.mass_matrix();
+        let inverse = derivatives::inverse(&mut self.model.graph, &m);
+        self.mass_matrix_inverse = Some(inverse.clone());
+        inverse
+    }
+
+    /// (∂τ/∂q, ∂τ/∂q̇), NV × NV each, row i the derivatives of τ_i; ∂/∂q in the tangent space
+    /// ([`derivatives`]). ∂τ/∂q̈ is M.
+    pub fn inverse_dynamics_derivatives(&mut self) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
+        if let Some(d) = &self.inverse_dynamics_derivatives {
+            return d.clone();
+        }
+        let tau = self.inverse_dynamics();
+        let layout = self.layout();
+        let g = &mut self.model.graph;
+        let dq = derivatives::configuration_jacobian(g, &tau, layout);
+        let dv = derivatives::symbol_jacobian(g, &tau, layout.nv(), Symbol::Velocity);
+        self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
+        (dq, dv)
+    }
+
+    /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
+    /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x taken at that q̈ ([`derivatives`]).
+    pub fn forward_dynamics_derivatives(&mut self) -> (Vec<Vec<Id>>, Vec<Vec<Id>>, Vec<Vec<Id>>) {
+        let (dq, dv) = self.inverse_dynamics_derivatives();
+        let qdd = self.forward_dynamics();
+        let inverse = self.mass_matrix_inverse();
+        let g = &mut self.model.graph;
+        let at_fd = |g: &mut ExprGraph, d: &[Vec<Id>]| -> Vec<Vec<Id>> {
+            let flat: Vec<Id> = d.concat();
+            let substituted = g.substitute(&flat, |s| match s {
+                Symbol::Acceleration(k) => Some(qdd[k as usize]),
+                _ => None,
+            });
+            substituted
+                .chunks(d.len().max(1))
+                .map(<[Id]>::to_vec)
+                .collect()
+        };
+        let (dq, dv) = (at_fd(g, &dq), at_fd(g, &dv));
+        let dqdd_dq = derivatives::negated_product(g, &inverse, &dq);
+        let dqdd_dv = derivatives::negated_product(g, &inverse, &dv);
+        (dqdd_dq, dqdd_dv, inverse)
+    }
 }
 
 #[cfg(test)]
@@ -253,3 +308,6 @@ mod floating_tests;
 
 #[cfg(test)]
 mod mimic_tests;
+
+#[cfg(test)]
+mod derivative_tests;

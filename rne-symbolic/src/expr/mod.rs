@@ -8,6 +8,7 @@ mod graph;
 mod linalg;
 mod node;
 mod sexpr;
+mod substitute;
 mod symbols;
 
 pub use count::OpCount;

@@ -1,0 +1,138 @@
+//! Derivatives of the dynamics for control and optimisation (DESIGN.md §4): ∂τ/∂q, ∂τ/∂q̇,
+//! ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹, by symbolic differentiation of the expression graph (exact, with
+//! the subexpressions of τ and of its derivatives shared by hash-consing).
+//!
+//! Derivatives with respect to q are taken in the tangent space, NV columns: a joint
+//! column is ∂/∂q_j; a free-flyer's six columns are the derivatives along the perturbation
+//! `q ⊕ δ` of Pinocchio's `integrate`, `p ← p + R δ_v` and `R ← R Exp(δ_ω)` (δ in the base
+//! frame), taken through the quaternion: `∂quat/∂δ_ω,a = ½ quat ⊗ (e_a, 0)`.
+//!
+//! Forward dynamics is differentiated through inverse dynamics: τ(q, q̇, FD(q, q̇, τ)) = τ
+//! gives ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ = FD(q, q̇, τ) (Carpentier & Mansard, "Analytical
+//! derivatives of rigid body dynamics algorithms", RSS 2018, §III.C).
+
+use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
+use crate::model::StateLayout;
+use crate::motion::quaternion_rotation;
+
+use super::ldlt::LtdlFactor;
+
+/// The tangent-space Jacobian of `outputs` with respect to the configuration: row i, column k
+/// is the derivative of `outputs[i]` along tangent direction k (NV columns).
+pub fn configuration_jacobian(
+    g: &mut ExprGraph,
+    outputs: &[Id],
+    layout: StateLayout,
+) -> Vec<Vec<Id>> {
+    let position = |k: usize| Symbol::Position(k as u16);
+    // ∂output/∂(position symbol c) for every symbol c of q.
+    let partials: Vec<Vec<Id>> = (0..layout.nq())
+        .map(|c| {
+            let mut d = Differentiator::new(position(c));
+            outputs.iter().map(|&o| d.derivative(g, o)).collect()
+        })
+        .collect();
+    let mut columns: Vec<Vec<Id>> = Vec::with_capacity(layout.nv());
+    if layout.floating {
+        let quaternion: [Id; 4] = std::array::from_fn(|c| g.symbol(position(3 + c)));
+        let rotation = quaternion_rotation(g, quaternion);
+        // Linear: ∂/∂δ_v,a = Σ_c ∂/∂p_c R_ca.
+        for a in 0..3 {
+            let weights: Vec<(usize, Id)> = (0..3).map(|c| (c, rotation[c][a])).collect();
+            columns.push(combine(g, &partials, &weights, outputs.len()));
+        }
+        // Angular: ∂quat/∂δ_a = ½ (w e_a + v × e_a, −v_a) with quat = (v, w).
+        let [x, y, z, w] = quaternion;
+        let half = g.constant(0.5);
+        let (hx, hy, hz, hw) = (
+            g.mul(half, x),
+            g.mul(half, y),
+            g.mul(half, z),
+            g.mul(half, w),
+        );
+        let (nhx, nhy, nhz) = (g.neg(hx), g.neg(hy), g.neg(hz));
+        // v × e_x = (0, z, −y), v × e_y = (−z, 0, x), v × e_z = (y, −x, 0).
+        let directions = [
+            [(3, hw), (4, hz), (5, nhy), (6, nhx)],
+            [(3, nhz), (4, hw), (5, hx), (6, nhy)],
+            [(3, hy), (4, nhx), (5, hw), (6, nhz)],
+        ];
+        for direction in directions {
+            columns.push(combine(g, &partials, &direction, outputs.len()));
+        }
+    }
+    for j in 0..layout.ndof {
+        columns.push(partials[layout.q_offset() + j].clone());
+    }
+    transpose(&columns, outputs.len())
+}
+
+/// Σ_c weight_c · partials[c], entry by entry.
+fn combine(g: &mut ExprGraph, partials: &[Vec<Id>], weights: &[(usize, Id)], n: usize) -> Vec<Id> {
+    (0..n)
+        .map(|i| {
+            let terms: Vec<Id> = weights
+                .iter()
+                .map(|&(c, w)| g.mul(w, partials[c][i]))
+                .collect();
+            g.sum(terms)
+        })
+        .collect()
+}
+
+/// The Jacobian of `outputs` with respect to the symbols `make(0..nv)` (velocities or
+/// accelerations): row i, column k.
+pub fn symbol_jacobian(
+    g: &mut ExprGraph,
+    outputs: &[Id],
+    nv: usize,
+    make: fn(u16) -> Symbol,
+) -> Vec<Vec<Id>> {
+    let columns: Vec<Vec<Id>> = (0..nv)
+        .map(|k| {
+            let mut d = Differentiator::new(make(k as u16));
+            outputs.iter().map(|&o| d.derivative(g, o)).collect()
+        })
+        .collect();
+    transpose(&columns, outputs.len())
+}
+
+fn transpose(columns: &[Vec<Id>], rows: usize) -> Vec<Vec<Id>> {
+    (0..rows)
+        .map(|i| columns.iter().map(|column| column[i]).collect())
+        .collect()
+}
+
+/// M⁻¹ from the LᵀDL factor of M, column by column (M x = e_j), symmetric: one `Id` per pair.
+pub fn inverse(g: &mut ExprGraph, m: &[Vec<Id>]) -> Vec<Vec<Id>> {
+    let n = m.len();
+    let factor = LtdlFactor::new(g, m);
+    let (zero, one) = (g.zero(), g.one());
+    let mut inverse = vec![vec![zero; n]; n];
+    for j in 0..n {
+        let mut unit = vec![zero; n];
+        unit[j] = one;
+        let column = factor.solve(g, &unit);
+        for i in j..n {
+            inverse[i][j] = column[i];
+            inverse[j][i] = column[i];
+        }
+    }
+    inverse
+}
+
+/// `−a b` for square matrices.
+pub fn negated_product(g: &mut ExprGraph, a: &[Vec<Id>], b: &[Vec<Id>]) -> Vec<Vec<Id>> {
+    let n = a.len();
+    (0..n)
+        .map(|i| {
+            (0..b.first().map_or(0, Vec::len))
+                .map(|j| {
+                    let terms: Vec<Id> = (0..n).map(|k| g.mul(a[i][k], b[k][j])).collect();
+                    let sum = g.sum(terms);
+                    g.neg(sum)
+                })
+                .collect()
+        })
+        .collect()
+}
