@@ -140,3 +140,77 @@ fn forward_dynamics_derivatives_match_finite_differences_and_minv_inverts_m() {
         }
     }
 }
+
+/// The frame behind the fixed joint (`foot`) and a moving one (`hip`): J against finite
+/// differences of the placements along each tangent direction, J̇ q̇ against the finite
+/// difference of J v along the motion q ⊕ t v.
+#[test]
+fn frame_jacobians_and_jdot_qd_match_finite_differences_of_the_placements() {
+    let mut d = SymbolicDynamics::new(&legged());
+    let names: Vec<&str> = d.frames().iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["trunk", "hip", "knee", "foot"]);
+    let selected = [3, 1];
+    let flatten = |poses: Vec<([[Id; 3]; 3], [Id; 3])>| -> Vec<Id> {
+        poses
+            .into_iter()
+            .flat_map(|(r, p)| r.into_iter().flatten().chain(p))
+            .collect()
+    };
+    let placements = flatten(d.frame_placements(&selected));
+    let jacobians: Vec<Id> = d.frame_jacobians(&selected).concat().concat();
+    let jdot: Vec<Id> = d.frame_jacobian_dot_qd(&selected).concat();
+    let nv = 8;
+    let h = 1e-6;
+    for k in 0..8 {
+        let s = state(k);
+        let j = eval(&d, &jacobians, &s);
+        for c in 0..nv {
+            let plus = eval(&d, &placements, &moved(&s, c, h));
+            let minus = eval(&d, &placements, &moved(&s, c, -h));
+            let here = eval(&d, &placements, &s);
+            for f in 0..2 {
+                let at = |x: &[f64], i: usize, l: usize| x[12 * f + 3 * i + l];
+                for i in 0..3 {
+                    let fd_v = (plus[12 * f + 9 + i] - minus[12 * f + 9 + i]) / (2.0 * h);
+                    let got = j[f * 6 * nv + i * nv + c];
+                    assert!((got - fd_v).abs() < 1e-7, "J_v[{i}][{c}] of frame {f}");
+                }
+                // ω = vee(Ṙ Rᵀ).
+                let rdot_rt = |a: usize, b: usize| -> f64 {
+                    (0..3)
+                        .map(|l| (at(&plus, a, l) - at(&minus, a, l)) / (2.0 * h) * at(&here, b, l))
+                        .sum()
+                };
+                let omega = [rdot_rt(2, 1), rdot_rt(0, 2), rdot_rt(1, 0)];
+                for i in 0..3 {
+                    let got = j[f * 6 * nv + (3 + i) * nv + c];
+                    assert!((got - omega[i]).abs() < 1e-7, "J_ω[{i}][{c}] of frame {f}");
+                }
+            }
+        }
+        // d/dt (J v) along q ⊕ t v, v constant.
+        let along = |t: f64| {
+            let mut x = copy(&s);
+            for c in 0..nv {
+                x = moved(&x, c, t * s.v[c]);
+            }
+            x
+        };
+        let jv = |x: &State| -> Vec<f64> {
+            let jx = eval(&d, &jacobians, x);
+            (0..12)
+                .map(|r| (0..nv).map(|c| jx[r * nv + c] * s.v[c]).sum())
+                .collect()
+        };
+        let (plus, minus) = (jv(&along(h)), jv(&along(-h)));
+        let got = eval(&d, &jdot, &s);
+        for r in 0..12 {
+            let fd = (plus[r] - minus[r]) / (2.0 * h);
+            assert!(
+                (got[r] - fd).abs() < 1e-6,
+                "J̇q̇[{r}] state {k}: {} vs {fd}",
+                got[r]
+            );
+        }
+    }
+}

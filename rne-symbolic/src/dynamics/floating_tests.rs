@@ -34,6 +34,12 @@ axis = [0.3, 0, -1]
 mass = 0.5
 com = [0, 0.01, -0.1]
 inertia = { xx = 0.005, yy = 0.005, zz = 0.001 }
+[[link]]
+name = "foot"
+joint = "fixed"
+origin = { xyz = [0.02, -0.03, -0.15], rpy = [0.1, -0.4, 0.7] }
+mass = 0
+inertia = { xx = 0, yy = 0, zz = 0 }
 "#;
     let mut model = parse_str(text, "hopper.toml", &LoadOptions::default()).expect("valid spec");
     model.set_base(Base::Floating);

@@ -5,12 +5,16 @@ mod christoffel;
 mod crba;
 pub mod derivatives;
 mod energy;
+mod kinematics;
 mod ldlt;
 
-use crate::expr::{ExprGraph, Id, Symbol, Vec3};
-use crate::model::{RobotModel, StateLayout};
+use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
+use crate::model::{Frame, RobotModel, StateLayout};
 use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
+
+/// A matrix of expressions, row-major.
+pub type Matrix = Vec<Vec<Id>>;
 
 /// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
 ///
@@ -31,14 +35,18 @@ pub struct SymbolicDynamics {
     potential_energy: Option<Id>,
     forward_dynamics: Option<Vec<Id>>,
     mass_matrix_inverse: Option<Vec<Vec<Id>>>,
-    inverse_dynamics_derivatives: Option<(Vec<Vec<Id>>, Vec<Vec<Id>>)>,
+    inverse_dynamics_derivatives: Option<(Matrix, Matrix)>,
+    frames: Vec<Frame>,
 }
 
 impl SymbolicDynamics {
     /// Prepares the dynamics of `model`.
     pub fn new(model: &RobotModel) -> SymbolicDynamics {
+        let mut model = model.clone();
+        let frames = model.frames();
         SymbolicDynamics {
             model: model.merge_fixed_links(),
+            frames,
             at_rest: false,
             full: None,
             mass_matrix: None,
@@ -262,7 +270,7 @@ impl SymbolicDynamics {
 
     /// (∂τ/∂q, ∂τ/∂q̇), NV × NV each, row i the derivatives of τ_i; ∂/∂q in the tangent space
     /// ([`derivatives`]). ∂τ/∂q̈ is M.
-    pub fn inverse_dynamics_derivatives(&mut self) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
+    pub fn inverse_dynamics_derivatives(&mut self) -> (Matrix, Matrix) {
         if let Some(d) = &self.inverse_dynamics_derivatives {
             return d.clone();
         }
@@ -277,7 +285,7 @@ impl SymbolicDynamics {
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
     /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x taken at that q̈ ([`derivatives`]).
-    pub fn forward_dynamics_derivatives(&mut self) -> (Vec<Vec<Id>>, Vec<Vec<Id>>, Vec<Vec<Id>>) {
+    pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
         let (dq, dv) = self.inverse_dynamics_derivatives();
         let qdd = self.forward_dynamics();
         let inverse = self.mass_matrix_inverse();
@@ -297,6 +305,82 @@ impl SymbolicDynamics {
         let dqdd_dq = derivatives::negated_product(g, &inverse, &dq);
         let dqdd_dv = derivatives::negated_product(g, &inverse, &dv);
         (dqdd_dq, dqdd_dv, inverse)
+    }
+
+    /// The frame of every link of the model as read (fixed links included), in link order.
+    pub fn frames(&self) -> &[Frame] {
+        &self.frames
+    }
+
+    /// Orientation (row-major) and origin in the world of the frames `selected` (indices into
+    /// [`SymbolicDynamics::frames`]).
+    pub fn frame_placements(&mut self, selected: &[usize]) -> Vec<(Mat3, Vec3)> {
+        let zeros = self.zeros();
+        let motion = self.motion(zeros.clone(), zeros);
+        let g = &mut self.model.graph;
+        let poses = energy::link_poses(g, &self.model.links, &motion);
+        selected
+            .iter()
+            .map(|&f| {
+                let frame = &self.frames[f];
+                kinematics::frame_pose(g, frame.body.map(|b| poses[b]), frame)
+            })
+            .collect()
+    }
+
+    /// The geometric Jacobian of each selected frame: 6 × NV, rows [v; ω] of the frame origin
+    /// in world axes ([`kinematics`]), the coefficients of v in the frame's velocity.
+    pub fn frame_jacobians(&mut self, selected: &[usize]) -> Vec<Matrix> {
+        let nv = self.layout().nv();
+        let v: Vec<Id> = (0..nv)
+            .map(|k| self.model.graph.symbol(Symbol::Velocity(k as u16)))
+            .collect();
+        let zeros = self.zeros();
+        let motion = self.motion(v, zeros);
+        let g = &mut self.model.graph;
+        let poses = energy::link_poses(g, &self.model.links, &motion);
+        let velocities = energy::link_velocities(g, &self.model.links, &motion);
+        selected
+            .iter()
+            .map(|&f| {
+                let frame = &self.frames[f];
+                let velocity = match frame.body {
+                    Some(b) => kinematics::frame_velocity(g, &poses[b].0, velocities[b], frame),
+                    None => [g.zero(); 6],
+                };
+                derivatives::symbol_jacobian(g, &velocity, nv, Symbol::Velocity)
+            })
+            .collect()
+    }
+
+    /// J̇ q̇ of each selected frame: the classical acceleration [a; α] of the frame origin in
+    /// world axes at q̈ = 0, without gravity.
+    pub fn frame_jacobian_dot_qd(&mut self, selected: &[usize]) -> Vec<[Id; 6]> {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let zeros = self.zeros();
+        let gravity = self.model.graph.zero_vec();
+        let motion = self.motion(qd, zeros);
+        let recursion = newton_euler(&mut self.model, &motion, gravity);
+        let g = &mut self.model.graph;
+        let poses = energy::link_poses(g, &self.model.links, &motion);
+        selected
+            .iter()
+            .map(|&f| {
+                let frame = &self.frames[f];
+                match frame.body {
+                    Some(b) => {
+                        let m = recursion.motion[b];
+                        kinematics::frame_acceleration(
+                            g,
+                            &poses[b].0,
+                            (m.omega, m.alpha, m.accel),
+                            frame,
+                        )
+                    }
+                    None => [g.zero(); 6],
+                }
+            })
+            .collect()
     }
 }
 

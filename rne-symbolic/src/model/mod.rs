@@ -20,6 +20,7 @@
 //! parameter is either a folded number or a symbol, as the caller chose when loading.
 
 mod base;
+mod frames;
 mod geometry;
 mod lock;
 mod massless;
@@ -28,6 +29,7 @@ mod mimic;
 mod numeric;
 
 pub use base::{StateLayout, FREE_FLYER_NQ, FREE_FLYER_NV};
+pub use frames::Frame;
 pub use geometry::{
     as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation,
     Axis, Transform,
