@@ -46,7 +46,7 @@ fn symmetric_similarity(g: &mut ExprGraph, r: &Mat3, s: &Mat3) -> Mat3 {
 
 /// Inertia about the body origin of a body with mass `m`, COM `c` and inertia `inertia`
 /// about the COM: `I + m (|c|² 1 − c cᵀ)`.
-fn about_origin(g: &mut ExprGraph, m: Id, c: Vec3, inertia: &Mat3) -> (Vec3, Mat3) {
+pub(super) fn about_origin(g: &mut ExprGraph, m: Id, c: Vec3, inertia: &Mat3) -> (Vec3, Mat3) {
     let h = g.vscale(m, c);
     let mut out = *inertia;
     for i in 0..3 {
@@ -112,18 +112,20 @@ fn to_parent(g: &mut ExprGraph, child: &Composite, placement: &LinkPlacement) ->
 /// One column of a link's motion subspace: a unit rate of one velocity coordinate turns the
 /// body about (`angular`) or moves it along `axis`, through the body origin.
 #[derive(Copy, Clone, Debug)]
-struct Column {
+pub(super) struct Column {
     /// The entry of v it belongs to.
-    index: usize,
+    pub(super) index: usize,
     /// The mimic multiplier of the coordinate (`None`: the variable itself).
-    multiplier: Option<Id>,
-    angular: bool,
-    axis: Vec3,
+    pub(super) multiplier: Option<Id>,
+    /// Rotation about `axis` (else translation along it).
+    pub(super) angular: bool,
+    /// The unit axis, in body axes.
+    pub(super) axis: Vec3,
 }
 
 /// The motion-subspace columns of every link: one for a revolute or prismatic joint, six for
 /// the free-flyer (linear then angular, along the body axes), none for a fixed joint.
-fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
+pub(super) fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
     let layout = model.state_layout();
     let g = &mut model.graph;
     let unit = |g: &mut ExprGraph, a: usize| {

@@ -158,3 +158,37 @@ fn armature_adds_to_the_diagonal_and_to_the_torque() {
     );
     assert!((e1 - e0 - 0.5 * 0.2 * qd[1] * qd[1]).abs() < 1e-15);
 }
+
+/// Y π reproduces inverse dynamics with mimic joints and armature (the standard parameters
+/// taken from the model's own links).
+#[test]
+fn the_regressor_times_the_standard_parameters_is_the_torque() {
+    let mut model = gripper(true);
+    model.links[1].armature = Some(model.graph.constant(0.07));
+    model.links[2].armature = Some(model.graph.constant(0.05));
+    let mut d = SymbolicDynamics::new(&model);
+    let tau = d.inverse_dynamics();
+    let y = d.regressor();
+    let pi = d.standard_parameters();
+    assert_eq!(pi.len(), 3 * 10 + 2);
+    let flat: Vec<Id> = y.concat();
+    for k in 0..20 {
+        let f = |a: f64| ((k as f64 + 1.0) * a).fract() * 2.0 - 1.0;
+        let (q, qd, qdd) = (
+            [2.0 * f(0.37), 0.05 * f(0.71)],
+            [3.0 * f(0.13), 0.5 * f(0.29)],
+            [4.0 * f(0.47), 2.0 * f(0.83)],
+        );
+        let t = eval(&d, &tau, &q, &qd, &qdd);
+        let yy = eval(&d, &flat, &q, &qd, &qdd);
+        let p = eval(&d, &pi, &q, &qd, &qdd);
+        for i in 0..2 {
+            let y_pi: f64 = (0..pi.len()).map(|c| yy[i * pi.len() + c] * p[c]).sum();
+            assert!(
+                (y_pi - t[i]).abs() < 1e-12 * t[i].abs().max(1.0),
+                "row {i}: {y_pi} vs {}",
+                t[i]
+            );
+        }
+    }
+}

@@ -7,6 +7,7 @@ pub mod derivatives;
 mod energy;
 mod kinematics;
 mod ldlt;
+pub mod regressor;
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
 use crate::model::{Frame, RobotModel, StateLayout};
@@ -378,6 +379,43 @@ impl SymbolicDynamics {
                         )
                     }
                     None => [g.zero(); 6],
+                }
+            })
+            .collect()
+    }
+
+    /// The joint-torque regressor Y(q, q̇, q̈) of τ = Y π ([`regressor`]): NV rows, one column
+    /// per standard parameter ([`regressor::regressor_columns`]).
+    pub fn regressor(&mut self) -> Matrix {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let qdd = self.velocity_symbols(Symbol::Acceleration);
+        let motion = self.motion(qd, qdd);
+        let gravity = self.model.gravity;
+        regressor::regressor(&mut self.model, &motion, gravity)
+    }
+
+    /// The standard parameters π of the model, in the order of the regressor's columns, as
+    /// expressions: per body m, m c and the inertia about the body origin; armatures.
+    pub fn standard_parameters(&mut self) -> Vec<Id> {
+        let columns = regressor::regressor_columns(&self.model);
+        let g = &mut self.model.graph;
+        columns
+            .iter()
+            .map(|column| match *column {
+                regressor::RegressorColumn::Body { link, parameter } => {
+                    let l = &self.model.links[link];
+                    let (h, inertia) = crba::about_origin(g, l.mass, l.com, &l.inertia);
+                    match parameter {
+                        0 => l.mass,
+                        1..=3 => h[parameter - 1],
+                        p => {
+                            let (a, b) = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)][p - 4];
+                            inertia[a][b]
+                        }
+                    }
+                }
+                regressor::RegressorColumn::Armature { link } => {
+                    self.model.links[link].armature.unwrap_or_else(|| g.zero())
                 }
             })
             .collect()
