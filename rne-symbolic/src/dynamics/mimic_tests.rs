@@ -192,3 +192,47 @@ fn the_regressor_times_the_standard_parameters_is_the_torque() {
         }
     }
 }
+
+/// The base parameters of the planar elbow: six (ZZ₁ + m₂ l₁², m₁ c₁ₓ + m₂ l₁, m₁ c₁ᵧ, ZZ₂,
+/// m₂ c₂ₓ, m₂ c₂ᵧ for a planar 2R arm with gravity in its plane), the base regressor has full
+/// column rank, and Y_b π_b = τ at states the search never saw.
+#[test]
+fn the_planar_elbows_base_parameters_reproduce_the_torque() {
+    use super::base_parameters::BaseParameters;
+    let mut d = SymbolicDynamics::new(&super::tests::planar_elbow());
+    let tau = d.inverse_dynamics();
+    let y = d.regressor();
+    let pi = d.standard_parameters();
+    let base = BaseParameters::find(&d.model, &y, 40);
+    assert_eq!(base.len(), 6, "kept: {:?}", base.independent);
+    // Kept: ZZ₁ (column 9), MX₁, MY₁ (1, 2) of link 1; MX₂, MY₂, ZZ₂ (11, 12, 19).
+    assert_eq!(base.independent, [1, 2, 9, 11, 12, 19]);
+    let values = |ids: &[Id], q: [f64; 2], qd: [f64; 2], qdd: [f64; 2]| {
+        d.model.graph.eval::<f64>(ids, |s| match s {
+            Symbol::Position(k) => q[k as usize],
+            Symbol::Velocity(k) => qd[k as usize],
+            Symbol::Acceleration(k) => qdd[k as usize],
+            Symbol::Parameter(_) => d.model.parameter_value(s).unwrap_or(f64::NAN),
+            Symbol::Force(_) => f64::NAN,
+        })
+    };
+    let pi_values = values(&pi, [0.0; 2], [0.0; 2], [0.0; 2]);
+    let pi_b = base.of(&pi_values);
+    let kept: Vec<Id> = y
+        .iter()
+        .flat_map(|row| base.independent.iter().map(move |&c| row[c]))
+        .collect();
+    for k in 0..10 {
+        let x = 0.37 * k as f64;
+        let (q, qd, qdd) = ([x.sin(), 2.0 * x.cos()], [1.0 - x, x], [0.5 * x, -x]);
+        let t = values(&tau, q, qd, qdd);
+        let yb = values(&kept, q, qd, qdd);
+        for i in 0..2 {
+            let predicted: f64 = (0..6).map(|b| yb[i * 6 + b] * pi_b[b]).sum();
+            assert!(
+                (predicted - t[i]).abs() < 1e-10 * t[i].abs().max(1.0),
+                "τ{i}"
+            );
+        }
+    }
+}

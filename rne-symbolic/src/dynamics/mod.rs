@@ -1,6 +1,7 @@
 //! Taking the Newton–Euler torques apart: M(q), C(q, q̇), g(q), the bias, the energies and
 //! forward dynamics, each built on demand into the model's expression graph (3.1).
 
+pub mod base_parameters;
 mod christoffel;
 mod crba;
 pub mod derivatives;

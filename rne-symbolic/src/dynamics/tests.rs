@@ -16,7 +16,7 @@ fn table_6_1() -> [f64; 9] {
 }
 
 /// The planar elbow of chapter 4 with every parameter a symbol.
-fn planar_elbow() -> RobotModel {
+pub(super) fn planar_elbow() -> RobotModel {
     let mut graph = ExprGraph::new(SymbolTable::with_joints(["q1", "q2"]));
     let p: Vec<Id> = NAMES
         .iter()
