@@ -1,6 +1,7 @@
 //! Taking the Newton–Euler torques apart: M(q), C(q, q̇), g(q), the bias, the energies and
 //! forward dynamics, each built on demand into the model's expression graph (3.1).
 
+mod aba;
 pub mod base_parameters;
 mod christoffel;
 mod crba;
@@ -420,6 +421,17 @@ impl SymbolicDynamics {
                 }
             })
             .collect()
+    }
+
+    /// q̈ = FD(q, q̇, u) by the articulated-body algorithm ([`aba`]), linear in the number of
+    /// links; `None` for a floating base or mimic couplings (use [`Self::forward_dynamics`]).
+    pub fn forward_dynamics_articulated(&mut self) -> Option<Vec<Id>> {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let u = self.velocity_symbols(Symbol::Force);
+        let zeros = self.zeros();
+        let motion = self.motion(qd, zeros);
+        let gravity = self.model.gravity;
+        aba::forward_dynamics(&mut self.model, &motion, &u, gravity)
     }
 }
 
