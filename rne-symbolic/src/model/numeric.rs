@@ -1,7 +1,19 @@
 //! The model with every expression evaluated: plain `f64` data for numeric algorithms.
 
-use super::{JointKind, RobotModel};
+use super::{Base, JointKind, RobotModel};
 use crate::expr::{Id, Symbol};
+
+/// Joint friction with numeric coefficients: `τ_f = viscous · q̇ + coulomb · sign(q̇) + offset`
+/// (see [`Friction`](super::Friction)).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct NumericFriction {
+    /// Viscous coefficient f_v.
+    pub viscous: f64,
+    /// Coulomb coefficient f_c.
+    pub coulomb: f64,
+    /// Constant offset.
+    pub offset: f64,
+}
 
 /// One link of a [`NumericModel`]; fields as in [`Link`](super::Link).
 #[derive(Clone, Debug, PartialEq)]
@@ -10,9 +22,10 @@ pub struct NumericLink {
     pub name: String,
     /// Index of the parent link; `None` for a link on the base.
     pub parent: Option<usize>,
-    /// Revolute, prismatic or fixed.
+    /// Revolute, prismatic, fixed, or the free-flyer root of a floating base.
     pub kind: JointKind,
-    /// Index of the joint variable (`None` for fixed joints).
+    /// Index of the joint variable (`None` for fixed joints and the free-flyer); for a coupled
+    /// (mimic) link, the index of the variable it follows.
     pub joint: Option<usize>,
     /// `E_i`, row-major.
     pub rotation: [[f64; 3]; 3],
@@ -26,6 +39,14 @@ pub struct NumericLink {
     pub com: [f64; 3],
     /// Inertia about the centre of mass, body axes, row-major.
     pub inertia: [[f64; 3]; 3],
+    /// `(multiplier, offset)` of a constrained mimic follower: its coordinate is
+    /// `multiplier · q[joint] + offset` (see [`Coupling`](super::Coupling)); `None` when the
+    /// link's coordinate is its variable.
+    pub coupling: Option<(f64, f64)>,
+    /// Joint friction, if the model has it.
+    pub friction: Option<NumericFriction>,
+    /// Armature (reflected rotor inertia) of the joint, if the model has it.
+    pub armature: Option<f64>,
 }
 
 /// A robot with numeric geometry and inertia, for algorithms that do not work on expressions
@@ -34,8 +55,10 @@ pub struct NumericLink {
 pub struct NumericModel {
     /// The robot's name.
     pub name: String,
-    /// Gravity in the base frame.
+    /// Gravity in the base frame (the world frame of a floating base).
     pub gravity: [f64; 3],
+    /// Fixed to the world, or floating (then link 0 is the [`JointKind::FreeFlyer`] root).
+    pub base: Base,
     /// Links, parents first.
     pub links: Vec<NumericLink>,
     /// Joint variable names in joint order.
@@ -43,9 +66,27 @@ pub struct NumericModel {
 }
 
 impl NumericModel {
-    /// Number of joint variables.
+    /// Number of joint variables (the free-flyer not counted).
     pub fn dof(&self) -> usize {
         self.joint_names.len()
+    }
+
+    /// Size of the configuration vector: `dof`, plus 7 (position, unit quaternion) with a
+    /// floating base.
+    pub fn nq(&self) -> usize {
+        match self.base {
+            Base::Fixed => self.dof(),
+            Base::Floating => 7 + self.dof(),
+        }
+    }
+
+    /// Size of the velocity vector: `dof`, plus 6 (linear and angular velocity) with a
+    /// floating base.
+    pub fn nv(&self) -> usize {
+        match self.base {
+            Base::Fixed => self.dof(),
+            Base::Floating => 6 + self.dof(),
+        }
     }
 }
 
@@ -60,6 +101,13 @@ impl RobotModel {
             outputs.push(link.mass);
             outputs.extend(link.com);
             outputs.extend(link.inertia.iter().flatten());
+            if let Some(coupling) = link.coupling {
+                outputs.extend([coupling.multiplier, coupling.offset]);
+            }
+            if let Some(friction) = link.friction {
+                outputs.extend([friction.viscous, friction.coulomb, friction.offset]);
+            }
+            outputs.extend(link.armature);
         }
         let values = self.graph.eval::<f64>(&outputs, |s: Symbol| {
             self.parameter_value(s).unwrap_or(f64::NAN)
@@ -83,11 +131,19 @@ impl RobotModel {
                 mass: reader.scalar(),
                 com: reader.vec3(),
                 inertia: reader.mat3(),
+                coupling: link.coupling.map(|_| (reader.scalar(), reader.scalar())),
+                friction: link.friction.map(|_| NumericFriction {
+                    viscous: reader.scalar(),
+                    coulomb: reader.scalar(),
+                    offset: reader.scalar(),
+                }),
+                armature: link.armature.map(|_| reader.scalar()),
             })
             .collect();
         NumericModel {
             name: self.name.clone(),
             gravity,
+            base: self.base,
             links,
             joint_names: self.joint_names(),
         }

@@ -6,7 +6,8 @@ use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Unit, Vector3};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::TestRunner;
-use rne_models::reference::{Reference, ReferenceError};
+use rne_reference::{Reference, ReferenceError};
+use rne_symbolic::model::Base;
 use rne_symbolic::model::NumericLink;
 use rne_symbolic::{JointKind, NumericModel};
 
@@ -132,12 +133,16 @@ fn robot(specs: &[LinkSpec], shift: usize, gravity: [f64; 3]) -> NumericModel {
                 mass,
                 com: s.com,
                 inertia: rows(&inertia),
+                coupling: None,
+                friction: None,
+                armature: None,
             }
         })
         .collect();
     NumericModel {
         name: "random".into(),
         gravity,
+        base: Base::Fixed,
         links,
         joint_names: (0..dof).map(|k| format!("q{k}")).collect(),
     }
