@@ -46,8 +46,10 @@ pub(crate) fn mass_matrix<T: RealField + Copy>(
         if body.motion == Motion::FreeFlyer {
             let composite = data.composite[i].to_matrix();
             for r in 0..6 {
-                for c in 0..6 {
-                    out[base_index(r) * n + base_index(c)] = composite[(r, c)];
+                for c in r..6 {
+                    let (row, column) = (base_index(r), base_index(c));
+                    out[row * n + column] = composite[(r, c)];
+                    out[column * n + row] = composite[(r, c)];
                 }
             }
             continue;

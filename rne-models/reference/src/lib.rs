@@ -174,7 +174,7 @@ impl Reference {
         qd: &[f64],
         qdd: &[f64],
     ) -> Result<DVector<f64>, ReferenceError> {
-        let mut tau = DVector::zeros(self.dof());
+        let mut tau = DVector::zeros(self.nv());
         self.inverse_dynamics_into(q, qd, qdd, tau.as_mut_slice())?;
         Ok(tau)
     }
