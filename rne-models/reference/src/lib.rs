@@ -34,6 +34,7 @@
 //! | [`Reference::forward_dynamics`] | ABA, RBDA table 7.1 (does not form M) |
 //! | [`Reference::kinetic_energy`], [`Reference::potential_energy`] | sums over the bodies |
 //! | [`Reference::inverse_dynamics_derivatives`], [`Reference::forward_dynamics_derivatives`] | the above on dual numbers |
+//! | [`Reference::regressor`], [`Reference::standard_parameters`] | per-body spatial regressor |
 //! | [`Reference::frame_placements`], [`Reference::frame_jacobians`], [`Reference::frame_jacobian_dot_qd`] | forward kinematics, RBDA section 4.1 |
 //!
 //! # Memory
@@ -61,6 +62,7 @@ mod error;
 mod friction;
 mod kinematics;
 mod model;
+mod regressor;
 mod rnea;
 mod spatial;
 mod validate;

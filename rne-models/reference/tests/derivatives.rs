@@ -5,7 +5,7 @@ mod common;
 
 use common::{
     coupled, fixture, floating, floating_three_body, matrix_rel_err, rel_err, rng, rotation_of,
-    state, with_friction_and_armature, Mimic, FIXTURES,
+    state, with_fixed_payload, with_friction_and_armature, Mimic, FIXTURES,
 };
 use nalgebra::{DMatrix, DVector, Rotation3, Vector3};
 use rne_reference::Reference;
@@ -27,6 +27,7 @@ fn models() -> Vec<NumericModel> {
     };
     models.push(coupled(&floating(&fixture("ur5.urdf")), mimic).0);
     models.push(with_friction_and_armature(&floating_three_body()));
+    models.push(with_fixed_payload(&floating(&fixture("puma560.toml"))));
     models
 }
 

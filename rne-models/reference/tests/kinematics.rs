@@ -4,8 +4,8 @@
 mod common;
 
 use common::{
-    coupled, fixture, floating, floating_three_body, rel_err, rng, rotation_of, state, Mimic,
-    FIXTURES,
+    coupled, fixture, floating, floating_three_body, rel_err, rng, rotation_of, state,
+    with_fixed_payload, Mimic, FIXTURES,
 };
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3, Vector6};
 use rne_reference::Reference;
@@ -24,6 +24,7 @@ fn models() -> Vec<NumericModel> {
         offset: -0.3,
     };
     models.push(coupled(&floating(&fixture("ur5.urdf")), mimic).0);
+    models.push(with_fixed_payload(&floating_three_body()));
     models
 }
 

@@ -347,3 +347,38 @@ pub fn with_friction_and_armature(model: &NumericModel) -> NumericModel {
         ..model.clone()
     }
 }
+
+/// `model` with a massive tool fixed behind its last link (two fixed links deep, rotated and
+/// offset) and a massive plate fixed to the world, which moves nothing.
+pub fn with_fixed_payload(model: &NumericModel) -> NumericModel {
+    let last = model.links.len() - 1;
+    let fixed = |name: &str, parent: Option<usize>, mass: f64| {
+        link(
+            name,
+            parent,
+            JointKind::Fixed,
+            None,
+            rotation_rows([0.2, -0.5, 1.0], 0.9),
+            [0.05, -0.1, 0.2],
+            [0.0, 0.0, 1.0],
+            mass,
+            [0.02, 0.03, -0.04],
+            [
+                [0.01, 0.002, 0.0],
+                [0.002, 0.02, 0.001],
+                [0.0, 0.001, 0.015],
+            ],
+        )
+    };
+    let mut links = model.links.clone();
+    links.push(fixed("flange", Some(last), 0.7));
+    links.push(fixed("tool", Some(last + 1), 1.2));
+    if model.base == Base::Fixed {
+        links.push(fixed("plate", None, 5.0));
+    }
+    NumericModel {
+        name: format!("{}-payload", model.name),
+        links,
+        ..model.clone()
+    }
+}
