@@ -15,6 +15,17 @@ use crate::configuration::perturb;
 use crate::error::ReferenceError;
 use crate::{aba, cholesky, crba, friction, rnea, Reference};
 
+/// The derivatives of forward dynamics at one state, each `nv × nv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForwardDynamicsDerivatives {
+    /// `∂q̈/∂q`, in the tangent space of q.
+    pub dqdd_dq: DMatrix<f64>,
+    /// `∂q̈/∂q̇`.
+    pub dqdd_dqd: DMatrix<f64>,
+    /// `∂q̈/∂τ = M(q)⁻¹`.
+    pub mass_matrix_inverse: DMatrix<f64>,
+}
+
 /// What a dual-number evaluation differentiates by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Direction {
@@ -68,14 +79,14 @@ impl Reference {
         Ok((dq, dv))
     }
 
-    /// `(∂q̈/∂q, ∂q̈/∂q̇, M⁻¹)` of [`Reference::forward_dynamics`] at (q, q̇, τ), each `nv × nv`
-    /// (∂q̈/∂τ is M⁻¹), differentiating the ABA itself (the Cholesky solve for a coupled model).
+    /// `∂q̈/∂q`, `∂q̈/∂q̇` and `M⁻¹ = ∂q̈/∂τ` of [`Reference::forward_dynamics`] at (q, q̇, τ),
+    /// differentiating the ABA itself (the Cholesky solve for a coupled model).
     pub fn forward_dynamics_derivatives(
         &mut self,
         q: &[f64],
         qd: &[f64],
         tau: &[f64],
-    ) -> Result<(DMatrix<f64>, DMatrix<f64>, DMatrix<f64>), ReferenceError> {
+    ) -> Result<ForwardDynamicsDerivatives, ReferenceError> {
         self.check(&[("q", q)], &[("qd", qd), ("tau", tau)])?;
         let n = self.nv();
         let mut qdd = vec![Dual64::from_re(0.0); n];
@@ -98,7 +109,11 @@ impl Reference {
                 out.set_column(j, &DVector::from_iterator(n, qdd.iter().map(|a| a.eps)));
             }
         }
-        Ok((dq, dv, self.mass_matrix_inverse(q)?))
+        Ok(ForwardDynamicsDerivatives {
+            dqdd_dq: dq,
+            dqdd_dqd: dv,
+            mass_matrix_inverse: self.mass_matrix_inverse(q)?,
+        })
     }
 
     /// `M(q)⁻¹` (`nv × nv`), by Cholesky of the CRBA's M; non-finite when M is singular.

@@ -67,6 +67,7 @@ mod rnea;
 mod spatial;
 mod validate;
 
+pub use derivatives::ForwardDynamicsDerivatives;
 pub use error::ReferenceError;
 pub use kinematics::Placement;
 
