@@ -169,3 +169,73 @@ impl Reader<'_> {
         [self.vec3(), self.vec3(), self.vec3()]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Coupling, Friction};
+    use crate::spec::{parse_str, LoadOptions};
+
+    const TWO_LINKS: &str = r#"
+name = "two"
+[[link]]
+name = "upper"
+joint = "revolute"
+q = "q1"
+rotation = "Rz(q1)"
+mass = 1.0
+inertia = { xx = 0.01, yy = 0.01, zz = 0.01 }
+[[link]]
+name = "lower"
+joint = "revolute"
+q = "q2"
+rotation = "Rz(q2)"
+position = [0.2, 0.0, 0.0]
+mass = 0.5
+inertia = { xx = 0.02, yy = 0.02, zz = 0.02 }
+"#;
+
+    #[test]
+    fn to_numeric_carries_base_coupling_friction_and_armature() {
+        let mut model = parse_str(TWO_LINKS, "two.toml", &LoadOptions::default()).unwrap();
+        let g = &mut model.graph;
+        let (m, o, fv, fc, f0, ia) = (
+            g.constant(-2.0),
+            g.constant(0.3),
+            g.constant(0.1),
+            g.constant(0.2),
+            g.constant(-0.05),
+            g.constant(0.04),
+        );
+        model.links[1].coupling = Some(Coupling {
+            multiplier: m,
+            offset: o,
+        });
+        model.links[1].friction = Some(Friction {
+            viscous: fv,
+            coulomb: fc,
+            offset: f0,
+        });
+        model.links[0].armature = Some(ia);
+        model.base = Base::Floating;
+        let numeric = model.to_numeric();
+        assert_eq!(numeric.base, Base::Floating);
+        assert_eq!((numeric.nq(), numeric.nv()), (9, 8));
+        assert_eq!(numeric.links[1].coupling, Some((-2.0, 0.3)));
+        assert_eq!(
+            numeric.links[1].friction,
+            Some(NumericFriction {
+                viscous: 0.1,
+                coulomb: 0.2,
+                offset: -0.05
+            })
+        );
+        assert_eq!(numeric.links[0].armature, Some(0.04));
+        assert_eq!(
+            (numeric.links[0].coupling, numeric.links[0].friction),
+            (None, None)
+        );
+        assert_eq!(numeric.links[1].armature, None);
+        assert_eq!(numeric.links[1].mass, 0.5);
+    }
+}
