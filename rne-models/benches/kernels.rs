@@ -55,7 +55,7 @@ use criterion::{Bencher, BenchmarkGroup, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rne_models::builtin::{builtin, RobotSource, BUILTIN_ROBOTS};
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 
 /// Number of states in each robot's input pool; a power of two, so cycling is a mask.

@@ -15,7 +15,7 @@ use rand_chacha::ChaCha8Rng;
 use rne_symbolic::RobotModel;
 
 use crate::kernels::{DimensionError, Kernels};
-use crate::reference::{Reference, ReferenceError};
+use rne_reference::{Reference, ReferenceError};
 
 /// The worst error of one quantity over the sampled states.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,4 +1,5 @@
-//! Built-in robots, the independent numeric reference, simulations and the `rne` command.
+//! Built-in robots, simulations and the `rne` command; the independent numeric reference is the
+//! `rne-reference` crate.
 #![deny(missing_docs)]
 
 pub mod accuracy;
@@ -8,6 +9,5 @@ pub mod cli;
 pub mod generated;
 pub mod interpreted;
 pub mod kernels;
-pub mod reference;
 pub mod sim;
 pub mod stress;

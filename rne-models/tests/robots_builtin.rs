@@ -7,7 +7,7 @@
 mod robots_common;
 
 use rne_models::builtin::{builtin, RobotSource, BUILTIN_ROBOTS};
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 use robots_common::{assert_close, kernels, reference, rng, state, uniform, Symbolic};
 

@@ -5,7 +5,7 @@
 mod robots_common;
 
 use rne_models::builtin::{builtin, RobotSource};
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 use robots_common::Symbolic;
 

@@ -7,7 +7,7 @@
 mod robots_common;
 
 use rne_codegen_core::{generate, Scene};
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use robots_common::{assert_close, fixture, load, reference, rng, state, uniform, Symbolic};
 
 fn agrees_with_the_reference(file: &str) {

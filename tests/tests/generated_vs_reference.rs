@@ -5,7 +5,7 @@ mod common;
 
 use common::{flat, mat_vec, rel_err, state, Worst};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 
 const SAMPLES: usize = 10_000;

@@ -11,7 +11,7 @@ use common::{mat_vec, rel_err, rel_err_floor};
 use proptest::prelude::*;
 use rne_models::interpreted::Interpreted;
 use rne_models::kernels::Kernels;
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::{parse_str, LoadOptions};
 
 /// One random link: DH geometry, joint kind, mass, COM and principal moments with a rotation.

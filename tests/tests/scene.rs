@@ -171,7 +171,7 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
         .find(|p| p.name == "m3")
         .unwrap()
         .value = 44.0;
-    let mut reference = rne_models::reference::Reference::new(&model.to_numeric());
+    let mut reference = rne_reference::Reference::new(&model.to_numeric());
     let (q, qd, qdd) = ([0.1, 0.7, -1.2], [0.5, -0.3, 2.0], [1.0, 0.2, -0.4]);
     let expected: Vec<f64> = reference
         .inverse_dynamics(&q, &qd, &qdd)

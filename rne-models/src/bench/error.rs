@@ -6,8 +6,8 @@ use rne_codegen::CodegenError;
 use rne_symbolic::spec::SpecError;
 
 use crate::kernels::DimensionError;
-use crate::reference::ReferenceError;
 use crate::sim::SimError;
+use rne_reference::ReferenceError;
 
 /// A benchmark that failed. Every message names the robot, run or file it is about.
 #[derive(Debug, thiserror::Error)]

@@ -23,7 +23,7 @@ pub enum Implementation {
     /// ([`crate::interpreted::Interpreted`]), in `f64`.
     Interpreted,
     /// The independent numeric reference: spatial RNEA, CRBA and ABA on nalgebra
-    /// ([`crate::reference::Reference`], its allocation-free `*_into` methods).
+    /// ([`rne_reference::Reference`], its allocation-free `*_into` methods).
     Reference,
 }
 

@@ -21,7 +21,7 @@ use super::subject::{Input, Returning, Subject, Writing};
 use super::timing::Timed;
 use crate::builtin::{BuiltinRobot, RobotSource};
 use crate::interpreted::Interpreted;
-use crate::reference::Reference;
+use rne_reference::Reference;
 
 /// Seed of every robot's sample.
 pub const SEED: u64 = 0x5eed_be4c;
@@ -201,7 +201,7 @@ impl<'a> Candidates<'a> {
         let inputs = self.inputs::<f64, N>(Implementation::Reference)?;
         let mut reference = self.cases.reference()?;
         let pool = self.pool;
-        fn write(result: Result<(), crate::reference::ReferenceError>, out: &mut [f64]) {
+        fn write(result: Result<(), rne_reference::ReferenceError>, out: &mut [f64]) {
             if result.is_err() {
                 out.fill(f64::NAN);
             }

@@ -11,7 +11,7 @@ use super::CliError;
 use crate::builtin::RobotSource;
 use crate::interpreted::Interpreted;
 use crate::kernels::Kernels;
-use crate::reference::Reference;
+use rne_reference::Reference;
 
 /// Which implementation computes the numbers.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -143,7 +143,7 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
             }
         }
         Engine::Numeric => {
-            let numeric = |e: crate::reference::ReferenceError| CliError::Argument(e.to_string());
+            let numeric = |e: rne_reference::ReferenceError| CliError::Argument(e.to_string());
             let mut reference = Reference::try_new(&model.to_numeric()).map_err(numeric)?;
             let rows = |m: nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
                 m.row_iter().map(|r| r.iter().copied().collect()).collect()

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rne_models::kernels::Kernels;
-use rne_models::reference::Reference;
+use rne_reference::Reference;
 use rne_symbolic::spec::{self, LoadOptions};
 use rne_symbolic::{Id, RobotModel, Symbol, SymbolicDynamics};
 

@@ -37,7 +37,7 @@ pub use geometry::{
 pub use lock::LockError;
 pub use massless::MasslessJoint;
 pub use mimic::MimicError;
-pub use numeric::{NumericLink, NumericModel};
+pub use numeric::{NumericFriction, NumericLink, NumericModel};
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
 

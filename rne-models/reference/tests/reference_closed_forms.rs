@@ -7,7 +7,8 @@ use std::f64::consts::FRAC_PI_2;
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rne_models::reference::Reference;
+use rne_reference::Reference;
+use rne_symbolic::model::Base;
 use rne_symbolic::model::NumericLink;
 use rne_symbolic::{JointKind, NumericModel};
 
@@ -27,6 +28,9 @@ fn link(name: &str, parent: Option<usize>, kind: JointKind, joint: Option<usize>
         mass: 0.0,
         com: [0.0; 3],
         inertia: [[0.0; 3]; 3],
+        coupling: None,
+        friction: None,
+        armature: None,
     }
 }
 
@@ -79,6 +83,7 @@ fn planar_elbow() -> NumericModel {
     NumericModel {
         name: "planar-elbow".into(),
         gravity: [0.0, -G, 0.0],
+        base: Base::Fixed,
         links: vec![
             NumericLink {
                 mass: m,
@@ -105,6 +110,7 @@ fn planar_elbow_matches_the_thesis_closed_forms_4_45_to_4_47_and_its_potential_e
     // Without gravity the bias is C q̇ alone, not a difference bias − g that would cancel.
     let mut weightless = Reference::new(&NumericModel {
         gravity: [0.0; 3],
+        base: Base::Fixed,
         ..planar_elbow()
     });
     let mut rng = ChaCha8Rng::seed_from_u64(445);
@@ -209,12 +215,16 @@ fn puma560() -> NumericModel {
                 mass,
                 com: com.into(),
                 inertia: rows(&inertia),
+                coupling: None,
+                friction: None,
+                armature: None,
             }
         })
         .collect();
     NumericModel {
         name: "puma560".into(),
         gravity: [0.0, 0.0, -G],
+        base: Base::Fixed,
         links,
         joint_names: (1..=6).map(|j| format!("q{j}")).collect(),
     }
@@ -361,6 +371,7 @@ fn cart_pole_with_a_prismatic_rail_matches_its_lagrangian_closed_form() {
     let model = NumericModel {
         name: "cart-pole".into(),
         gravity: [0.0, -G, 0.0],
+        base: Base::Fixed,
         links: vec![
             NumericLink {
                 translation: [0.3, -0.5, 0.0],
@@ -421,6 +432,7 @@ fn slider_on_a_rotating_arm_has_the_prismatic_coriolis_term() {
     let model = NumericModel {
         name: "r-theta".into(),
         gravity: [0.0, -G, 0.0],
+        base: Base::Fixed,
         links: vec![
             NumericLink {
                 inertia: diagonal(i1, i1, i1),

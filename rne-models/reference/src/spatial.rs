@@ -7,20 +7,20 @@
 //! `[n_O; f]` (moment about O, force). Everything is expressed in the coordinates of one body
 //! frame; the link algorithms never need a world frame.
 
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, RealField, Vector3, Vector6};
 
 /// The angular (upper) half of a spatial vector.
-pub(crate) fn angular(v: &Vector6<f64>) -> Vector3<f64> {
+pub(crate) fn angular<T: RealField + Copy>(v: &Vector6<T>) -> Vector3<T> {
     v.fixed_rows::<3>(0).into_owned()
 }
 
 /// The linear (lower) half of a spatial vector.
-pub(crate) fn linear(v: &Vector6<f64>) -> Vector3<f64> {
+pub(crate) fn linear<T: RealField + Copy>(v: &Vector6<T>) -> Vector3<T> {
     v.fixed_rows::<3>(3).into_owned()
 }
 
 /// Stacks an angular and a linear part into a spatial vector.
-pub(crate) fn spatial(angular: Vector3<f64>, linear: Vector3<f64>) -> Vector6<f64> {
+pub(crate) fn spatial<T: RealField + Copy>(angular: Vector3<T>, linear: Vector3<T>) -> Vector6<T> {
     Vector6::new(
         angular.x, angular.y, angular.z, linear.x, linear.y, linear.z,
     )
@@ -28,7 +28,7 @@ pub(crate) fn spatial(angular: Vector3<f64>, linear: Vector3<f64>) -> Vector6<f6
 
 /// Motion cross product `v ×m m` (RBDA (2.31)):
 /// `[ω; v] ×m [ω_m; v_m] = [ω × ω_m; ω × v_m + v × ω_m]`.
-pub(crate) fn motion_cross(v: &Vector6<f64>, m: &Vector6<f64>) -> Vector6<f64> {
+pub(crate) fn motion_cross<T: RealField + Copy>(v: &Vector6<T>, m: &Vector6<T>) -> Vector6<T> {
     let (w, vl) = (angular(v), linear(v));
     let (mw, ml) = (angular(m), linear(m));
     spatial(w.cross(&mw), w.cross(&ml) + vl.cross(&mw))
@@ -36,7 +36,7 @@ pub(crate) fn motion_cross(v: &Vector6<f64>, m: &Vector6<f64>) -> Vector6<f64> {
 
 /// Force cross product `v ×* f = −(v ×m)ᵀ f` (RBDA (2.32)):
 /// `[ω; v] ×* [n; f] = [ω × n + v × f; ω × f]`.
-pub(crate) fn force_cross(v: &Vector6<f64>, f: &Vector6<f64>) -> Vector6<f64> {
+pub(crate) fn force_cross<T: RealField + Copy>(v: &Vector6<T>, f: &Vector6<T>) -> Vector6<T> {
     let (w, vl) = (angular(v), linear(v));
     let (n, fl) = (angular(f), linear(f));
     spatial(w.cross(&n) + vl.cross(&fl), w.cross(&fl))
@@ -52,17 +52,17 @@ pub(crate) fn force_cross(v: &Vector6<f64>, f: &Vector6<f64>) -> Vector6<f64> {
 /// For a link, A is the parent's body frame and B the link's, so `E = (R_i^p)ᵀ` and `r` is the
 /// link's origin in the parent frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Transform {
+pub(crate) struct Transform<T: RealField + Copy> {
     /// `E`.
-    pub rotation: Matrix3<f64>,
+    pub rotation: Matrix3<T>,
     /// `r`.
-    pub translation: Vector3<f64>,
+    pub translation: Vector3<T>,
 }
 
-impl Transform {
+impl<T: RealField + Copy> Transform<T> {
     /// The transform to a frame B with orientation `r_ba` (B's axes in A coordinates, the
     /// thesis's `R_B^A`) and origin `origin` (in A coordinates).
-    pub fn from_placement(r_ba: &Matrix3<f64>, origin: Vector3<f64>) -> Transform {
+    pub fn from_placement(r_ba: &Matrix3<T>, origin: Vector3<T>) -> Transform<T> {
         Transform {
             rotation: r_ba.transpose(),
             translation: origin,
@@ -70,7 +70,7 @@ impl Transform {
     }
 
     /// `ᴮX_A m` for a motion vector given in A: `[E ω; E (v − r × ω)]`.
-    pub fn apply_motion(&self, m: &Vector6<f64>) -> Vector6<f64> {
+    pub fn apply_motion(&self, m: &Vector6<T>) -> Vector6<T> {
         let w = angular(m);
         let v = linear(m) - self.translation.cross(&w);
         spatial(self.rotation * w, self.rotation * v)
@@ -78,7 +78,7 @@ impl Transform {
 
     /// `(ᴮX_A)ᵀ f` for a force vector given in B, which is the same force expressed in A
     /// (`ᴬX_B^* = (ᴮX_A)ᵀ`): `[Eᵀ n + r × Eᵀ f; Eᵀ f]`.
-    pub fn transpose_apply_force(&self, f: &Vector6<f64>) -> Vector6<f64> {
+    pub fn transpose_apply_force(&self, f: &Vector6<T>) -> Vector6<T> {
         let fl = self.rotation.tr_mul(&linear(f));
         let n = self.rotation.tr_mul(&angular(f)) + self.translation.cross(&fl);
         spatial(n, fl)
@@ -90,7 +90,7 @@ impl Transform {
     /// ```text
     /// m' = m,   h' = Eᵀ h + m r,   Ī' = Eᵀ Ī E − r× (Eᵀh)× − h'× r×
     /// ```
-    pub fn transpose_apply_inertia(&self, inertia: &RigidInertia) -> RigidInertia {
+    pub fn transpose_apply_inertia(&self, inertia: &RigidInertia<T>) -> RigidInertia<T> {
         let h = self.rotation.tr_mul(&inertia.first_moment);
         let moment = h + self.translation * inertia.mass;
         let rx = self.translation.cross_matrix();
@@ -110,7 +110,7 @@ impl Transform {
     /// [ A' − B' r× + r× B'ᵀ − r× C' r×    B' + r× C' ]
     /// [ (B' + r× C')ᵀ                      C'         ]
     /// ```
-    pub fn transpose_apply_matrix(&self, inertia: &Matrix6<f64>) -> Matrix6<f64> {
+    pub fn transpose_apply_matrix(&self, inertia: &Matrix6<T>) -> Matrix6<T> {
         let e = &self.rotation;
         let a = e.tr_mul(&inertia.fixed_view::<3, 3>(0, 0)) * e;
         let b = e.tr_mul(&inertia.fixed_view::<3, 3>(0, 3)) * e;
@@ -139,19 +139,19 @@ impl Transform {
 /// Ten numbers instead of 36, closed under addition and under [`Transform`]s, which is what the
 /// composite-rigid-body algorithm needs.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct RigidInertia {
+pub(crate) struct RigidInertia<T: RealField + Copy> {
     /// m.
-    pub mass: f64,
+    pub mass: T,
     /// h = m c.
-    pub first_moment: Vector3<f64>,
+    pub first_moment: Vector3<T>,
     /// Ī, the rotational inertia about the frame origin.
-    pub rotational: Matrix3<f64>,
+    pub rotational: Matrix3<T>,
 }
 
-impl RigidInertia {
+impl<T: RealField + Copy> RigidInertia<T> {
     /// The inertia of a body of mass `mass` whose centre of mass lies at `com` with rotational
     /// inertia `inertia_com` about it (parallel-axis theorem: `Ī = I_c − m c× c×`).
-    pub fn from_com(mass: f64, com: Vector3<f64>, inertia_com: &Matrix3<f64>) -> RigidInertia {
+    pub fn from_com(mass: T, com: Vector3<T>, inertia_com: &Matrix3<T>) -> RigidInertia<T> {
         let cx = com.cross_matrix();
         RigidInertia {
             mass,
@@ -162,7 +162,7 @@ impl RigidInertia {
 
     /// The force `I v` of a motion `v = [ω; v_O]`: `[Ī ω + h × v_O; m v_O − h × ω]`
     /// (momentum when `v` is a velocity).
-    pub fn apply(&self, v: &Vector6<f64>) -> Vector6<f64> {
+    pub fn apply(&self, v: &Vector6<T>) -> Vector6<T> {
         let (w, vl) = (angular(v), linear(v));
         spatial(
             self.rotational * w + self.first_moment.cross(&vl),
@@ -171,7 +171,7 @@ impl RigidInertia {
     }
 
     /// The 6×6 matrix of this inertia.
-    pub fn to_matrix(self) -> Matrix6<f64> {
+    pub fn to_matrix(self) -> Matrix6<T> {
         let hx = self.first_moment.cross_matrix();
         let mut out = Matrix6::zeros();
         out.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.rotational);
@@ -183,8 +183,8 @@ impl RigidInertia {
     }
 }
 
-impl std::ops::AddAssign for RigidInertia {
-    fn add_assign(&mut self, other: RigidInertia) {
+impl<T: RealField + Copy> std::ops::AddAssign for RigidInertia<T> {
+    fn add_assign(&mut self, other: RigidInertia<T>) {
         self.mass += other.mass;
         self.first_moment += other.first_moment;
         self.rotational += other.rotational;
@@ -196,14 +196,14 @@ mod tests {
     use super::*;
     use nalgebra::{Rotation3, Unit};
 
-    fn sample_transform() -> Transform {
+    fn sample_transform() -> Transform<f64> {
         let axis = Unit::new_normalize(Vector3::new(0.3, -0.8, 0.5));
         let r = Rotation3::from_axis_angle(&axis, 0.9).into_inner();
         Transform::from_placement(&r, Vector3::new(0.4, -1.2, 0.7))
     }
 
     /// The full 6×6 matrix `ᴮX_A` of RBDA (2.24), written out independently.
-    fn plucker_matrix(x: &Transform) -> Matrix6<f64> {
+    fn plucker_matrix(x: &Transform<f64>) -> Matrix6<f64> {
         let mut out = Matrix6::zeros();
         out.fixed_view_mut::<3, 3>(0, 0).copy_from(&x.rotation);
         out.fixed_view_mut::<3, 3>(3, 3).copy_from(&x.rotation);
@@ -212,7 +212,7 @@ mod tests {
         out
     }
 
-    fn sample_inertia() -> RigidInertia {
+    fn sample_inertia() -> RigidInertia<f64> {
         let inertia = Matrix3::new(0.5, 0.02, -0.01, 0.02, 0.4, 0.03, -0.01, 0.03, 0.3);
         RigidInertia::from_com(2.5, Vector3::new(0.1, -0.2, 0.35), &inertia)
     }

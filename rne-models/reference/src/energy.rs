@@ -6,42 +6,51 @@
 //! ```
 //!
 //! with `[ω_i; v_i]` the spatial velocity of body i (body frame, at its origin), `c_i` its
-//! COM in the body frame and `R_i^0`, `p_i` its placement in the base frame. T equals
+//! COM in the body frame and `R_i^0`, `p_i` its placement in the world (base) frame — with a
+//! floating base, `p_i` includes the base position. T equals
 //! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1); V is zero when every COM is at the base origin, and
 //! `d(T + V)/dt = q̇ᵀ τ`. The sums use the COM form rather than the spatial inertias of the
 //! RNEA and CRBA, so comparing them checks those.
 
-use nalgebra::Vector6;
+use nalgebra::{RealField, Vector6};
 
-use super::data::Data;
-use super::model::Model;
-use super::spatial::{angular, linear};
+use crate::data::Data;
+use crate::model::Model;
+use crate::spatial::{angular, linear};
 
 /// Kinetic energy at (q, q̇). Slices have the model's length (checked by the caller).
-pub(crate) fn kinetic_energy(model: &Model, data: &mut Data, q: &[f64], qd: &[f64]) -> f64 {
-    let mut energy = 0.0;
+pub(crate) fn kinetic_energy<T: RealField + Copy>(
+    model: &Model<T>,
+    data: &mut Data<T>,
+    q: &[T],
+    v: &[T],
+) -> T {
+    let layout = &model.layout;
+    let half: T = nalgebra::convert(0.5);
+    let mut energy = T::zero();
     for (i, body) in model.bodies.iter().enumerate() {
-        let x = body.transform(q);
-        let mut v = match body.parent {
+        let x = body.transform(layout, q);
+        let velocity = match body.parent {
             Some(p) => x.apply_motion(&data.velocities[p]),
             None => Vector6::zeros(),
-        };
-        if let Some(k) = body.joint_index() {
-            v += body.motion_subspace * qd[k];
-        }
-        let w = angular(&v);
-        let com_velocity = linear(&v) + w.cross(&body.com);
-        energy += 0.5 * (body.mass * com_velocity.norm_squared() + w.dot(&(body.inertia_com * w)));
-        data.velocities[i] = v;
+        } + body.joint_motion(layout, v);
+        let w = angular(&velocity);
+        let com_velocity = linear(&velocity) + w.cross(&body.com);
+        energy += half * (body.mass * com_velocity.norm_squared() + w.dot(&(body.inertia_com * w)));
+        data.velocities[i] = velocity;
     }
     energy
 }
 
 /// Potential energy at q. Slices have the model's length (checked by the caller).
-pub(crate) fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> f64 {
-    let mut energy = 0.0;
+pub(crate) fn potential_energy<T: RealField + Copy>(
+    model: &Model<T>,
+    data: &mut Data<T>,
+    q: &[T],
+) -> T {
+    let mut energy = T::zero();
     for (i, body) in model.bodies.iter().enumerate() {
-        let x = body.transform(q);
+        let x = body.transform(&model.layout, q);
         let (rotation, origin) = match body.parent {
             Some(p) => (
                 data.rotations[p] * x.rotation.transpose(),
