@@ -8,7 +8,8 @@
 //! with `[ω_i; v_i]` the spatial velocity of body i (body frame, at its origin), `c_i` its
 //! COM in the body frame and `R_i^0`, `p_i` its placement in the world (base) frame — with a
 //! floating base, `p_i` includes the base position. T equals
-//! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1); V is zero when every COM is at the base origin, and
+//! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1) once the rotors' `½ I_a q̇_i²` is added for joints with
+//! armature (M carries `I_a` on its diagonal); V is zero when every COM is at the base origin, and
 //! `d(T + V)/dt = q̇ᵀ τ`. The sums use the COM form rather than the spatial inertias of the
 //! RNEA and CRBA, so comparing them checks those.
 
@@ -37,6 +38,9 @@ pub(crate) fn kinetic_energy<T: RealField + Copy>(
         let w = angular(&velocity);
         let com_velocity = linear(&velocity) + w.cross(&body.com);
         energy += half * (body.mass * com_velocity.norm_squared() + w.dot(&(body.inertia_com * w)));
+        if let (Some(armature), Some(rate)) = (body.armature, body.rate(layout, v)) {
+            energy += half * armature * rate * rate;
+        }
         data.velocities[i] = velocity;
     }
     energy

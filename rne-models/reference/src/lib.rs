@@ -286,7 +286,8 @@ impl Reference {
         Ok(())
     }
 
-    /// Kinetic energy `T = Σ ½ (m v_c·v_c + ωᵀ I_c ω) = ½ q̇ᵀ M(q) q̇`.
+    /// Kinetic energy `T = Σ ½ (m v_c·v_c + ωᵀ I_c ω) + Σ ½ I_a q̇_i² = ½ q̇ᵀ M(q) q̇` (the
+    /// second sum over joints with armature: the rotors).
     pub fn kinetic_energy(&mut self, q: &[f64], qd: &[f64]) -> Result<f64, ReferenceError> {
         self.check(&[("q", q)], &[("qd", qd)])?;
         Ok(energy::kinetic_energy(&self.model, &mut self.data, q, qd))

@@ -33,20 +33,22 @@ impl NumericModel {
                 carries[parent] |= carries[i];
             }
         }
-        let mut moving: Vec<(usize, usize)> = self
-            .links
-            .iter()
-            .enumerate()
-            .filter_map(|(i, link)| link.joint.map(|k| (k, i)))
-            .collect();
-        moving.sort_unstable();
-        moving
-            .into_iter()
-            .find(|&(_, i)| !carries[i])
-            .map(|(k, i)| MasslessJoint {
+        // A variable moves mass if any of its links does (a mimic follower may be massless
+        // while its leader is not); the link named is the first of the variable's links.
+        let mut variables: Vec<Option<(usize, bool)>> = vec![None; self.dof()];
+        for (i, link) in self.links.iter().enumerate() {
+            if let Some(k) = link.joint {
+                let (_, moves_mass) = variables[k].get_or_insert((i, false));
+                *moves_mass |= carries[i];
+            }
+        }
+        variables.iter().enumerate().find_map(|(k, v)| match *v {
+            Some((i, false)) => Some(MasslessJoint {
                 joint: self.joint_names[k].clone(),
                 link: self.links[i].name.clone(),
-            })
+            }),
+            _ => None,
+        })
     }
 }
 
@@ -98,6 +100,20 @@ inertia = { xx = INERTIA, yy = INERTIA, zz = INERTIA }
             .unwrap_err();
         assert_eq!((error.joint.as_str(), error.link.as_str()), ("q2", "tool"));
         assert!(error.to_string().contains("M(q) is singular"), "{error}");
+    }
+
+    #[test]
+    fn a_massless_mimic_follower_of_a_massive_leader_is_not_massless() {
+        let mut model = arm("0.0", "0.0").to_numeric();
+        // The massless tool now follows q1, which moves the upper link's mass.
+        model.links[1].joint = Some(0);
+        model.links[1].coupling = Some((1.0, 0.0));
+        model.joint_names.pop();
+        assert_eq!(model.massless_joint(), None);
+        model.links[0].mass = 0.0;
+        model.links[0].inertia = [[0.0; 3]; 3];
+        let error = model.massless_joint().unwrap();
+        assert_eq!((error.joint.as_str(), error.link.as_str()), ("q1", "upper"));
     }
 
     #[test]
