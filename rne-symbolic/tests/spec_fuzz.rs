@@ -201,6 +201,7 @@ fn read(text: &str, symbolic_parameters: bool) {
         "fuzz.toml",
         &LoadOptions {
             symbolic_parameters,
+            ..LoadOptions::default()
         },
     ) {
         assert_well_formed(&model);
@@ -221,6 +222,7 @@ fn the_seed_specs_are_valid() {
                 "seed.toml",
                 &LoadOptions {
                     symbolic_parameters: symbolic,
+                    ..LoadOptions::default()
                 },
             )
             .unwrap_or_else(|e| panic!("{e}"));

@@ -18,6 +18,7 @@ fn robot_path(file: &str) -> PathBuf {
 fn load(file: &str, symbolic_parameters: bool) -> RobotModel {
     let options = LoadOptions {
         symbolic_parameters,
+        ..LoadOptions::default()
     };
     spec::load_file(&robot_path(file), &options).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -671,6 +672,7 @@ fn parameters_are_defined_in_any_order() {
         "p.toml",
         &LoadOptions {
             symbolic_parameters: true,
+            ..LoadOptions::default()
         },
     )
     .unwrap_or_else(|e| panic!("{e}"));

@@ -16,6 +16,7 @@ fn planar_elbow() -> SymbolicDynamics {
         path.as_ref(),
         &LoadOptions {
             symbolic_parameters: true,
+            ..LoadOptions::default()
         },
     )
     .unwrap();

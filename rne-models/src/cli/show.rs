@@ -64,6 +64,7 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = source.load(&LoadOptions {
         symbolic_parameters: args.symbolic_params,
+        ..LoadOptions::default()
     })?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();

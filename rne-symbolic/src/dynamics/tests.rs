@@ -90,6 +90,7 @@ fn planar_elbow() -> RobotModel {
             },
         ],
         base: crate::model::Base::Fixed,
+        warnings: Vec::new(),
     }
 }
 

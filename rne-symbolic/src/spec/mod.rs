@@ -67,40 +67,29 @@ mod assemble;
 mod document;
 mod error;
 mod expression;
-mod format;
-pub(crate) mod frames;
-pub(crate) mod inertia;
+mod location;
 mod parameters;
-mod rewrite;
 mod schema;
 mod scope;
-pub(crate) mod tree;
-pub(crate) mod validate;
+mod tree;
+mod warning;
 
 use std::path::Path;
 
+/// The readers' common entry points, re-exported where callers have always found them.
+pub use crate::input::{load_robot, parse_robot, LoadOptions, RobotFormat};
 pub use error::{SpecError, SpecErrorKind};
-pub use format::{load_robot, parse_robot, RobotFormat};
+pub use warning::{SpecWarning, SpecWarningKind};
 
-use self::assemble::Assembled;
 use self::document::Table;
-use self::rewrite::Transplant;
+use self::location::Location;
 use self::schema::{LinkSpec, RobotSpec};
 use self::scope::Namespace;
 use self::tree::Tree;
-use self::validate::Values;
-use crate::expr::{ExprGraph, Id, Symbol, SymbolTable, Vec3};
-use crate::model::{Link, Transform};
+use crate::expr::{ExprGraph, SymbolTable, Vec3};
+use crate::input::{self, InputLink, RobotInput};
+use crate::model::Transform;
 use crate::RobotModel;
-
-/// How a spec is read.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub struct LoadOptions {
-    /// Keep every parameter as its own symbol `Symbol::Parameter(k)` (k in spec order) instead
-    /// of folding it into a constant (the CLI's `--symbolic-params`, the macro's
-    /// `parameters: runtime`). [`RobotModel::parameters`] holds the values either way.
-    pub symbolic_parameters: bool,
-}
 
 /// Reads the spec file at `path` (DESIGN §2); errors name the file as `path` displays.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
@@ -111,10 +100,26 @@ pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecE
     parse_str(&text, &origin, options)
 }
 
-/// Reads a spec from `text`; `origin` names the file in error messages.
+/// Reads a spec from `text`; `origin` names the file in error and warning messages.
 pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let root = document::parse(text).map_err(|e| e.locate(origin, text))?;
-    read(&root, options).map_err(|e| with_position(e, &root).locate(origin, text))
+    let mut model = read(&root, options).map_err(|mut e| {
+        with_position(e.location_mut(), &root);
+        e.locate(origin, text)
+    })?;
+    model.warnings = std::mem::take(&mut model.warnings)
+        .into_iter()
+        .map(|w| {
+            let mut at = Location {
+                link: w.link().map(str::to_owned),
+                field: w.field().map(str::to_owned),
+                ..Location::default()
+            };
+            with_position(&mut at, &root);
+            w.at_span(at.span).locate(origin, text)
+        })
+        .collect();
+    input::enforce(model, options.strict)
 }
 
 fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
@@ -137,36 +142,18 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let parameters = parameters::define(&mut scratch, &spec.parameters, &space)?;
     let gravity = gravity(&mut scratch, &spec, &space)?;
     let built = assemble_links(&mut scratch, &tree, &links, &space)?;
-
-    let values = Values::new(&scratch, &parameters);
-    validate::finite_vector(&values, &gravity, "gravity")?;
-    for assembled in &built {
-        validate::link(&values, assembled).map_err(|e| e.in_link(&assembled.link.name))?;
-    }
-
-    let mut graph = ExprGraph::new(SymbolTable::with_joints(tree.joint_names()));
-    if options.symbolic_parameters {
-        for p in &parameters {
-            graph.symbols_mut().push_parameter(p.name.clone());
-        }
-    }
-    let symbol = |g: &mut ExprGraph, s: Symbol| match s {
-        Symbol::Parameter(k) if !options.symbolic_parameters => {
-            g.constant(parameters.get(k as usize).map_or(f64::NAN, |p| p.value))
-        }
-        s => g.symbol(s),
-    };
-    let links = built.into_iter().map(|b| b.link).collect();
-    let (graph, gravity, links) = copy_model(&scratch, graph, symbol, gravity, links);
-    Ok(RobotModel {
-        name: spec.name,
-        graph,
-        parameters,
-        gravity,
-        links,
-        joints: tree.joints,
-        base: crate::model::Base::Fixed,
-    })
+    input::assemble(
+        RobotInput {
+            name: spec.name,
+            graph: scratch,
+            parameters,
+            gravity,
+            links: built,
+            joints: tree.joints,
+            base: spec.base,
+        },
+        options.symbolic_parameters,
+    )
 }
 
 /// Builds the links in model order, each placed by its parent's post-transform.
@@ -175,8 +162,8 @@ fn assemble_links(
     tree: &Tree,
     links: &[&LinkSpec<'_>],
     space: &Namespace,
-) -> Result<Vec<Assembled>, SpecError> {
-    let mut built: Vec<Assembled> = Vec::with_capacity(links.len());
+) -> Result<Vec<InputLink>, SpecError> {
+    let mut built: Vec<InputLink> = Vec::with_capacity(links.len());
     for (m, link) in links.iter().enumerate() {
         let parent = tree.parent.get(m).copied().flatten();
         let parent_post = match parent.and_then(|p| built.get(p)) {
@@ -191,43 +178,6 @@ fn assemble_links(
     Ok(built)
 }
 
-/// Copies a model's gravity and links, built in `scratch`, into `graph` (the model's own, which
-/// then holds only what the model uses), mapping each symbol through `symbol`. The copy visits
-/// gravity, then each link's rotation, translation, axis, mass, COM and inertia, so two readers
-/// that build the same expressions get the same graph, node for node (a URDF and the same robot
-/// as a TOML spec, whose links are constants).
-pub(crate) fn copy_model<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
-    scratch: &ExprGraph,
-    graph: ExprGraph,
-    symbol: F,
-    gravity: Vec3,
-    links: Vec<Link>,
-) -> (ExprGraph, Vec3, Vec<Link>) {
-    let mut copier = Transplant::new(scratch, graph, symbol);
-    let gravity = copier.vector(gravity);
-    let links = links
-        .into_iter()
-        .map(|link| copy_link(&mut copier, link))
-        .collect();
-    (copier.finish(), gravity, links)
-}
-
-/// A link with its expressions copied into the model's graph.
-fn copy_link<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
-    copier: &mut Transplant<'_, F>,
-    link: Link,
-) -> Link {
-    Link {
-        rotation: copier.matrix(link.rotation),
-        translation: copier.vector(link.translation),
-        axis: copier.vector(link.axis),
-        mass: copier.scalar(link.mass),
-        com: copier.vector(link.com),
-        inertia: copier.matrix(link.inertia),
-        ..link
-    }
-}
-
 /// The gravity vector in the base frame (default `[0, 0, -9.81]`).
 fn gravity(
     graph: &mut ExprGraph,
@@ -240,19 +190,19 @@ fn gravity(
     }
 }
 
-/// Gives an error without a position the position of its field (in its link, if any).
-fn with_position(error: SpecError, root: &Table) -> SpecError {
-    let table = match error.link() {
+/// Gives a finding without a position the position of its field (in its link, if any).
+fn with_position(at: &mut Location, root: &Table) {
+    let table = match &at.link {
         None => Some((root, None)),
         Some(name) => link_table(root, name),
     };
     let span = table.and_then(|(table, link_span)| {
-        error
-            .field()
+        at.field
+            .as_deref()
             .and_then(|field| table.span_of(field))
             .or(link_span)
     });
-    error.at_span(span)
+    at.at_span(span);
 }
 
 /// The first `[[link]]` table named `name`, and where it was written.
