@@ -19,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 
 fn builtin(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-models/robots")
+        .join("tests/fixtures/robots")
         .join(name)
 }
 

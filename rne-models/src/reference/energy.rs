@@ -9,7 +9,9 @@
 //! COM in the body frame and `R_i^0`, `p_i` its placement in the base frame. T equals
 //! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1); V is zero when every COM is at the base origin, and
 //! `d(T + V)/dt = q̇ᵀ τ`. The sums use the COM form rather than the spatial inertias of the
-//! RNEA and CRBA, so comparing them checks those.
+//! RNEA and CRBA, so comparing them checks those. Bodies that no joint moves (the root of a
+//! URDF and the bodies fixed to it) add a constant to V and are left out, as Pinocchio leaves
+//! out what is fixed to its universe frame.
 
 use nalgebra::Vector6;
 
@@ -40,7 +42,9 @@ pub(crate) fn kinetic_energy(model: &Model, data: &mut Data, q: &[f64], qd: &[f6
 /// Potential energy at q. Slices have the model's length (checked by the caller).
 pub(crate) fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> f64 {
     let mut energy = 0.0;
+    let mut moves = vec![false; model.bodies.len()];
     for (i, body) in model.bodies.iter().enumerate() {
+        moves[i] = body.joint_index().is_some() || body.parent.is_some_and(|p| moves[p]);
         let x = body.transform(q);
         let (rotation, origin) = match body.parent {
             Some(p) => (
@@ -49,8 +53,10 @@ pub(crate) fn potential_energy(model: &Model, data: &mut Data, q: &[f64]) -> f64
             ),
             None => (x.rotation.transpose(), x.translation),
         };
-        let com = origin + rotation * body.com;
-        energy -= body.mass * model.gravity.dot(&com);
+        if moves[i] {
+            let com = origin + rotation * body.com;
+            energy -= body.mass * model.gravity.dot(&com);
+        }
         data.rotations[i] = rotation;
         data.origins[i] = origin;
     }

@@ -16,9 +16,12 @@
 //! inertia = { box = ["l1", 0.08, 0.08] }
 //! ```
 //!
-//! [`load_robot`] and [`parse_robot`] read either format of DESIGN §2, a TOML spec (this
-//! module) or a URDF ([`crate::urdf`]), as the file's extension says ([`RobotFormat`]);
-//! [`load_file`] and [`parse_str`] read TOML only.
+//! [`load_robot`] and [`parse_robot`] (of [`crate::input`], re-exported here) read either
+//! format of DESIGN §2, a TOML spec (this module) or a URDF ([`crate::urdf`]), as the file's
+//! extension says ([`RobotFormat`]); [`load_file`] and [`parse_str`] read TOML only. Both
+//! readers build the shared input model of [`crate::input`], which validates it and assembles
+//! the [`RobotModel`]; the errors ([`SpecError`]) and warnings ([`SpecWarning`]) of both are
+//! defined here.
 //!
 //! # Reading
 //!
@@ -30,12 +33,15 @@
 //! 3. Parameters are defined in any order over each other, ordered by dependency and evaluated
 //!    (`parameters`). Expression strings are parsed straight into an [`ExprGraph`]
 //!    (`expression`), in which every parameter is its own symbol `Parameter(k)`.
-//! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post` (`frames`), its
-//!    placement is `parent.post ∘ pre`, its inertials are moved into the body frame
-//!    (`inertia`, `assemble`), and the result is checked numerically (`validate`).
-//! 5. The model's expressions are copied into the model's own graph, keeping parameters as
-//!    symbols or folding them into constants ([`LoadOptions::symbolic_parameters`]). Because
-//!    every structural check runs on the symbolic form, both modes accept the same specs.
+//! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post`
+//!    ([`crate::input::frames`]), its placement is `parent.post ∘ pre`, its inertials are moved
+//!    into the body frame, and its `mimic`, `friction` and `armature` are read (`assemble`):
+//!    an [`InputLink`] of the shared input model.
+//! 5. [`crate::input`] checks the result numerically (errors and warnings) and copies the
+//!    model's expressions into the model's own graph, keeping parameters as symbols or folding
+//!    them into constants ([`LoadOptions::symbolic_parameters`]). Because every structural
+//!    check runs on the symbolic form, both modes accept the same specs. Warnings get the line
+//!    of their field, and [`LoadOptions::strict`] turns the first into an error.
 //!
 //! # Decisions on points DESIGN §2 leaves open
 //!
@@ -55,8 +61,19 @@
 //!   moves that origin away from the link.
 //! - `inertia` is required (a point mass writes zeros). A 3×3 array must be symmetric to a
 //!   relative 1e-12; the model uses its upper triangle.
-//! - `triangle_inequality = false` turns off only the triangle inequality test, for published
-//!   data that breaks it (PUMA 560 link 3); the spec should say why in a comment.
+//! - Principal moments that break the triangle inequality are a warning;
+//!   `triangle_inequality = false` silences it for a link, for published data that breaks it
+//!   (PUMA 560 link 3); the spec should say why in a comment. A negative principal moment is a
+//!   warning when negligible ([`crate::input::NEGLIGIBLE_INERTIA`]), else an error; a moving
+//!   joint whose subtree has no mass is a warning.
+//! - `base` is `"fixed"` (default) or `"floating"` ([`RobotModel::base`]).
+//! - `mimic = { joint, multiplier, offset }`: `joint` is the leader's joint variable name (`q`
+//!   of its link); `multiplier` (default 1) and `offset` (default 0) are expressions. The
+//!   follower keeps its own `q` ([`Link::mimic`](crate::Link::mimic)). A missing leader, a
+//!   loop of followers and a mimic on a fixed joint are errors; a leader of another joint type
+//!   (a prismatic joint following a revolute one) is accepted, as URDF does.
+//! - `friction = { viscous, coulomb, offset }` (each default 0) and `armature` are
+//!   expressions; viscous, Coulomb and armature must be >= 0.
 //! - Joint variable names must be identifiers, unique, and distinct from parameter names,
 //!   also in their printed derivatives `D<q>`, `DD<q>` and force `tau_<q>`. Parameter and joint
 //!   names may not be `pi`, `sqrt`, `sin`, `cos`, `Rx`, `Ry`, `Rz`; no link may be named `base`.
