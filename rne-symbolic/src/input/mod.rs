@@ -2,15 +2,15 @@
 //! into a [`RobotModel`].
 //!
 //! The TOML reader ([`crate::spec`]) and the URDF reader ([`crate::urdf`]) each read their own
-//! syntax into a [`RobotInput`]: the links in model order (parents first, joints numbered
+//! syntax into a `RobotInput`: the links in model order (parents first, joints numbered
 //! depth-first), each built in a scratch [`ExprGraph`] with its frame convention mapped onto
-//! `pre ∘ motion ∘ post` ([`frames`]) and its inertials in its body frame ([`inertia`]), plus
-//! the names of the fields every number came from. [`assemble`] then validates the input at the
-//! parameters' values ([`validate`]: errors and graded warnings), checks the mimic joints
-//! ([`mimic`]), warns about moving joints that carry no mass, and copies the result into the
-//! model's own graph ([`transplant`]), folding parameters or keeping them as symbols. Errors and
+//! `pre ∘ motion ∘ post` (`frames`) and its inertials in its body frame (`inertia`), plus
+//! the names of the fields every number came from. `assemble` then validates the input at the
+//! parameters' values (`validate`: errors and graded warnings), checks the mimic joints
+//! (`mimic`), warns about moving joints that carry no mass, and copies the result into the
+//! model's own graph (`transplant`), folding parameters or keeping them as symbols. Errors and
 //! warnings name the link and field (or, for a URDF, the joint); each reader adds the file and
-//! line, then [`enforce`] applies strict validation.
+//! line, then `enforce` applies strict validation.
 //!
 //! [`load_robot`] and [`parse_robot`] dispatch on the file format ([`RobotFormat`]).
 

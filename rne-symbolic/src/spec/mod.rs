@@ -34,9 +34,9 @@
 //!    (`parameters`). Expression strings are parsed straight into an [`ExprGraph`]
 //!    (`expression`), in which every parameter is its own symbol `Parameter(k)`.
 //! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post`
-//!    ([`crate::input::frames`]), its placement is `parent.post ∘ pre`, its inertials are moved
+//!    (`input::frames`), its placement is `parent.post ∘ pre`, its inertials are moved
 //!    into the body frame, and its `mimic`, `friction` and `armature` are read (`assemble`):
-//!    an [`InputLink`] of the shared input model.
+//!    an `InputLink` of the shared input model.
 //! 5. [`crate::input`] checks the result numerically (errors and warnings) and copies the
 //!    model's expressions into the model's own graph, keeping parameters as symbols or folding
 //!    them into constants ([`LoadOptions::symbolic_parameters`]). Because every structural

@@ -1,5 +1,5 @@
-//! The links of a URDF tree built into the readers' shared [`RobotInput`]: each joint's origin
-//! and axis mapped by the URDF convention (d) of [`frames`] (`Trans(xyz)·Rz(yaw)Ry(pitch)Rx(roll)`,
+//! The links of a URDF tree built into the readers' shared `RobotInput`: each joint's origin
+//! and axis mapped by the URDF convention (d) of `input::frames` (`Trans(xyz)·Rz(yaw)Ry(pitch)Rx(roll)`,
 //! normalised axis), the child link's inertial moved into its frame, `<mimic>` and
 //! `<dynamics>` carried over. The root link is a fixed link at the world's origin; a TOML spec
 //! that writes the same robot with `origin` and `axis` (and the root as its first, fixed link)
