@@ -217,7 +217,7 @@ fn forward_dynamics_of_a_joint_that_moves_no_mass_is_refused_by_name() {
     let spec = dir.join("massless.toml");
     let arm = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../tests/ui/specs/massless_tool.toml"
+        "/tests/fixtures/massless_tool.toml"
     ))
     .unwrap();
     std::fs::write(&spec, arm).unwrap();
@@ -249,5 +249,104 @@ fn forward_dynamics_of_a_joint_that_moves_no_mass_is_refused_by_name() {
     ])
     .unwrap_err();
     assert!(error.contains(expected), "{error}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn fixture(name: &str) -> String {
+    format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `rne check` reports what it read of a robot as published (odd names, a mimic joint, joint
+/// friction, a fixed tool flange) and its warnings, and succeeds with warnings.
+#[test]
+fn check_reports_the_robot_and_its_warnings() {
+    let path = fixture("published.urdf");
+    let report = rne(&["check", &path]).unwrap();
+    for expected in [
+        "model: published",
+        "base: fixed",
+        "degrees of freedom: 2",
+        "total mass: 2.1 kg",
+        "links (4):",
+        "  base_link <- world: fixed, mass 0",
+        "  arm <- base_link: revolute '8', mass 2, friction",
+        "  finger <- arm: prismatic 'FL-finger', mass 0.1, mimics '8'",
+        "  tool0 <- arm: fixed, mass 0",
+        "mimic joints: 1",
+        "warnings: 1",
+        ":17: link 'arm', field 'inertial.inertia': inertia breaks the triangle inequality",
+    ] {
+        assert!(report.contains(expected), "{expected}\n{report}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&rne(&["check", &path, "--json"]).unwrap()).unwrap();
+    assert_eq!(json["joints"], serde_json::json!(["8", "FL-finger"]));
+    assert_eq!(json["dof"], 2);
+    assert_eq!(json["mimic"], serde_json::json!(["FL-finger"]));
+    assert_eq!(json["warnings"].as_array().unwrap().len(), 1);
+}
+
+/// The binary prints warnings to stderr and exits 0; `--strict` makes them errors, on `check`
+/// and on every command that takes a MODEL.
+#[test]
+fn warnings_go_to_stderr_and_strict_makes_them_errors() {
+    let path = fixture("published.urdf");
+    let output = Command::new(env!("CARGO_BIN_EXE_rne"))
+        .args(["check", &path])
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with("warning: ") && stderr.contains("triangle inequality"),
+        "{stderr}"
+    );
+    let output = Command::new(env!("CARGO_BIN_EXE_rne"))
+        .args(["check", &path, "--strict"])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("error under strict validation"), "{stderr}");
+    for command in [
+        vec!["show", path.as_str(), "--what", "g", "--strict"],
+        vec!["eval", path.as_str(), "--q", "0,0", "--strict"],
+        vec![
+            "emit",
+            path.as_str(),
+            "--outputs",
+            "gravity_torques",
+            "--strict",
+        ],
+        vec!["stats", path.as_str(), "--strict"],
+    ] {
+        let error = rne(&command).unwrap_err();
+        assert!(
+            error.contains("(an error under strict validation)"),
+            "{command:?}: {error}"
+        );
+    }
+    assert!(rne(&["show", &path, "--what", "g"]).is_ok());
+}
+
+#[test]
+fn check_of_a_builtin_and_of_a_broken_file() {
+    let report = rne(&["check", "planar-elbow"]).unwrap();
+    assert!(
+        report.contains("degrees of freedom: 2") && report.contains("warnings: 0"),
+        "{report}"
+    );
+    let dir = std::env::temp_dir().join(format!("rne-cli-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let broken = dir.join("broken.urdf");
+    let text = std::fs::read_to_string(fixture("published.urdf"))
+        .unwrap()
+        .replace("<mimic joint=\"8\"", "<mimic joint=\"9\"");
+    std::fs::write(&broken, text).unwrap();
+    let error = rne(&["check", broken.to_str().unwrap()]).unwrap_err();
+    assert!(
+        error.contains("joint 'FL-finger', field 'mimic.joint': the mimic joint follows '9'"),
+        "{error}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

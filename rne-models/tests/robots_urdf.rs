@@ -1,4 +1,4 @@
-//! The URDF edge cases of issue 4 (`rne-symbolic/tests/urdf_fixtures/`) through the symbolic
+//! The URDF edge cases of issue 4 (`tests/fixtures/urdf/`, copies of rne-symbolic's) through the symbolic
 //! dynamics and the independent numeric reference, which keeps fixed links as bodies of their
 //! own (the symbolic path merges them): rpy on every joint, negative axes, a fixed link with
 //! mass and rotated inertia, a branch, a massless intermediate link, prismatic joints. And the

@@ -12,6 +12,7 @@ pub mod canonical;
 mod double_double;
 pub mod dynamics;
 pub mod expr;
+pub mod input;
 pub mod model;
 pub mod motion;
 pub mod newton_euler;

@@ -8,7 +8,7 @@ use rne_symbolic::{Symbol, SymbolicDynamics};
 fn irb140() -> SymbolicDynamics {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../rne-models/robots/irb140-3dof.toml"
+        "/tests/fixtures/robots/irb140-3dof.toml"
     );
     SymbolicDynamics::new(&load_file(path.as_ref(), &LoadOptions::default()).unwrap())
 }

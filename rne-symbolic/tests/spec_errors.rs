@@ -62,6 +62,7 @@ fn the_valid_spec_is_valid() {
             "robots/arm.toml",
             &LoadOptions {
                 symbolic_parameters,
+                ..LoadOptions::default()
             },
         )
         .unwrap();
@@ -73,8 +74,8 @@ fn unknown_top_level_key() {
     check(
         broken("[parameters]", "colour = \"red\"\n[parameters]"),
         SpecErrorKind::Format,
-        "robots/arm.toml:2: field 'colour': unknown key 'colour' (expected one of: name, gravity, parameters, \
-         link)",
+        "robots/arm.toml:2: field 'colour': unknown key 'colour' (expected one of: name, gravity, base, \
+         parameters, link)",
     );
 }
 
@@ -85,7 +86,7 @@ fn unknown_link_key() {
         SpecErrorKind::Format,
         "robots/arm.toml:18: link 'link2', field 'colour': unknown key 'colour' (expected one of: name, parent, \
          joint, q, rotation, position, dh, mdh, origin, axis, mass, com, com_from_prev, inertia, \
-         triangle_inequality)",
+         triangle_inequality, mimic, friction, armature)",
     );
 }
 
@@ -147,13 +148,22 @@ fn inertia_not_positive_semi_definite() {
 }
 
 #[test]
-fn triangle_inequality_broken() {
+fn triangle_inequality_broken_under_strict_validation() {
+    let text = VALID.replace(
+        "mass = 1\ninertia = { xx = 0.1, yy = 0.1, zz = 0.1 }",
+        "mass = 1\ninertia = { xx = 0.066, yy = 0.086, zz = 0.0125 }",
+    );
+    assert_ne!(text, VALID);
+    let strict = LoadOptions {
+        strict: true,
+        ..LoadOptions::default()
+    };
     check(
-        broken_last("{ xx = 0.1, yy = 0.1, zz = 0.1 }", "{ xx = 0.066, yy = 0.086, zz = 0.0125 }"),
-        SpecErrorKind::Physics,
+        spec::parse_str(&text, "robots/arm.toml", &strict).unwrap_err(),
+        SpecErrorKind::Strict,
         "robots/arm.toml:18: link 'link2', field 'inertia': inertia breaks the triangle inequality: principal \
-         moments 0.0125 + 0.066 < 0.086 (a spec may set triangle_inequality = false for published data that \
-         does, saying why in a comment)",
+         moments 0.0125 + 0.066 < 0.086 (a TOML spec may set triangle_inequality = false for published data \
+         that does, saying why in a comment) (an error under strict validation)",
     );
 }
 

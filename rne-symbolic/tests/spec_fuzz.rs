@@ -1,15 +1,17 @@
-//! The spec reader never panics: random bytes, random mutations of valid specs and random
-//! expression strings give either a model or an error. A model it does return is well formed.
+//! The readers never panic: random bytes, random mutations of valid TOML specs and URDFs
+//! (character edits, and for URDF whole elements deleted, duplicated or moved, garbage
+//! attributes, truncation, deep nesting) and random expression strings give either a model or
+//! an error. A model they do return is well formed.
 
 use std::path::PathBuf;
 
 use proptest::prelude::*;
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::{self, LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
 
 fn robot(file: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-models/robots")
+        .join("tests/fixtures/robots")
         .join(file);
     std::fs::read_to_string(path).unwrap()
 }
@@ -201,6 +203,7 @@ fn read(text: &str, symbolic_parameters: bool) {
         "fuzz.toml",
         &LoadOptions {
             symbolic_parameters,
+            ..LoadOptions::default()
         },
     ) {
         assert_well_formed(&model);
@@ -221,6 +224,7 @@ fn the_seed_specs_are_valid() {
                 "seed.toml",
                 &LoadOptions {
                     symbolic_parameters: symbolic,
+                    ..LoadOptions::default()
                 },
             )
             .unwrap_or_else(|e| panic!("{e}"));
@@ -266,5 +270,183 @@ proptest! {
             _ => CONVENTIONS.replacen("theta = 0.1", &format!("theta = \"{quoted}\""), 1),
         };
         read(&text, symbolic);
+    }
+
+    #[test]
+    fn mutated_urdfs_never_panic(
+        seed in 0..3usize,
+        edits in proptest::collection::vec(urdf_edit(), 1..6),
+        strict in any::<bool>(),
+    ) {
+        let text = match seed {
+            0 => robot("ur5.urdf"),
+            1 => robot("panda.urdf"),
+            _ => robot("panda-arm.urdf"),
+        };
+        read_urdf(&mutate_urdf(&text, &edits), strict);
+    }
+
+    #[test]
+    fn truncated_urdfs_never_panic(seed in 0..3usize, fraction in 0.0..1.0f64) {
+        let text = match seed {
+            0 => robot("ur5.urdf"),
+            1 => robot("panda.urdf"),
+            _ => robot("panda-arm.urdf"),
+        };
+        let mut end = (text.len() as f64 * fraction) as usize;
+        while !text.is_char_boundary(end) {
+            end -= 1;
+        }
+        read_urdf(&text[..end], false);
+    }
+}
+
+/// Fragments that URDF mutations insert: XML syntax, elements the reader reads and ignores,
+/// garbage and awkward attribute values.
+const URDF_FRAGMENTS: &[&str] = &[
+    "<",
+    ">",
+    "/>",
+    "\"",
+    "=",
+    "&amp;",
+    "&bogus;",
+    "<!--",
+    "-->",
+    "<![CDATA[",
+    "]]>",
+    "<?pi?>",
+    "<!DOCTYPE robot>",
+    " xyz=\"1 2\"",
+    " rpy=\"nan 0 0\"",
+    " value=\"-1\"",
+    " value=\"1e309\"",
+    " link=\"world\"",
+    " name=\"8\"",
+    " type=\"floating\"",
+    " type=\"ball\"",
+    " garbage=\"${x}\"",
+    " xacro:if=\"1\"",
+    "<mimic joint=\"shoulder_pan_joint\"/>",
+    "<mimic joint=\"missing\" multiplier=\"x\"/>",
+    "<dynamics damping=\"-1\"/>",
+    "<axis xyz=\"0 0 0\"/>",
+    "<inertial><mass value=\"1\"/></inertial>",
+    "<link name=\"world\"/>",
+    "<joint name=\"j\" type=\"fixed\"><parent link=\"world\"/><child link=\"world\"/></joint>",
+    "<visual><geometry><mesh filename=\"x\"/></geometry></visual>",
+    "<x><x><x><x><x><x><x><x></x></x></x></x></x></x></x></x>",
+    "</robot>",
+    "</link>",
+    "</joint>",
+];
+
+#[derive(Clone, Debug)]
+enum UrdfEdit {
+    /// A character-level edit.
+    Text(Edit),
+    /// Insert a fragment.
+    Fragment { at: usize, fragment: usize },
+    /// Delete the element starting at the k-th `<` (to its matching end, roughly).
+    DeleteElement { at: usize },
+    /// Duplicate the k-th `<link` or `<joint` element in place.
+    DuplicateElement { at: usize },
+    /// Unknown elements nested `depth` deep inside `<robot>`.
+    Nest { depth: usize },
+}
+
+fn urdf_edit() -> impl Strategy<Value = UrdfEdit> {
+    prop_oneof![
+        edit().prop_map(UrdfEdit::Text),
+        (any::<usize>(), 0..URDF_FRAGMENTS.len())
+            .prop_map(|(at, fragment)| UrdfEdit::Fragment { at, fragment }),
+        any::<usize>().prop_map(|at| UrdfEdit::DeleteElement { at }),
+        any::<usize>().prop_map(|at| UrdfEdit::DuplicateElement { at }),
+        (1..200usize).prop_map(|depth| UrdfEdit::Nest { depth }),
+    ]
+}
+
+/// The byte range of the element opened by the `<` at `start`: up to its `/>` or its closing
+/// tag of the same name (the first one, which is right for the URDF elements mutated here).
+fn element_at(text: &str, start: usize) -> std::ops::Range<usize> {
+    let rest = &text[start..];
+    let name: String = rest[1..]
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':')
+        .collect();
+    let open_end = rest.find('>').map_or(rest.len(), |e| e + 1);
+    if rest[..open_end].ends_with("/>") || name.is_empty() {
+        return start..start + open_end;
+    }
+    let close = format!("</{name}>");
+    let end = rest.find(&close).map_or(rest.len(), |e| e + close.len());
+    start..start + end
+}
+
+fn mutate_urdf(text: &str, edits: &[UrdfEdit]) -> String {
+    let mut text = text.to_owned();
+    for edit in edits {
+        match edit {
+            UrdfEdit::Text(edit) => text = mutate(&text, std::slice::from_ref(edit)),
+            UrdfEdit::Fragment { at, fragment } => {
+                let mut at = at % (text.len() + 1);
+                while !text.is_char_boundary(at) {
+                    at -= 1;
+                }
+                text.insert_str(at, URDF_FRAGMENTS[*fragment]);
+            }
+            UrdfEdit::DeleteElement { at } => {
+                let starts: Vec<usize> = text.match_indices('<').map(|(i, _)| i).collect();
+                if let Some(&start) = starts.get(at % starts.len().max(1)) {
+                    let range = element_at(&text, start);
+                    text.replace_range(range, "");
+                }
+            }
+            UrdfEdit::DuplicateElement { at } => {
+                let starts: Vec<usize> = text
+                    .match_indices("<link")
+                    .chain(text.match_indices("<joint"))
+                    .map(|(i, _)| i)
+                    .collect();
+                if let Some(&start) = starts.get(at % starts.len().max(1)) {
+                    let range = element_at(&text, start);
+                    let copy = text[range.clone()].to_owned();
+                    text.insert_str(range.end, &copy);
+                }
+            }
+            UrdfEdit::Nest { depth } => {
+                let inside = text
+                    .find("<robot")
+                    .and_then(|r| text[r..].find('>').map(|e| r + e + 1))
+                    .unwrap_or(0);
+                let nested = format!("{}{}", "<n>".repeat(*depth), "</n>".repeat(*depth));
+                text.insert_str(inside, &nested);
+            }
+        }
+    }
+    text
+}
+
+fn read_urdf(text: &str, strict: bool) {
+    let options = LoadOptions {
+        strict,
+        ..LoadOptions::default()
+    };
+    if let Ok(model) = spec::parse_robot(text, "fuzz.urdf", RobotFormat::Urdf, &options) {
+        assert_well_formed(&model);
+    }
+}
+
+#[test]
+fn the_seed_urdfs_are_valid() {
+    for file in ["ur5.urdf", "panda.urdf", "panda-arm.urdf"] {
+        let model = spec::parse_robot(
+            &robot(file),
+            file,
+            RobotFormat::Urdf,
+            &LoadOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_well_formed(&model);
     }
 }

@@ -11,13 +11,14 @@ use rne_symbolic::{Id, JointKind, RobotModel};
 
 fn robot_path(file: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-models/robots")
+        .join("tests/fixtures/robots")
         .join(file)
 }
 
 fn load(file: &str, symbolic_parameters: bool) -> RobotModel {
     let options = LoadOptions {
         symbolic_parameters,
+        ..LoadOptions::default()
     };
     spec::load_file(&robot_path(file), &options).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -671,6 +672,7 @@ fn parameters_are_defined_in_any_order() {
         "p.toml",
         &LoadOptions {
             symbolic_parameters: true,
+            ..LoadOptions::default()
         },
     )
     .unwrap_or_else(|e| panic!("{e}"));
@@ -691,22 +693,6 @@ fn gravity_defaults_to_minus_z() {
     );
     assert_eq!(constants(&model, &model.gravity), [0.0, 0.0, -9.81]);
     assert_eq!(model.dof(), 0);
-}
-
-/// The TOML examples of rne-models/robots/README.md are valid links.
-#[test]
-fn readme_examples_parse() {
-    let readme = std::fs::read_to_string(robot_path("README.md")).unwrap();
-    let blocks: Vec<&str> = readme
-        .split("```toml\n")
-        .skip(1)
-        .filter_map(|b| b.split("```").next())
-        .collect();
-    assert_eq!(blocks.len(), 3);
-    for block in blocks {
-        let model = parse(&format!("name = \"example\"\n{block}"));
-        assert_eq!(model.dof(), 1);
-    }
 }
 
 #[test]

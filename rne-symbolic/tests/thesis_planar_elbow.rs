@@ -10,12 +10,13 @@ use rne_symbolic::{ExprGraph, Id, SymbolicDynamics};
 fn planar_elbow() -> SymbolicDynamics {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../rne-models/robots/planar-elbow.toml"
+        "/tests/fixtures/robots/planar-elbow.toml"
     );
     let model = load_file(
         path.as_ref(),
         &LoadOptions {
             symbolic_parameters: true,
+            ..LoadOptions::default()
         },
     )
     .unwrap();

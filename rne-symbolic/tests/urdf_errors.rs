@@ -94,21 +94,148 @@ fn unknown_joint_type() {
     check(
         broken(r#""elbow" type="revolute""#, r#""elbow" type="ball""#),
         SpecErrorKind::Urdf,
-        "robots/arm.urdf: cannot read the URDF: unknown variant `ball`, expected one of \
-         `revolute`, `continuous`, `prismatic`, `fixed`, `floating`, `planar`, `spherical`",
+        "robots/arm.urdf:17: joint 'elbow', field 'type': unknown joint type 'ball' (expected \
+         revolute, continuous, prismatic, fixed, floating, planar or spherical)",
     );
 }
 
 #[test]
-fn mimic_joint() {
+fn mimic_of_a_missing_joint() {
     check(
         broken(
             r#"<axis xyz="0 1 0"/>"#,
-            r#"<axis xyz="0 1 0"/><mimic joint="shoulder" multiplier="2"/>"#,
+            r#"<axis xyz="0 1 0"/><mimic joint="wrist" multiplier="2"/>"#,
         ),
+        SpecErrorKind::Tree,
+        "robots/arm.urdf:17: joint 'elbow', field 'mimic.joint': the mimic joint follows 'wrist', \
+         which is not a moving joint of the robot",
+    );
+}
+
+#[test]
+fn mimic_of_a_fixed_joint() {
+    check(
+        broken(
+            r#"<axis xyz="0 1 0"/>"#,
+            r#"<axis xyz="0 1 0"/><mimic joint="tool_joint"/>"#,
+        ),
+        SpecErrorKind::Tree,
+        "robots/arm.urdf:17: joint 'elbow', field 'mimic.joint': the mimic joint follows \
+         'tool_joint', which is not a moving joint of the robot",
+    );
+}
+
+#[test]
+fn mimic_on_a_fixed_joint() {
+    check(
+        broken(
+            r#"<child link="tool"/>"#,
+            r#"<child link="tool"/><mimic joint="elbow"/>"#,
+        ),
+        SpecErrorKind::Kinematics,
+        "robots/arm.urdf:29: joint 'tool_joint', field 'mimic.joint': a fixed joint cannot mimic \
+         another joint: it has no coordinate",
+    );
+}
+
+#[test]
+fn mimic_joints_in_a_loop() {
+    let text = VALID
+        .replacen(
+            r#"<axis xyz="0 0 1"/>"#,
+            r#"<axis xyz="0 0 1"/><mimic joint="elbow"/>"#,
+            1,
+        )
+        .replacen(
+            r#"<axis xyz="0 1 0"/>"#,
+            r#"<axis xyz="0 1 0"/><mimic joint="shoulder" multiplier="-1"/>"#,
+            1,
+        );
+    check(
+        read(&text).unwrap_err(),
+        SpecErrorKind::Tree,
+        "robots/arm.urdf:4: joint 'shoulder', field 'mimic.joint': the mimic joints 'shoulder' → \
+         'elbow' follow each other in a loop: one of them must be free",
+    );
+    let itself = broken(
+        r#"<axis xyz="0 1 0"/>"#,
+        r#"<axis xyz="0 1 0"/><mimic joint="elbow"/>"#,
+    );
+    assert_eq!(itself.kind(), SpecErrorKind::Tree);
+    assert!(itself.message().contains("in a loop"), "{itself}");
+}
+
+#[test]
+fn negative_damping() {
+    check(
+        broken(
+            r#"<axis xyz="0 1 0"/>"#,
+            r#"<axis xyz="0 1 0"/><dynamics damping="-0.5" friction="0.1"/>"#,
+        ),
+        SpecErrorKind::Physics,
+        "robots/arm.urdf:17: joint 'elbow', field 'dynamics.damping': dynamics.damping must be \
+         >= 0, got -0.5",
+    );
+}
+
+#[test]
+fn malformed_number() {
+    check(
+        broken(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 1 ${z}"/>"#),
         SpecErrorKind::Urdf,
-        "robots/arm.urdf:17: joint 'elbow', field 'mimic': mimic joints are not supported: this \
-         joint follows 'shoulder', but every moving joint must have a free variable of its own",
+        "robots/arm.urdf:17: joint 'elbow', field 'axis': expected 3 numbers separated by \
+         spaces, got '0 1 ${z}'",
+    );
+    check(
+        broken(r#"<mass value="1.0"/>"#, r#"<mass value="1.0kg"/>"#),
+        SpecErrorKind::Urdf,
+        "robots/arm.urdf:23: link 'fore', field 'inertial.mass': expected a number, got '1.0kg'",
+    );
+}
+
+#[test]
+fn non_finite_mass() {
+    check(
+        broken(r#"<mass value="1.0"/>"#, r#"<mass value="inf"/>"#),
+        SpecErrorKind::Physics,
+        "robots/arm.urdf:23: link 'fore', field 'inertial.mass': inertial.mass is not finite (inf)",
+    );
+}
+
+#[test]
+fn missing_parent_element() {
+    check(
+        broken(r#"<parent link="upper"/>"#, ""),
+        SpecErrorKind::Urdf,
+        "robots/arm.urdf:17: joint 'elbow', field 'parent': the joint has no <parent link=\"..\"/>",
+    );
+}
+
+#[test]
+fn missing_name_attribute() {
+    check(
+        broken(r#"<link name="fore">"#, "<link>"),
+        SpecErrorKind::Urdf,
+        "robots/arm.urdf:23: field 'name': <link> has no 'name' attribute",
+    );
+}
+
+#[test]
+fn root_element_that_is_not_robot() {
+    check(
+        read("<?xml version=\"1.0\"?>\n<sdf version=\"1.6\"/>").unwrap_err(),
+        SpecErrorKind::Urdf,
+        "robots/arm.urdf:2: cannot read the URDF: the root element is <sdf>, not <robot>",
+    );
+}
+
+#[test]
+fn truncated_file() {
+    let end = VALID.find("  <link name=\"fore\">").unwrap();
+    check(
+        read(&VALID[..end]).unwrap_err(),
+        SpecErrorKind::Urdf,
+        "robots/arm.urdf:2: cannot read the URDF: the file ends inside an element opened here",
     );
 }
 
@@ -258,45 +385,33 @@ fn inertia_not_positive_semi_definite() {
 }
 
 #[test]
-fn triangle_inequality_broken() {
+fn triangle_inequality_broken_under_strict_validation() {
+    let text = VALID.replacen(
+        r#"iyy="0.02" iyz="0" izz="0.02""#,
+        r#"iyy="0.02" iyz="0" izz="0.04""#,
+        1,
+    );
+    let strict = LoadOptions {
+        strict: true,
+        ..LoadOptions::default()
+    };
     check(
-        broken(
-            r#"iyy="0.02" iyz="0" izz="0.02""#,
-            r#"iyy="0.02" iyz="0" izz="0.04""#,
-        ),
-        SpecErrorKind::Physics,
+        spec::parse_robot(&text, FILE, RobotFormat::Urdf, &strict).unwrap_err(),
+        SpecErrorKind::Strict,
         "robots/arm.urdf:10: link 'upper', field 'inertial.inertia': inertia breaks the triangle \
-         inequality: principal moments 0.01 + 0.02 < 0.04 (a spec may set triangle_inequality = \
-         false for published data that does, saying why in a comment)",
-    );
-}
-
-#[test]
-fn joint_name_that_is_not_a_variable_name() {
-    check(
-        broken(r#"<joint name="elbow""#, r#"<joint name="elbow-joint""#),
-        SpecErrorKind::Urdf,
-        "robots/arm.urdf:17: joint 'elbow-joint', field 'name': joint variable 'elbow-joint' is \
-         not a name (letters, digits and _, not pi, sqrt, sin, cos, Rx, Ry, Rz)",
-    );
-}
-
-#[test]
-fn joint_names_printed_alike() {
-    check(
-        broken(r#"<joint name="elbow""#, r#"<joint name="Dshoulder""#),
-        SpecErrorKind::Tree,
-        "robots/arm.urdf:4: joint 'shoulder', field 'name': joint variable 'shoulder' clashes \
-         with the joint variable 'Dshoulder': its velocity is printed 'Dshoulder'",
+         inequality: principal moments 0.01 + 0.02 < 0.04 (a TOML spec may set \
+         triangle_inequality = false for published data that does, saying why in a comment) (an \
+         error under strict validation)",
     );
 }
 
 #[test]
 fn malformed_xml() {
     check(
-        read("<robot name=\"arm\"><link name=\"base\"></robot>").unwrap_err(),
+        read("<robot name=\"arm\">\n<link name=\"base\">\n</robot>").unwrap_err(),
         SpecErrorKind::Urdf,
-        "robots/arm.urdf: cannot read the URDF: Elements not properly nested",
+        "robots/arm.urdf:3: cannot read the URDF: malformed XML: ill-formed document: expected \
+         `</link>`, but `</robot>` was found",
     );
 }
 
@@ -305,7 +420,8 @@ fn missing_element() {
     check(
         broken(r#"<mass value="1.0"/>"#, ""),
         SpecErrorKind::Urdf,
-        "robots/arm.urdf: cannot read the URDF: missing field `mass`",
+        "robots/arm.urdf:23: link 'fore', field 'inertial.mass': the <inertial> has no <mass \
+         value=\"..\"/>",
     );
 }
 

@@ -19,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 
 fn builtin(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-models/robots")
+        .join("tests/fixtures/robots")
         .join(name)
 }
 
@@ -119,13 +119,15 @@ fn negative_and_unnormalised_axes() {
                 .collect()
         })
         .collect();
-    assert_eq!(axes[0], [0.0, 0.0, -1.0]);
-    assert_eq!(axes[1], [0.0, -1.0, 0.0]);
-    assert_eq!(axes[2], [-1.0, 0.0, 0.0]);
-    for (a, b) in axes[3].iter().zip([0.0, -half, half]) {
-        assert!((a - b).abs() < 1e-15, "{:?}", axes[3]);
+    // The root link, fixed, has no axis.
+    assert_eq!(axes[0], [0.0, 0.0, 0.0]);
+    assert_eq!(axes[1], [0.0, 0.0, -1.0]);
+    assert_eq!(axes[2], [0.0, -1.0, 0.0]);
+    assert_eq!(axes[3], [-1.0, 0.0, 0.0]);
+    for (a, b) in axes[4].iter().zip([0.0, -half, half]) {
+        assert!((a - b).abs() < 1e-15, "{:?}", axes[4]);
     }
-    let length: f64 = axes[4].iter().map(|a| a * a).sum::<f64>().sqrt();
+    let length: f64 = axes[5].iter().map(|a| a * a).sum::<f64>().sqrt();
     assert!((length - 1.0).abs() < 1e-15);
 }
 
@@ -138,15 +140,18 @@ fn fixed_link_with_mass_and_rotated_inertia() {
     assert_eq!(
         kinds,
         [
+            JointKind::Fixed,
             JointKind::Revolute,
             JointKind::Revolute,
             JointKind::Fixed,
             JointKind::Revolute
         ]
     );
-    // The fixed link is kept in the model, between l2 and l3; the dynamics merge it.
-    assert_eq!(model.links[2].name, "bracket");
-    assert_eq!(model.links[3].parent, Some(2));
+    // The root and the fixed link are kept in the model, the bracket between l2 and l3; the
+    // dynamics drop the root and merge the bracket.
+    assert_eq!(model.links[0].name, "base");
+    assert_eq!(model.links[3].name, "bracket");
+    assert_eq!(model.links[4].parent, Some(3));
     assert_eq!(model.joint_names(), ["f1", "f2", "f3"]);
     assert_eq!(SymbolicDynamics::new(&model).model.links.len(), 3);
 }
@@ -162,7 +167,8 @@ fn branch() {
         ["left1", "left2", "thumb", "right1", "right2"]
     );
     let parents: Vec<Option<usize>> = model.links.iter().map(|l| l.parent).collect();
-    assert_eq!(parents, [None, Some(0), Some(0), None, Some(3)]);
+    assert_eq!(parents, [None, Some(0), Some(1), Some(1), Some(0), Some(4)]);
+    assert_eq!(model.links[0].name, "torso");
     // Joints on different branches share no body: M has structural zeros there.
     let mut dynamics = SymbolicDynamics::new(&model);
     let m = dynamics.mass_matrix();
@@ -181,7 +187,7 @@ fn massless_intermediate_link() {
     let path = fixture("massless_link.urdf");
     agrees_with_the_oracle(&path);
     let model = load(&path);
-    let gimbal = &model.links[1];
+    let gimbal = &model.links[2];
     assert_eq!(gimbal.name, "gimbal");
     assert!(model.graph.is_zero(gimbal.mass));
     assert!(gimbal
@@ -200,6 +206,7 @@ fn prismatic_joints() {
     assert_eq!(
         kinds,
         [
+            JointKind::Fixed,
             JointKind::Prismatic,
             JointKind::Revolute,
             JointKind::Prismatic,
@@ -236,11 +243,14 @@ fn ur5() {
             "wrist_3_joint"
         ]
     );
-    // world and base_link are the base; ee_link is a fixed link behind wrist_3_link.
+    // world (the root) and base_link (fixed to it) are fixed links the dynamics drop; ee_link
+    // is a fixed link behind wrist_3_link.
     let names: Vec<&str> = model.links.iter().map(|l| l.name.as_str()).collect();
     assert_eq!(
         names,
         [
+            "world",
+            "base_link",
             "shoulder_link",
             "upper_arm_link",
             "forearm_link",
@@ -251,7 +261,10 @@ fn ur5() {
         ]
     );
     assert_eq!(model.links[0].parent, None);
-    assert_eq!(model.links[6].kind, JointKind::Fixed);
+    assert_eq!(model.links[0].kind, JointKind::Fixed);
+    assert_eq!(model.links[1].kind, JointKind::Fixed);
+    assert_eq!(model.links[8].kind, JointKind::Fixed);
+    assert_eq!(SymbolicDynamics::new(&model).model.links.len(), 6);
     assert!(model.parameters.is_empty());
 }
 

@@ -186,6 +186,7 @@ fn expression_graphs_with_symbolic_parameters_agree_with_the_reference_on_the_th
         let symbolic = RobotSource::Builtin(robot)
             .load(&LoadOptions {
                 symbolic_parameters: true,
+                ..LoadOptions::default()
             })
             .unwrap();
         assert!(!symbolic.parameters.is_empty());

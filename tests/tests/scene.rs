@@ -162,6 +162,7 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
         SPEC.as_ref(),
         &LoadOptions {
             symbolic_parameters: true,
+            ..LoadOptions::default()
         },
     )
     .unwrap();

@@ -15,6 +15,7 @@ use crate::scene::{ParameterMode, Scene};
 pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel, CodegenError> {
     let options = LoadOptions {
         symbolic_parameters: scene.parameters == ParameterMode::Runtime,
+        ..LoadOptions::default()
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
     let text = std::fs::read_to_string(path).map_err(|source| CodegenError::Read {

@@ -11,12 +11,14 @@
 //! `½ q̇ᵀ M q̇` (the thesis's section 6.1.1) once the rotors' `½ I_a q̇_i²` is added for joints with
 //! armature (M carries `I_a` on its diagonal); V is zero when every COM is at the base origin, and
 //! `d(T + V)/dt = q̇ᵀ τ`. The sums use the COM form rather than the spatial inertias of the
-//! RNEA and CRBA, so comparing them checks those.
+//! RNEA and CRBA, so comparing them checks those. Bodies that no joint moves (the root of a
+//! URDF and the bodies fixed to it) add a constant to V and are left out, as Pinocchio leaves
+//! out what is fixed to its universe frame.
 
 use nalgebra::{RealField, Vector6};
 
 use crate::data::Data;
-use crate::model::Model;
+use crate::model::{Model, Motion};
 use crate::spatial::{angular, linear};
 
 /// Kinetic energy at (q, q̇). Slices have the model's length (checked by the caller).
@@ -53,7 +55,9 @@ pub(crate) fn potential_energy<T: RealField + Copy>(
     q: &[T],
 ) -> T {
     let mut energy = T::zero();
+    let mut moves = vec![false; model.bodies.len()];
     for (i, body) in model.bodies.iter().enumerate() {
+        moves[i] = !matches!(body.motion, Motion::Fixed) || body.parent.is_some_and(|p| moves[p]);
         let x = body.transform(&model.layout, q);
         let (rotation, origin) = match body.parent {
             Some(p) => (
@@ -62,8 +66,10 @@ pub(crate) fn potential_energy<T: RealField + Copy>(
             ),
             None => (x.rotation.transpose(), x.translation),
         };
-        let com = origin + rotation * body.com;
-        energy -= body.mass * model.gravity.dot(&com);
+        if moves[i] {
+            let com = origin + rotation * body.com;
+            energy -= body.mass * model.gravity.dot(&com);
+        }
         data.rotations[i] = rotation;
         data.origins[i] = origin;
     }

@@ -5,6 +5,7 @@ use std::io::Write;
 use clap::Args;
 use rne_codegen::generate;
 
+use super::model::ModelOptions;
 use super::options::scene;
 use super::CliError;
 use crate::builtin::RobotSource;
@@ -12,8 +13,11 @@ use crate::builtin::RobotSource;
 /// Arguments of `rne emit`.
 #[derive(Debug, Args)]
 pub struct EmitArgs {
-    /// A built-in robot name or a path to a .toml spec.
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
     pub model: String,
+    /// Model options.
+    #[command(flatten)]
+    pub options: ModelOptions,
     /// Functions to generate, comma-separated (default: all).
     #[arg(long)]
     pub outputs: Option<String>,
@@ -37,7 +41,7 @@ pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
     )?;
     scene.zero_velocities = args.at_rest;
     let source = RobotSource::resolve(&args.model);
-    let model = source.load(&rne_symbolic::spec::LoadOptions::default())?;
+    let model = args.options.load(&source, false)?;
     let module = generate(&model, &scene, &source.display_name())?;
     write!(out, "{}", module.to_pretty_string())?;
     Ok(())

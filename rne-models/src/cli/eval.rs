@@ -4,8 +4,8 @@
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
-use rne_symbolic::spec::LoadOptions;
 
+use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
 use crate::builtin::RobotSource;
@@ -49,8 +49,11 @@ pub enum Quantity {
 /// Arguments of `rne eval`.
 #[derive(Debug, Args)]
 pub struct EvalArgs {
-    /// A built-in robot name or a path to a .toml spec.
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
     pub model: String,
+    /// Model options.
+    #[command(flatten)]
+    pub options: ModelOptions,
     /// Joint positions, comma-separated.
     #[arg(long, allow_hyphen_values = true)]
     pub q: String,
@@ -77,7 +80,7 @@ pub struct EvalArgs {
 /// Computes the requested quantities and prints them.
 pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = source.load(&LoadOptions::default())?;
+    let model = args.options.load(&source, false)?;
     let n = model.dof();
     let q = parse_list("q", &args.q)?;
     let state = |name: &str, text: &Option<String>| match text {

@@ -1,9 +1,11 @@
 //! The `rne` command line: one file per subcommand.
 
 mod bench;
+mod check;
 mod emit;
 mod eval;
 mod list;
+mod model;
 mod options;
 mod show;
 mod simulate;
@@ -15,6 +17,7 @@ use std::io::Write;
 
 use clap::{Parser, Subcommand};
 
+pub use model::ModelOptions;
 pub use options::{parse_list, parse_locks, CliError};
 
 /// Exact, fast robot dynamics from a robot description.
@@ -31,6 +34,9 @@ pub struct Cli {
 pub enum Command {
     /// List the built-in robots.
     Models,
+    /// Read and validate a robot: joints, links, degrees of freedom, mass, base, mimic joints
+    /// and warnings (exit status 0 with warnings, non-zero on errors).
+    Check(check::CheckArgs),
     /// Print M, C, g, the torques and the energies for people to read.
     Show(show::ShowArgs),
     /// Print the Rust that `derive_dynamics!` generates for a robot.
@@ -55,6 +61,7 @@ pub enum Command {
 pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
     match cli.command {
         Command::Models => list::run(out),
+        Command::Check(args) => check::run(&args, out),
         Command::Show(args) => show::run(&args, out),
         Command::Emit(args) => emit::run(&args, out),
         Command::Stats(args) => stats::run(&args, out),

@@ -4,9 +4,9 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use rne_symbolic::canonical::{Polynomial, PrintFormat, Printer};
-use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::{Id, SymbolicDynamics};
 
+use super::model::ModelOptions;
 use super::CliError;
 use crate::builtin::RobotSource;
 
@@ -46,8 +46,11 @@ pub enum Format {
 /// Arguments of `rne show`.
 #[derive(Debug, Args)]
 pub struct ShowArgs {
-    /// A built-in robot name or a path to a .toml spec.
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
     pub model: String,
+    /// Model options.
+    #[command(flatten)]
+    pub options: ModelOptions,
     /// What to print.
     #[arg(long, value_enum, default_value = "all")]
     pub what: Part,
@@ -62,9 +65,7 @@ pub struct ShowArgs {
 /// Prints the requested parts of the dynamics.
 pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = source.load(&LoadOptions {
-        symbolic_parameters: args.symbolic_params,
-    })?;
+    let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();
     let want = |p: Part| args.what == p || (args.what == Part::All && p != Part::Reactions);

@@ -5,14 +5,18 @@ use std::io::Write;
 use clap::Args;
 use rne_codegen::{generate, Scene};
 
+use super::model::ModelOptions;
 use super::CliError;
 use crate::builtin::RobotSource;
 
 /// Arguments of `rne stats`.
 #[derive(Debug, Args)]
 pub struct StatsArgs {
-    /// A built-in robot name or a path to a .toml spec.
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
     pub model: String,
+    /// Model options.
+    #[command(flatten)]
+    pub options: ModelOptions,
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -21,7 +25,7 @@ pub struct StatsArgs {
 /// Generates every kernel and reports its cost.
 pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = source.load(&rne_symbolic::spec::LoadOptions::default())?;
+    let model = args.options.load(&source, false)?;
     let module = generate(&model, &Scene::default(), &source.display_name())?;
     if args.json {
         let kernels: Vec<serde_json::Value> = module

@@ -21,10 +21,11 @@ pub fn robot_file(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// A URDF test robot of `rne-symbolic/tests/urdf_fixtures/`.
+/// A URDF test robot of `tests/fixtures/urdf/` (copies of the URDF edge cases of
+/// rne-symbolic's tests).
 pub fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-symbolic/tests/urdf_fixtures")
+        .join("tests/fixtures/urdf")
         .join(name)
 }
 

@@ -55,11 +55,7 @@ pub(super) fn joint_label(symbols: &SymbolTable, joint: u16) -> String {
 
 /// The name of joint `k` (`q<k+1>` when the table has no name for it).
 pub(super) fn joint_name(symbols: &SymbolTable, joint: u16) -> String {
-    symbols
-        .joints()
-        .get(joint as usize)
-        .cloned()
-        .unwrap_or_else(|| format!("q{}", joint + 1))
+    symbols.name(crate::expr::Symbol::Position(joint))
 }
 
 /// `Some(k)` for a name `q<k>` (digits, no leading zero).

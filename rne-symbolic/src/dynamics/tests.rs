@@ -90,6 +90,7 @@ pub(super) fn planar_elbow() -> RobotModel {
             },
         ],
         base: crate::model::Base::Fixed,
+        warnings: Vec::new(),
     }
 }
 

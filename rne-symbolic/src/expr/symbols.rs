@@ -5,7 +5,11 @@ use super::node::Symbol;
 /// The names of a graph's joint variables and parameters.
 ///
 /// Printed names follow the thesis's Maple code (Appendix B): a joint `q1` has velocity `Dq1`
-/// and acceleration `DDq1`; its generalised force prints as `tau_q1`.
+/// and acceleration `DDq1`; its generalised force prints as `tau_q1`. Joint names are any
+/// string (a URDF joint may be called `8`, `FL-hip` or `sin`); a name that would not print
+/// unambiguously — not an identifier, a word of the expression language, or printed like
+/// another joint's velocity, acceleration or force — is printed between backticks
+/// (`` `FL-hip` ``, `` D`FL-hip` ``, `` tau_`8` ``), a backtick in it doubled.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SymbolTable {
     joints: Vec<String>,
@@ -60,11 +64,10 @@ impl SymbolTable {
 
     /// The printed name of a symbol.
     pub fn name(&self, symbol: Symbol) -> String {
-        let joint = |i: u16| {
-            self.joints
-                .get(i as usize)
-                .cloned()
-                .unwrap_or_else(|| format!("q{}", i + 1))
+        let joint = |i: u16| match self.joints.get(i as usize) {
+            Some(name) if self.plain(name) => name.clone(),
+            Some(name) => format!("`{}`", name.replace('`', "``")),
+            None => format!("q{}", i + 1),
         };
         match symbol {
             Symbol::Position(i) => joint(i),
@@ -79,21 +82,90 @@ impl SymbolTable {
         }
     }
 
-    /// The symbol printed as `name`, if any (parameters take precedence over joint names).
+    /// Whether a joint name prints as itself: an identifier, no word of the expression
+    /// language, and not the printed velocity, acceleration or force of another joint.
+    fn plain(&self, name: &str) -> bool {
+        const RESERVED: [&str; 7] = ["pi", "sqrt", "sin", "cos", "Rx", "Ry", "Rz"];
+        let mut chars = name.chars();
+        let identifier = chars
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+        identifier
+            && !RESERVED.contains(&name)
+            && !self.joints.iter().any(|other| {
+                [
+                    format!("D{other}"),
+                    format!("DD{other}"),
+                    format!("tau_{other}"),
+                ]
+                .contains(&name.to_owned())
+                    || [
+                        format!("D{name}"),
+                        format!("DD{name}"),
+                        format!("tau_{name}"),
+                    ]
+                    .contains(other)
+            })
+    }
+
+    /// The symbol printed as `name` (by [`SymbolTable::name`]), if any; a joint is also found
+    /// by its name as written. Parameters take precedence over joint names.
     pub fn lookup(&self, name: &str) -> Option<Symbol> {
         if let Some(p) = self.parameter(name) {
             return Some(p);
         }
-        let joint = |n: &str| self.joints.iter().position(|j| j == n).map(|i| i as u16);
-        if let Some(i) = joint(name) {
-            return Some(Symbol::Position(i));
+        let forms: [fn(u16) -> Symbol; 4] = [
+            Symbol::Position,
+            Symbol::Velocity,
+            Symbol::Acceleration,
+            Symbol::Force,
+        ];
+        for (k, joint) in self.joints.iter().enumerate() {
+            let Ok(k) = u16::try_from(k) else { break };
+            if joint == name {
+                return Some(Symbol::Position(k));
+            }
+            for form in forms {
+                if self.name(form(k)) == name {
+                    return Some(form(k));
+                }
+            }
         }
-        if let Some(i) = name.strip_prefix("DD").and_then(joint) {
-            return Some(Symbol::Acceleration(i));
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn any_joint_name_prints_unambiguously_and_is_found_again() {
+        let table = SymbolTable::with_joints(["q1", "8", "FL-hip", "sin", "a`b", "x", "Dx"]);
+        let printed: Vec<String> = (0..7).map(|k| table.name(Symbol::Position(k))).collect();
+        assert_eq!(
+            printed,
+            ["q1", "`8`", "`FL-hip`", "`sin`", "`a``b`", "`x`", "`Dx`"]
+        );
+        assert_eq!(table.name(Symbol::Velocity(0)), "Dq1");
+        assert_eq!(table.name(Symbol::Velocity(1)), "D`8`");
+        assert_eq!(table.name(Symbol::Acceleration(2)), "DD`FL-hip`");
+        assert_eq!(table.name(Symbol::Force(1)), "tau_`8`");
+        for k in 0..7 {
+            for symbol in [
+                Symbol::Position(k),
+                Symbol::Velocity(k),
+                Symbol::Acceleration(k),
+                Symbol::Force(k),
+            ] {
+                assert_eq!(
+                    table.lookup(&table.name(symbol)),
+                    Some(symbol),
+                    "{symbol:?}"
+                );
+            }
         }
-        if let Some(i) = name.strip_prefix('D').and_then(joint) {
-            return Some(Symbol::Velocity(i));
-        }
-        name.strip_prefix("tau_").and_then(joint).map(Symbol::Force)
+        assert_eq!(table.lookup("FL-hip"), Some(Symbol::Position(2)));
     }
 }

@@ -40,6 +40,7 @@ pub use mimic::MimicError;
 pub use numeric::{NumericFriction, NumericLink, NumericModel};
 
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
+use crate::spec::SpecWarning;
 
 /// The kind of a joint.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -182,6 +183,9 @@ pub struct RobotModel {
     pub joints: Vec<JointVariable>,
     /// Fixed to the world, or floating (a free-flyer root link).
     pub base: Base,
+    /// What the reader found slightly wrong in the robot file but accepted (DESIGN §2), in the
+    /// order found; empty for a model built by hand.
+    pub warnings: Vec<SpecWarning>,
 }
 
 impl RobotModel {

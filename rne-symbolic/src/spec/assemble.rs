@@ -1,41 +1,23 @@
-//! One link of a spec built into the reader's graph: its frame convention mapped onto
-//! `pre ∘ motion ∘ post`, its placement `parent.post ∘ pre`, and its inertials converted into
-//! the body frame.
+//! One link of a spec built into the reader's graph as an [`InputLink`]: its frame convention
+//! mapped onto `pre ∘ motion ∘ post`, its placement `parent.post ∘ pre`, its inertials
+//! converted into the body frame, and its mimic, friction and armature read.
 
 use super::error::{SpecError, SpecErrorKind};
 use super::expression::parse_rotation;
-use super::frames::{self, DhParameters, JointFrames, Motion};
-use super::inertia::{box_inertia, from_components, to_body, upper_symmetric};
 use super::schema::{ComSpec, DhSpec, FrameSpec, InertiaSpec, LinkSpec};
 use super::scope::{Namespace, Scope};
-use crate::expr::{ExprGraph, Mat3, Symbol, Vec3};
-use crate::model::{JointKind, Link, Transform};
-
-/// A link built in the reader's graph, and what the numeric checks need to know about it.
-#[derive(Clone, Debug)]
-pub(crate) struct Assembled {
-    /// The model link (expressions in the reader's graph).
-    pub(crate) link: Link,
-    /// The convention's transforms, to check that they are finite.
-    pub(crate) frames: JointFrames,
-    /// The fields the rotation, the translation and the axis of the convention come from.
-    pub(crate) frame_fields: FrameFields,
-    /// The field the centre of mass comes from.
-    pub(crate) com_field: &'static str,
-    /// The 3×3 array as written, which must be symmetric.
-    pub(crate) declared_inertia: Option<Mat3>,
-    /// The edge lengths of a box inertia, which must not be negative.
-    pub(crate) box_edges: Option<Vec3>,
-    /// Whether the principal moments must satisfy the triangle inequality.
-    pub(crate) triangle_inequality: bool,
-}
+use crate::expr::{ExprGraph, Symbol};
+use crate::input::frames::{self, DhParameters, JointFrames, Motion};
+use crate::input::inertia::{box_inertia, from_components, to_body, upper_symmetric};
+use crate::input::{Fields, InputLink};
+use crate::model::{Friction, JointKind, Link, Mimic, Transform};
 
 /// Where each part of a link's placement comes from, for messages.
 #[derive(Copy, Clone, Debug)]
-pub(crate) struct FrameFields {
-    pub(crate) rotation: &'static str,
-    pub(crate) translation: &'static str,
-    pub(crate) axis: &'static str,
+struct FrameFields {
+    rotation: &'static str,
+    translation: &'static str,
+    axis: &'static str,
 }
 
 /// Builds `spec` (whose joint variable is joint `joint`) attached to a parent whose frame is
@@ -47,7 +29,7 @@ pub(crate) fn link(
     joint: Option<usize>,
     parent_post: &Transform,
     space: &Namespace,
-) -> Result<Assembled, SpecError> {
+) -> Result<InputLink, SpecError> {
     let q = joint.map(|k| Symbol::Position(k as u16));
     let motion = match (spec.kind, q) {
         (JointKind::Revolute, Some(q)) => Motion::Revolute(q),
@@ -94,6 +76,30 @@ pub(crate) fn link(
         _ => body_com,
     };
     let placement = parent_post.then(g, &frames.pre);
+    let mimic = match &spec.mimic {
+        None => None,
+        Some(m) => Some(Mimic {
+            leader: m.joint.name.clone(),
+            multiplier: match &m.multiplier {
+                Some(n) => inertials.number(g, n)?,
+                None => g.one(),
+            },
+            offset: inertials.number_or_zero(g, m.offset.as_ref())?,
+        }),
+    };
+    let friction = match &spec.friction {
+        None => None,
+        Some(f) => Some(Friction {
+            viscous: inertials.number_or_zero(g, f.viscous.as_ref())?,
+            coulomb: inertials.number_or_zero(g, f.coulomb.as_ref())?,
+            offset: inertials.number_or_zero(g, f.offset.as_ref())?,
+        }),
+    };
+    let armature = spec
+        .armature
+        .as_ref()
+        .map(|a| inertials.number(g, a))
+        .transpose()?;
     let link = Link {
         name: spec.name.name.clone(),
         parent,
@@ -105,16 +111,29 @@ pub(crate) fn link(
         mass,
         com,
         inertia,
-        mimic: None,
+        mimic,
         coupling: None,
-        friction: None,
-        armature: None,
+        friction,
+        armature,
     };
-    Ok(Assembled {
+    Ok(InputLink {
         link,
+        joint_element: None,
         frames,
-        frame_fields,
-        com_field,
+        fields: Fields {
+            rotation: frame_fields.rotation,
+            translation: frame_fields.translation,
+            axis: frame_fields.axis,
+            mass: "mass",
+            com: com_field,
+            inertia: "inertia",
+            mimic: "mimic.joint",
+            mimic_multiplier: "mimic.multiplier",
+            mimic_offset: "mimic.offset",
+            viscous: "friction.viscous",
+            coulomb: "friction.coulomb",
+            friction_offset: "friction.offset",
+        },
         declared_inertia,
         box_edges,
         triangle_inequality: spec.triangle_inequality,

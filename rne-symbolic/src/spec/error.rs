@@ -2,6 +2,8 @@
 
 use std::ops::Range;
 
+use super::location::Location;
+
 /// What kind of mistake a [`SpecError`] reports.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -18,16 +20,20 @@ pub enum SpecErrorKind {
     /// A joint variable that does not enter its frame convention as the joint's motion: missing
     /// from a revolute `rotation`, not of the form ±q + c, a zero or non-unit axis.
     Kinematics,
-    /// The link tree: unknown parent, duplicate link or joint names, cycles, no links.
+    /// The link tree: unknown parent, duplicate link or joint names, cycles, no links; a mimic
+    /// joint that follows a missing joint or, through other mimic joints, itself.
     Tree,
-    /// Physically invalid numbers: negative mass, an inertia that is not symmetric, not positive
-    /// semi-definite or breaks the triangle inequality, a value that is not finite.
+    /// Physically invalid numbers: negative mass, negative friction or armature, an inertia
+    /// that is not symmetric or has a clearly negative principal moment, a value that is not
+    /// finite.
     Physics,
     /// A URDF file that cannot be read (malformed XML, a missing or malformed element or
-    /// attribute) or that uses what a rigid-body tree with one-variable joints cannot model:
-    /// floating, planar or spherical joints, mimic joints, a joint name that cannot name a joint
-    /// variable.
+    /// attribute the dynamics reads) or that uses what a rigid-body tree with one-variable
+    /// joints cannot model: floating, planar or spherical joints.
     Urdf,
+    /// A warning ([`SpecWarning`](super::SpecWarning)) turned into an error by strict
+    /// validation ([`LoadOptions::strict`](super::LoadOptions::strict)).
+    Strict,
     /// A file name whose extension names no robot format (`.toml` or `.urdf`).
     UnknownFormat,
 }
@@ -46,19 +52,14 @@ pub enum SpecErrorKind {
 /// message says exactly what is wrong. It is boxed so that the `Result`s of the reader stay one
 /// pointer wide.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{}", self.render())]
+#[error("{}", self.0.at.render(&self.0.message))]
 pub struct SpecError(Box<Details>);
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct Details {
     kind: SpecErrorKind,
-    file: String,
-    line: Option<usize>,
-    joint: Option<String>,
-    link: Option<String>,
-    field: Option<String>,
     message: String,
-    span: Option<Range<usize>>,
+    at: Location,
 }
 
 impl SpecError {
@@ -67,60 +68,49 @@ impl SpecError {
     pub(crate) fn new(kind: SpecErrorKind, message: impl Into<String>) -> SpecError {
         SpecError(Box::new(Details {
             kind,
-            file: String::new(),
-            line: None,
-            joint: None,
-            link: None,
-            field: None,
             message: message.into(),
-            span: None,
+            at: Location::default(),
         }))
+    }
+
+    /// An error of this kind at `at`.
+    pub(crate) fn at(kind: SpecErrorKind, message: String, at: Location) -> SpecError {
+        SpecError(Box::new(Details { kind, message, at }))
     }
 
     /// Sets the field if none is set yet (inner functions know more precise fields).
     pub(crate) fn at_field(mut self, field: impl Into<String>) -> SpecError {
-        if self.0.field.is_none() {
-            self.0.field = Some(field.into());
-        }
+        self.0.at.at_field(field);
         self
     }
 
     /// Sets the joint if none is set yet (a URDF `<joint>` element).
     pub(crate) fn in_joint(mut self, joint: &str) -> SpecError {
-        if self.0.joint.is_none() {
-            self.0.joint = Some(joint.to_owned());
-        }
+        self.0.at.in_joint(joint);
         self
     }
 
     /// Sets the link if none is set yet.
     pub(crate) fn in_link(mut self, link: &str) -> SpecError {
-        if self.0.link.is_none() {
-            self.0.link = Some(link.to_owned());
-        }
+        self.0.at.in_link(link);
         self
     }
 
-    /// Sets the byte range of the offending TOML text if none is set yet.
+    /// Sets the byte range of the offending text if none is set yet.
     pub(crate) fn at_span(mut self, span: Option<Range<usize>>) -> SpecError {
-        if self.0.span.is_none() {
-            self.0.span = span;
-        }
+        self.0.at.at_span(span);
         self
     }
 
     /// Sets the file name and turns the byte range into a line number of `text`.
     pub(crate) fn locate(mut self, file: &str, text: &str) -> SpecError {
-        file.clone_into(&mut self.0.file);
-        if self.0.line.is_none() {
-            self.0.line = self
-                .0
-                .span
-                .as_ref()
-                .and_then(|span| text.get(..span.start))
-                .map(|before| before.matches('\n').count() + 1);
-        }
+        self.0.at.locate(file, text);
         self
+    }
+
+    /// Where the error belongs, for a reader that completes it.
+    pub(crate) fn location_mut(&mut self) -> &mut Location {
+        &mut self.0.at
     }
 
     /// What kind of mistake this is.
@@ -131,57 +121,33 @@ impl SpecError {
     /// The file (the `origin` given to [`parse_str`](super::parse_str), or the path given to
     /// [`load_file`](super::load_file)).
     pub fn file(&self) -> &str {
-        &self.0.file
+        &self.0.at.file
     }
 
     /// The 1-based line of the offending text, when known.
     pub fn line(&self) -> Option<usize> {
-        self.0.line
+        self.0.at.line
     }
 
     /// The URDF joint the error belongs to, if any.
     pub fn joint(&self) -> Option<&str> {
-        self.0.joint.as_deref()
+        self.0.at.joint.as_deref()
     }
 
     /// The link the error belongs to, if any.
     pub fn link(&self) -> Option<&str> {
-        self.0.link.as_deref()
+        self.0.at.link.as_deref()
     }
 
     /// The field the error belongs to, if any (`mass`, `inertia.xy`, `dh.theta`, `com[1]`,
     /// `parameters.w`; in a URDF `axis`, `origin.rpy`, `inertial.mass`, ...).
     pub fn field(&self) -> Option<&str> {
-        self.0.field.as_deref()
+        self.0.at.field.as_deref()
     }
 
     /// The description of the problem, without its location.
     pub fn message(&self) -> &str {
         &self.0.message
-    }
-
-    fn render(&self) -> String {
-        let mut out = self.0.file.clone();
-        if let Some(line) = self.0.line {
-            out.push_str(&format!(":{line}"));
-        }
-        out.push_str(": ");
-        let mut place = Vec::new();
-        if let Some(joint) = &self.0.joint {
-            place.push(format!("joint '{joint}'"));
-        }
-        if let Some(link) = &self.0.link {
-            place.push(format!("link '{link}'"));
-        }
-        if let Some(field) = &self.0.field {
-            place.push(format!("field '{field}'"));
-        }
-        if !place.is_empty() {
-            out.push_str(&place.join(", "));
-            out.push_str(": ");
-        }
-        out.push_str(&self.0.message);
-        out
     }
 }
 

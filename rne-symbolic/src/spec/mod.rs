@@ -16,9 +16,12 @@
 //! inertia = { box = ["l1", 0.08, 0.08] }
 //! ```
 //!
-//! [`load_robot`] and [`parse_robot`] read either format of DESIGN §2, a TOML spec (this
-//! module) or a URDF ([`crate::urdf`]), as the file's extension says ([`RobotFormat`]);
-//! [`load_file`] and [`parse_str`] read TOML only.
+//! [`load_robot`] and [`parse_robot`] (of [`crate::input`], re-exported here) read either
+//! format of DESIGN §2, a TOML spec (this module) or a URDF ([`crate::urdf`]), as the file's
+//! extension says ([`RobotFormat`]); [`load_file`] and [`parse_str`] read TOML only. Both
+//! readers build the shared input model of [`crate::input`], which validates it and assembles
+//! the [`RobotModel`]; the errors ([`SpecError`]) and warnings ([`SpecWarning`]) of both are
+//! defined here.
 //!
 //! # Reading
 //!
@@ -30,12 +33,15 @@
 //! 3. Parameters are defined in any order over each other, ordered by dependency and evaluated
 //!    (`parameters`). Expression strings are parsed straight into an [`ExprGraph`]
 //!    (`expression`), in which every parameter is its own symbol `Parameter(k)`.
-//! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post` (`frames`), its
-//!    placement is `parent.post ∘ pre`, its inertials are moved into the body frame
-//!    (`inertia`, `assemble`), and the result is checked numerically (`validate`).
-//! 5. The model's expressions are copied into the model's own graph, keeping parameters as
-//!    symbols or folding them into constants ([`LoadOptions::symbolic_parameters`]). Because
-//!    every structural check runs on the symbolic form, both modes accept the same specs.
+//! 4. Each link's frame convention is mapped onto `pre ∘ motion(q) ∘ post`
+//!    (`input::frames`), its placement is `parent.post ∘ pre`, its inertials are moved
+//!    into the body frame, and its `mimic`, `friction` and `armature` are read (`assemble`):
+//!    an `InputLink` of the shared input model.
+//! 5. [`crate::input`] checks the result numerically (errors and warnings) and copies the
+//!    model's expressions into the model's own graph, keeping parameters as symbols or folding
+//!    them into constants ([`LoadOptions::symbolic_parameters`]). Because every structural
+//!    check runs on the symbolic form, both modes accept the same specs. Warnings get the line
+//!    of their field, and [`LoadOptions::strict`] turns the first into an error.
 //!
 //! # Decisions on points DESIGN §2 leaves open
 //!
@@ -55,8 +61,19 @@
 //!   moves that origin away from the link.
 //! - `inertia` is required (a point mass writes zeros). A 3×3 array must be symmetric to a
 //!   relative 1e-12; the model uses its upper triangle.
-//! - `triangle_inequality = false` turns off only the triangle inequality test, for published
-//!   data that breaks it (PUMA 560 link 3); the spec should say why in a comment.
+//! - Principal moments that break the triangle inequality are a warning;
+//!   `triangle_inequality = false` silences it for a link, for published data that breaks it
+//!   (PUMA 560 link 3); the spec should say why in a comment. A negative principal moment is a
+//!   warning when negligible ([`crate::input::NEGLIGIBLE_INERTIA`]), else an error; a moving
+//!   joint whose subtree has no mass is a warning.
+//! - `base` is `"fixed"` (default) or `"floating"` ([`RobotModel::base`]).
+//! - `mimic = { joint, multiplier, offset }`: `joint` is the leader's joint variable name (`q`
+//!   of its link); `multiplier` (default 1) and `offset` (default 0) are expressions. The
+//!   follower keeps its own `q` ([`Link::mimic`](crate::Link::mimic)). A missing leader, a
+//!   loop of followers and a mimic on a fixed joint are errors; a leader of another joint type
+//!   (a prismatic joint following a revolute one) is accepted, as URDF does.
+//! - `friction = { viscous, coulomb, offset }` (each default 0) and `armature` are
+//!   expressions; viscous, Coulomb and armature must be >= 0.
 //! - Joint variable names must be identifiers, unique, and distinct from parameter names,
 //!   also in their printed derivatives `D<q>`, `DD<q>` and force `tau_<q>`. Parameter and joint
 //!   names may not be `pi`, `sqrt`, `sin`, `cos`, `Rx`, `Ry`, `Rz`; no link may be named `base`.
@@ -67,40 +84,29 @@ mod assemble;
 mod document;
 mod error;
 mod expression;
-mod format;
-pub(crate) mod frames;
-pub(crate) mod inertia;
+mod location;
 mod parameters;
-mod rewrite;
 mod schema;
 mod scope;
-pub(crate) mod tree;
-pub(crate) mod validate;
+mod tree;
+mod warning;
 
 use std::path::Path;
 
+/// The readers' common entry points, re-exported where callers have always found them.
+pub use crate::input::{load_robot, parse_robot, LoadOptions, RobotFormat};
 pub use error::{SpecError, SpecErrorKind};
-pub use format::{load_robot, parse_robot, RobotFormat};
+pub use warning::{SpecWarning, SpecWarningKind};
 
-use self::assemble::Assembled;
 use self::document::Table;
-use self::rewrite::Transplant;
+use self::location::Location;
 use self::schema::{LinkSpec, RobotSpec};
 use self::scope::Namespace;
 use self::tree::Tree;
-use self::validate::Values;
-use crate::expr::{ExprGraph, Id, Symbol, SymbolTable, Vec3};
-use crate::model::{Link, Transform};
+use crate::expr::{ExprGraph, SymbolTable, Vec3};
+use crate::input::{self, InputLink, RobotInput};
+use crate::model::Transform;
 use crate::RobotModel;
-
-/// How a spec is read.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub struct LoadOptions {
-    /// Keep every parameter as its own symbol `Symbol::Parameter(k)` (k in spec order) instead
-    /// of folding it into a constant (the CLI's `--symbolic-params`, the macro's
-    /// `parameters: runtime`). [`RobotModel::parameters`] holds the values either way.
-    pub symbolic_parameters: bool,
-}
 
 /// Reads the spec file at `path` (DESIGN §2); errors name the file as `path` displays.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
@@ -111,10 +117,26 @@ pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecE
     parse_str(&text, &origin, options)
 }
 
-/// Reads a spec from `text`; `origin` names the file in error messages.
+/// Reads a spec from `text`; `origin` names the file in error and warning messages.
 pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let root = document::parse(text).map_err(|e| e.locate(origin, text))?;
-    read(&root, options).map_err(|e| with_position(e, &root).locate(origin, text))
+    let mut model = read(&root, options).map_err(|mut e| {
+        with_position(e.location_mut(), &root);
+        e.locate(origin, text)
+    })?;
+    model.warnings = std::mem::take(&mut model.warnings)
+        .into_iter()
+        .map(|w| {
+            let mut at = Location {
+                link: w.link().map(str::to_owned),
+                field: w.field().map(str::to_owned),
+                ..Location::default()
+            };
+            with_position(&mut at, &root);
+            w.at_span(at.span).locate(origin, text)
+        })
+        .collect();
+    input::enforce(model, options.strict)
 }
 
 fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
@@ -137,36 +159,18 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let parameters = parameters::define(&mut scratch, &spec.parameters, &space)?;
     let gravity = gravity(&mut scratch, &spec, &space)?;
     let built = assemble_links(&mut scratch, &tree, &links, &space)?;
-
-    let values = Values::new(&scratch, &parameters);
-    validate::finite_vector(&values, &gravity, "gravity")?;
-    for assembled in &built {
-        validate::link(&values, assembled).map_err(|e| e.in_link(&assembled.link.name))?;
-    }
-
-    let mut graph = ExprGraph::new(SymbolTable::with_joints(tree.joint_names()));
-    if options.symbolic_parameters {
-        for p in &parameters {
-            graph.symbols_mut().push_parameter(p.name.clone());
-        }
-    }
-    let symbol = |g: &mut ExprGraph, s: Symbol| match s {
-        Symbol::Parameter(k) if !options.symbolic_parameters => {
-            g.constant(parameters.get(k as usize).map_or(f64::NAN, |p| p.value))
-        }
-        s => g.symbol(s),
-    };
-    let links = built.into_iter().map(|b| b.link).collect();
-    let (graph, gravity, links) = copy_model(&scratch, graph, symbol, gravity, links);
-    Ok(RobotModel {
-        name: spec.name,
-        graph,
-        parameters,
-        gravity,
-        links,
-        joints: tree.joints,
-        base: crate::model::Base::Fixed,
-    })
+    input::assemble(
+        RobotInput {
+            name: spec.name,
+            graph: scratch,
+            parameters,
+            gravity,
+            links: built,
+            joints: tree.joints,
+            base: spec.base,
+        },
+        options.symbolic_parameters,
+    )
 }
 
 /// Builds the links in model order, each placed by its parent's post-transform.
@@ -175,8 +179,8 @@ fn assemble_links(
     tree: &Tree,
     links: &[&LinkSpec<'_>],
     space: &Namespace,
-) -> Result<Vec<Assembled>, SpecError> {
-    let mut built: Vec<Assembled> = Vec::with_capacity(links.len());
+) -> Result<Vec<InputLink>, SpecError> {
+    let mut built: Vec<InputLink> = Vec::with_capacity(links.len());
     for (m, link) in links.iter().enumerate() {
         let parent = tree.parent.get(m).copied().flatten();
         let parent_post = match parent.and_then(|p| built.get(p)) {
@@ -191,43 +195,6 @@ fn assemble_links(
     Ok(built)
 }
 
-/// Copies a model's gravity and links, built in `scratch`, into `graph` (the model's own, which
-/// then holds only what the model uses), mapping each symbol through `symbol`. The copy visits
-/// gravity, then each link's rotation, translation, axis, mass, COM and inertia, so two readers
-/// that build the same expressions get the same graph, node for node (a URDF and the same robot
-/// as a TOML spec, whose links are constants).
-pub(crate) fn copy_model<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
-    scratch: &ExprGraph,
-    graph: ExprGraph,
-    symbol: F,
-    gravity: Vec3,
-    links: Vec<Link>,
-) -> (ExprGraph, Vec3, Vec<Link>) {
-    let mut copier = Transplant::new(scratch, graph, symbol);
-    let gravity = copier.vector(gravity);
-    let links = links
-        .into_iter()
-        .map(|link| copy_link(&mut copier, link))
-        .collect();
-    (copier.finish(), gravity, links)
-}
-
-/// A link with its expressions copied into the model's graph.
-fn copy_link<F: FnMut(&mut ExprGraph, Symbol) -> Id>(
-    copier: &mut Transplant<'_, F>,
-    link: Link,
-) -> Link {
-    Link {
-        rotation: copier.matrix(link.rotation),
-        translation: copier.vector(link.translation),
-        axis: copier.vector(link.axis),
-        mass: copier.scalar(link.mass),
-        com: copier.vector(link.com),
-        inertia: copier.matrix(link.inertia),
-        ..link
-    }
-}
-
 /// The gravity vector in the base frame (default `[0, 0, -9.81]`).
 fn gravity(
     graph: &mut ExprGraph,
@@ -240,19 +207,19 @@ fn gravity(
     }
 }
 
-/// Gives an error without a position the position of its field (in its link, if any).
-fn with_position(error: SpecError, root: &Table) -> SpecError {
-    let table = match error.link() {
+/// Gives a finding without a position the position of its field (in its link, if any).
+fn with_position(at: &mut Location, root: &Table) {
+    let table = match &at.link {
         None => Some((root, None)),
         Some(name) => link_table(root, name),
     };
     let span = table.and_then(|(table, link_span)| {
-        error
-            .field()
+        at.field
+            .as_deref()
             .and_then(|field| table.span_of(field))
             .or(link_span)
     });
-    error.at_span(span)
+    at.at_span(span);
 }
 
 /// The first `[[link]]` table named `name`, and where it was written.

@@ -4,9 +4,9 @@
 
 use super::document::{join_path, Item, Span, Table, Value};
 use super::error::{SpecError, SpecErrorKind};
-use crate::model::JointKind;
+use crate::model::{Base, JointKind};
 
-const TOP_LEVEL_KEYS: &[&str] = &["name", "gravity", "parameters", "link"];
+const TOP_LEVEL_KEYS: &[&str] = &["name", "gravity", "base", "parameters", "link"];
 const LINK_KEYS: &[&str] = &[
     "name",
     "parent",
@@ -23,11 +23,16 @@ const LINK_KEYS: &[&str] = &[
     "com_from_prev",
     "inertia",
     "triangle_inequality",
+    "mimic",
+    "friction",
+    "armature",
 ];
 const DH_KEYS: &[&str] = &["a", "alpha", "d", "theta"];
 const ORIGIN_KEYS: &[&str] = &["xyz", "rpy"];
 const INERTIA_KEYS: &[&str] = &["xx", "yy", "zz", "xy", "xz", "yz"];
 const BOX_KEYS: &[&str] = &["box"];
+const MIMIC_KEYS: &[&str] = &["joint", "multiplier", "offset"];
+const FRICTION_KEYS: &[&str] = &["viscous", "coulomb", "offset"];
 
 /// A number or an expression string, with the field path it was found at.
 #[derive(Clone, Debug)]
@@ -51,6 +56,7 @@ pub(crate) struct Named {
 pub(crate) struct RobotSpec<'a> {
     pub(crate) name: String,
     pub(crate) gravity: Option<Vector<'a>>,
+    pub(crate) base: Base,
     pub(crate) parameters: Vec<ParameterSpec<'a>>,
     pub(crate) links: Vec<LinkSpec<'a>>,
 }
@@ -74,6 +80,26 @@ pub(crate) struct LinkSpec<'a> {
     pub(crate) com: ComSpec<'a>,
     pub(crate) inertia: InertiaSpec<'a>,
     pub(crate) triangle_inequality: bool,
+    pub(crate) mimic: Option<MimicSpec<'a>>,
+    pub(crate) friction: Option<FrictionSpec<'a>>,
+    pub(crate) armature: Option<Number<'a>>,
+}
+
+/// `mimic = { joint, multiplier, offset }`: the leader's joint variable, the factor and offset
+/// (defaults 1 and 0).
+#[derive(Debug)]
+pub(crate) struct MimicSpec<'a> {
+    pub(crate) joint: Named,
+    pub(crate) multiplier: Option<Number<'a>>,
+    pub(crate) offset: Option<Number<'a>>,
+}
+
+/// `friction = { viscous, coulomb, offset }`, each defaulting to 0.
+#[derive(Debug)]
+pub(crate) struct FrictionSpec<'a> {
+    pub(crate) viscous: Option<Number<'a>>,
+    pub(crate) coulomb: Option<Number<'a>>,
+    pub(crate) offset: Option<Number<'a>>,
 }
 
 /// The frame convention of a link (DESIGN §2 (a)–(d)); omitted entries are `None`.
@@ -138,6 +164,20 @@ pub(crate) fn read(root: &Table) -> Result<RobotSpec<'_>, SpecError> {
         .get("gravity")
         .map(|g| vector(g, "gravity"))
         .transpose()?;
+    let base = match root.get("base") {
+        None => Base::Fixed,
+        Some(item) => match item.as_str("base")? {
+            "fixed" => Base::Fixed,
+            "floating" => Base::Floating,
+            other => {
+                return Err(format_error(format!(
+                    "unknown base '{other}' (expected fixed or floating)"
+                ))
+                .at_field("base")
+                .at_span(item.span.clone()))
+            }
+        },
+    };
     let parameters = match root.get("parameters") {
         None => Vec::new(),
         Some(item) => item
@@ -166,6 +206,7 @@ pub(crate) fn read(root: &Table) -> Result<RobotSpec<'_>, SpecError> {
     Ok(RobotSpec {
         name,
         gravity,
+        base,
         parameters,
         links,
     })
@@ -223,6 +264,12 @@ fn read_link(table: &Table) -> Result<LinkSpec<'_>, SpecError> {
         .map(|t| t.as_bool("triangle_inequality"))
         .transpose()?
         .unwrap_or(true);
+    let mimic = table.get("mimic").map(mimic).transpose()?;
+    let friction = table.get("friction").map(friction).transpose()?;
+    let armature = table.get("armature").map(|item| Number {
+        field: "armature".to_owned(),
+        item,
+    });
     Ok(LinkSpec {
         name,
         parent,
@@ -233,6 +280,41 @@ fn read_link(table: &Table) -> Result<LinkSpec<'_>, SpecError> {
         com,
         inertia,
         triangle_inequality,
+        mimic,
+        friction,
+        armature,
+    })
+}
+
+fn mimic(item: &Item) -> Result<MimicSpec<'_>, SpecError> {
+    let table = item.as_table("mimic")?;
+    table.check_keys(MIMIC_KEYS, "mimic")?;
+    let number = |k: &str| {
+        table.get(k).map(|item| Number {
+            field: join_path("mimic", k),
+            item,
+        })
+    };
+    Ok(MimicSpec {
+        joint: named(table.required("joint", "mimic")?, "mimic.joint")?,
+        multiplier: number("multiplier"),
+        offset: number("offset"),
+    })
+}
+
+fn friction(item: &Item) -> Result<FrictionSpec<'_>, SpecError> {
+    let table = item.as_table("friction")?;
+    table.check_keys(FRICTION_KEYS, "friction")?;
+    let number = |k: &str| {
+        table.get(k).map(|item| Number {
+            field: join_path("friction", k),
+            item,
+        })
+    };
+    Ok(FrictionSpec {
+        viscous: number("viscous"),
+        coulomb: number("coulomb"),
+        offset: number("offset"),
     })
 }
 

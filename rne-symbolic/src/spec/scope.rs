@@ -8,8 +8,8 @@ use super::document::Value;
 use super::error::{SpecError, SpecErrorKind};
 use super::expression::{is_identifier, parse_expression, Names, RESERVED};
 use super::schema::{Number, ParameterSpec, Vector};
-use super::tree::MAX_SYMBOLS;
 use crate::expr::{ExprGraph, Id, Symbol, Vec3};
+use crate::input::MAX_SYMBOLS;
 use crate::model::JointVariable;
 
 /// Every name a spec defines: parameters (symbol `Parameter(k)`, k in spec order) and joint

@@ -7,13 +7,11 @@ use std::collections::HashMap;
 use super::error::{SpecError, SpecErrorKind};
 use super::expression::{is_identifier, RESERVED};
 use super::schema::LinkSpec;
+use crate::input::MAX_SYMBOLS;
 use crate::model::{JointKind, JointVariable};
 
 /// The name by which a link names the fixed base as its parent.
 pub(crate) const BASE: &str = "base";
-
-/// The most joints (and parameters) a model can index.
-pub(crate) const MAX_SYMBOLS: usize = 1 << 16;
 
 /// The model order of a spec's links.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -266,7 +264,7 @@ fn joint_names(
 
 /// Why `name` cannot name a joint variable, if it cannot: it must be an identifier (letters,
 /// digits and `_`) and not a word of the expression language.
-pub(crate) fn unusable_variable_name(name: &str) -> Option<String> {
+fn unusable_variable_name(name: &str) -> Option<String> {
     (!is_identifier(name) || RESERVED.contains(&name)).then(|| {
         format!(
             "joint variable '{name}' is not a name (letters, digits and _, not {})",
@@ -277,7 +275,7 @@ pub(crate) fn unusable_variable_name(name: &str) -> Option<String> {
 
 /// How a joint variable's velocity, acceleration and force are printed (`D<q>`, `DD<q>`,
 /// `tau_<q>`, as the thesis's Maple code), each with what it is.
-pub(crate) fn printed_forms(name: &str) -> [(&'static str, String); 3] {
+fn printed_forms(name: &str) -> [(&'static str, String); 3] {
     [
         ("velocity", format!("D{name}")),
         ("acceleration", format!("DD{name}")),

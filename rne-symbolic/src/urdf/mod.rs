@@ -1,88 +1,116 @@
-//! URDF files read into a [`RobotModel`] (DESIGN §2: "URDF files (`.urdf`) are read too").
+//! URDF files read into a [`RobotModel`] (DESIGN §2: "URDF files (`.urdf`) are read as robots
+//! publish them").
 //!
-//! The XML is parsed by `urdf-rs`; this module maps the result onto the model's body frames
-//! (see [`crate::model`]) following the URDF specification (<http://wiki.ros.org/urdf/XML>):
+//! The XML is read with quick-xml (`document`), taking only what rigid-body dynamics needs;
+//! this module maps it onto the shared input model of [`crate::input`] and the model's body
+//! frames (see [`crate::model`]) following the URDF specification
+//! (<http://wiki.ros.org/urdf/XML>):
 //!
-//! - a `<joint>` and its `<child>` link make one model [`Link`](crate::Link), named after the
-//!   child link; the joint's `name` is its joint variable's name;
+//! - every `<link>` is a model [`Link`](crate::Link): the root as a fixed link at the world's
+//!   origin (`parent: None`), every other link together with the `<joint>` whose child it is;
+//!   a moving joint's `name` is its joint variable's name;
 //! - `type` revolute or continuous, prismatic, fixed: [`JointKind`](crate::JointKind)
 //!   `Revolute`, `Prismatic`, `Fixed`;
 //! - the joint's `<origin xyz rpy>`: `t_i = xyz`, `E_i = Rz(yaw) Ry(pitch) Rx(roll)`;
 //! - the joint's `<axis xyz>` (default `1 0 0`): `u_i = axis / ‖axis‖`, in the child's frame;
+//! - `<mimic joint multiplier offset>` (defaults 1 and 0): [`Link::mimic`](crate::Link::mimic),
+//!   the follower keeping its own variable until the model's mimic joints are constrained;
+//! - `<dynamics damping friction>` (defaults 0): [`Link::friction`](crate::Link::friction) with
+//!   viscous = damping, Coulomb = friction, offset 0; no `<dynamics>`, no friction;
 //! - the child's `<inertial>`: mass `<mass>`, COM `<origin xyz>`, and `<inertia>` turned into
-//!   the link frame, `R I Rᵀ` with `R = Rz Ry Rx` of `<origin rpy>`.
+//!   the link frame, `R I Rᵀ` with `R = Rz Ry Rx` of `<origin rpy>`. A link without
+//!   `<inertial>` is massless.
 //!
 //! The URDF child link frame is the joint frame, so it is the body frame B_i: a revolute
 //! joint rotates it by `E_i Rot(u_i, q)` about `t_i`, a prismatic one moves it to
-//! `t_i + E_i u_i q`, exactly the placements of [`crate::model`]. A link without `<inertial>`
-//! is massless.
+//! `t_i + E_i u_i q`, exactly the placements of [`crate::model`].
 //!
 //! # Rules
 //!
 //! - **Tree.** Exactly one root link (a link that is no joint's child), every other link the
-//!   child of exactly one joint; several children per link are fine. Joints are numbered
-//!   depth-first from the root, children in file order (DESIGN §2).
-//! - **Base.** The root link and the links attached to it through fixed joints only (a `world`
-//!   link and the robot's `base_link`, say) never move: they are the base. Their inertials do
-//!   not enter the dynamics and they are not model links; their fixed joints' transforms are
-//!   composed into the placement of the joints below them.
-//! - **Fixed links.** Every other link behind a fixed joint is kept as a
-//!   [`JointKind::Fixed`](crate::JointKind) link;
-//!   [`SymbolicDynamics`](crate::SymbolicDynamics) merges it exactly into its moving parent
-//!   (mass, COM and inertia), while the numeric reference of `rne-models` keeps it as a body of
-//!   its own, which checks the merge.
-//! - **Names.** A moving joint's name is its joint variable's name, so it must be usable as one
-//!   (as a TOML spec's `q`): letters, digits and `_`, not a word of the expression language, not
-//!   printed like another joint's velocity, acceleration or force (`D<q>`, `DD<q>`, `tau_<q>`).
+//!   child of exactly one joint; several children per link are fine. Links are ordered
+//!   depth-first from the root, children in file order, and joints numbered in that order
+//!   (DESIGN §2).
+//! - **Fixed links.** The root and every link behind a fixed joint are kept as
+//!   [`JointKind::Fixed`](crate::JointKind) links, so kinematics frames (a tool flange) and a
+//!   floating base's body have them;
+//!   [`RobotModel::merge_fixed_links`](crate::RobotModel::merge_fixed_links) drops the links
+//!   fixed to the world and merges the others exactly into their moving parent for the dynamics.
+//! - **Names.** Joint and link names are any string URDF allows (`8`, `FL-hip`, `joint.1`,
+//!   unicode) and are kept verbatim in the model and every message.
 //! - **Gravity** is `[0, 0, −9.81]` in the root frame (URDF has none; z up, as ROS).
 //! - **Parameters**: a URDF has none, so [`RobotModel::parameters`] is empty and the
 //!   `--symbolic-params` / `parameters: runtime` setting changes nothing.
-//! - **Validation**, as for a TOML spec: every number finite, mass ≥ 0, an inertia tensor that is
-//!   positive semi-definite and, for a link with mass, satisfies the triangle inequality of its
-//!   principal moments (within a relative 1e-9); a joint axis must not be zero.
+//! - **Validation** is the shared one of [`crate::input`]: errors for non-finite numbers,
+//!   negative mass, negative damping or friction, a zero axis, a clearly negative principal
+//!   moment, a mimic joint that follows a missing joint or loops; warnings for a broken
+//!   triangle inequality, a negligible negative principal moment and a massless moving subtree.
 //!
 //! # Errors
 //!
 //! Each error is a [`SpecError`] naming the file, the joint or link, the field and the line of
-//! the element; its [`SpecErrorKind`](crate::spec::SpecErrorKind) is
-//! - `Urdf` for XML that urdf-rs cannot read, floating, planar and spherical joints, mimic
-//!   joints and joint names that cannot name a joint variable;
+//! the `<joint>` or `<link>` element; its [`SpecErrorKind`](crate::spec::SpecErrorKind) is
+//! - `Urdf` for malformed XML, a missing element or attribute the dynamics reads, a malformed
+//!   number, an unknown joint type, and floating, planar and spherical joints;
 //! - `Tree` for a joint naming a missing link, a link with two parents (a closed loop), cycles,
-//!   several roots, duplicate names, and a URDF in which nothing moves;
-//! - `Kinematics` for a zero axis; `Physics` for non-finite or physically impossible numbers.
-//!
-//! Nothing is approximated or dropped silently.
+//!   several roots, duplicate names, a URDF in which nothing moves, and mimic joints whose
+//!   leader is missing or that follow each other in a loop;
+//! - `Kinematics` for a zero axis and a mimic on a fixed joint; `Physics` for non-finite or
+//!   physically impossible numbers.
 //!
 //! # Not read
 //!
-//! What does not enter rigid-body dynamics: `<visual>`, `<collision>`, `<material>`, and a
-//! joint's `<limit>`, `<dynamics>` (damping, friction), `<safety_controller>` and
-//! `<calibration>`; elements outside `<link>` and `<joint>` (`<transmission>`, `<gazebo>`).
+//! Everything else: `<visual>`, `<collision>`, `<geometry>`, `<material>`, `<texture>`, a
+//! joint's `<limit>`, `<safety_controller>` and `<calibration>`, `<transmission>`, `<gazebo>`,
+//! sensors, unknown elements and attributes, xacro leftovers (`xacro:` elements and
+//! attributes, `${..}` in attributes not read), comments, processing instructions and DOCTYPE.
+//! None of it can make a load fail.
 
 mod assemble;
 mod document;
-mod inertial;
-mod joint;
-mod locate;
+mod elements;
 mod tree;
 
-use crate::spec::SpecError;
+use crate::input::{self, LoadOptions};
+use crate::spec::{SpecError, SpecWarning};
 use crate::RobotModel;
 
-/// Reads a URDF robot from `text`; `origin` names the file in error messages.
-pub fn parse_str(text: &str, origin: &str) -> Result<RobotModel, SpecError> {
-    read(text, origin).map_err(|e| locate::element(e, text).locate(origin, text))
+use self::elements::UrdfRobot;
+
+/// Reads a URDF robot from `text`; `origin` names the file in error and warning messages.
+/// Only [`LoadOptions::strict`] matters: a URDF has no parameters.
+pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+    let robot = document::read(text).map_err(|e| e.locate(origin, text))?;
+    let mut model = read(&robot, origin).map_err(|e| {
+        let span = element_span(&robot, e.joint(), e.link());
+        e.at_span(span).locate(origin, text)
+    })?;
+    model.warnings = std::mem::take(&mut model.warnings)
+        .into_iter()
+        .map(|w: SpecWarning| {
+            let span = element_span(&robot, w.joint(), w.link());
+            w.at_span(span).locate(origin, text)
+        })
+        .collect();
+    input::enforce(model, options.strict)
 }
 
-fn read(text: &str, origin: &str) -> Result<RobotModel, SpecError> {
-    let robot = document::read(text)?;
-    for link in &robot.links {
-        inertial::validate(link).map_err(|e| e.in_link(&link.name))?;
-    }
-    for j in &robot.joints {
-        joint::validate(j).map_err(|e| e.in_joint(&j.name))?;
-    }
-    let tree = tree::build(&robot)?;
-    joint::check_variable_names(&robot, &tree)?;
-    assemble::model(&robot, &tree, origin)
+fn read(robot: &UrdfRobot, origin: &str) -> Result<RobotModel, SpecError> {
+    let tree = tree::build(robot)?;
+    let input = assemble::input(robot, &tree, origin)?;
+    input::assemble(input, false)
+}
+
+/// The opening tag of the first `<joint>` named `joint`, else of the first `<link>` named
+/// `link`.
+fn element_span(
+    robot: &UrdfRobot,
+    joint: Option<&str>,
+    link: Option<&str>,
+) -> Option<std::ops::Range<usize>> {
+    let joint = joint.and_then(|name| robot.joints.iter().find(|j| j.name == name));
+    let link = link.and_then(|name| robot.links.iter().find(|l| l.name == name));
+    joint
+        .map(|j| j.span.clone())
+        .or(link.map(|l| l.span.clone()))
 }

@@ -1,46 +1,32 @@
-//! The link tree of a URDF: joints resolved to their links, checked to form one tree, the base
-//! (the root and the links fixed to it) told apart from the model links, and the model links
-//! put in depth-first order from the root with children in file order (DESIGN §2, the
-//! invariants of [`RobotModel`](crate::RobotModel)).
+//! The link tree of a URDF: joints resolved to their links, checked to form one tree, and every
+//! link put in model order — the root first, then depth-first with children in file order
+//! (DESIGN §2, the invariants of [`RobotModel`](crate::RobotModel)).
 
 use std::collections::{HashMap, HashSet};
 
-use urdf_rs::{JointType, Robot};
-
+use super::elements::{JointType, UrdfRobot};
 use crate::spec::{SpecError, SpecErrorKind};
 
-/// The model links of a URDF, in model order.
+/// The links of a URDF in model order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct Tree {
-    /// One entry per model link, parents first.
+    /// One entry per link, parents first; the root is the first.
     pub(crate) links: Vec<TreeLink>,
 }
 
-/// A model link: a joint and its child link.
+/// A model link: a URDF link and the joint that attaches it (none for the root).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct TreeLink {
-    /// Index in `Robot::joints` of the joint that attaches the link.
-    pub(crate) joint: usize,
-    /// Index in `Robot::links` of the link, the joint's child.
+    /// Index in `UrdfRobot::joints` of the joint whose child the link is; `None` for the root.
+    pub(crate) joint: Option<usize>,
+    /// Index in `UrdfRobot::links` of the link.
     pub(crate) link: usize,
-    /// Model index of the parent link; `None` when the joint's parent link is part of the base.
+    /// Model index of the parent link; `None` for the root.
     pub(crate) parent: Option<usize>,
-    /// When the joint's parent link is part of the base: the fixed joints (indices in
-    /// `Robot::joints`) that lead from the root to it, root first. Empty otherwise.
-    pub(crate) base_path: Vec<usize>,
-}
-
-/// Where a link of the URDF ended up.
-#[derive(Clone, Debug)]
-enum Place {
-    /// In the base, reached from the root through these fixed joints.
-    Base(Vec<usize>),
-    /// The model link with this index.
-    Model(usize),
 }
 
 /// Resolves and orders the links and joints of `robot`.
-pub(crate) fn build(robot: &Robot) -> Result<Tree, SpecError> {
+pub(crate) fn build(robot: &UrdfRobot) -> Result<Tree, SpecError> {
     if robot.links.is_empty() {
         return Err(tree_error("the URDF has no <link>"));
     }
@@ -63,11 +49,15 @@ pub(crate) fn build(robot: &Robot) -> Result<Tree, SpecError> {
             .in_link(&robot.links[*second].name));
         }
     };
-    let (links, reached) = edges.depth_first(robot, root);
+    let (links, reached) = edges.depth_first(root);
     if let Some(unreached) = reached.iter().position(|&r| !r) {
         return Err(edges.cycle_error(robot, unreached));
     }
-    if links.is_empty() {
+    if robot
+        .joints
+        .iter()
+        .all(|j| j.joint_type == JointType::Fixed)
+    {
         return Err(tree_error(
             "the URDF has no revolute, continuous or prismatic joint: nothing moves",
         ));
@@ -76,7 +66,7 @@ pub(crate) fn build(robot: &Robot) -> Result<Tree, SpecError> {
 }
 
 /// Index of each link name; rejects duplicates.
-fn link_index(robot: &Robot) -> Result<HashMap<&str, usize>, SpecError> {
+fn link_index(robot: &UrdfRobot) -> Result<HashMap<&str, usize>, SpecError> {
     let mut index = HashMap::new();
     for (l, link) in robot.links.iter().enumerate() {
         if index.insert(link.name.as_str(), l).is_some() {
@@ -101,7 +91,7 @@ struct Edges {
 impl Edges {
     /// Resolves every joint's links by name; rejects duplicate joint names, missing links and
     /// a link that is the child of two joints.
-    fn new(robot: &Robot, index: &HashMap<&str, usize>) -> Result<Edges, SpecError> {
+    fn new(robot: &UrdfRobot, index: &HashMap<&str, usize>) -> Result<Edges, SpecError> {
         let mut names: HashSet<&str> = HashSet::new();
         let mut edges = Edges {
             ends: Vec::with_capacity(robot.joints.len()),
@@ -123,14 +113,14 @@ impl Edges {
                     error(format!("the {field} link '{name}' does not exist"), field)
                 })
             };
-            let parent = link(&joint.parent.link, "parent")?;
-            let child = link(&joint.child.link, "child")?;
+            let parent = link(&joint.parent, "parent")?;
+            let child = link(&joint.child, "child")?;
             if let Some(first) = edges.parent_joint[child] {
                 return Err(error(
                     format!(
                         "link '{}' is already the child of joint '{}': a link with two parents \
                          closes a loop, which a tree cannot model",
-                        joint.child.link, robot.joints[first].name
+                        joint.child, robot.joints[first].name
                     ),
                     "child",
                 ));
@@ -141,53 +131,35 @@ impl Edges {
         }
         Ok(edges)
     }
-    /// The model links in depth-first order from `root`, children in file order, and which
-    /// URDF links were reached. Links of the base (reached through fixed joints only) are not
-    /// model links; the joints below them start from the root frame.
-    fn depth_first(&self, robot: &Robot, root: usize) -> (Vec<TreeLink>, Vec<bool>) {
-        let mut links = Vec::new();
-        let mut reached = vec![false; robot.links.len()];
+    /// The links in depth-first order from `root`, children in file order, and which URDF
+    /// links were reached.
+    fn depth_first(&self, root: usize) -> (Vec<TreeLink>, Vec<bool>) {
+        let mut links = vec![TreeLink {
+            joint: None,
+            link: root,
+            parent: None,
+        }];
+        let mut reached = vec![false; self.children.len()];
         reached[root] = true;
-        let mut stack: Vec<(usize, Place)> = self.children[root]
-            .iter()
-            .rev()
-            .map(|&j| (j, Place::Base(Vec::new())))
-            .collect();
+        let mut stack: Vec<(usize, usize)> =
+            self.children[root].iter().rev().map(|&j| (j, 0)).collect();
         while let Some((j, parent)) = stack.pop() {
             let child = self.ends[j].1;
             reached[child] = true;
-            let place = match parent {
-                Place::Base(mut path) if robot.joints[j].joint_type == JointType::Fixed => {
-                    path.push(j);
-                    Place::Base(path)
-                }
-                parent => {
-                    let (parent, base_path) = match parent {
-                        Place::Base(path) => (None, path),
-                        Place::Model(m) => (Some(m), Vec::new()),
-                    };
-                    links.push(TreeLink {
-                        joint: j,
-                        link: child,
-                        parent,
-                        base_path,
-                    });
-                    Place::Model(links.len() - 1)
-                }
-            };
-            stack.extend(
-                self.children[child]
-                    .iter()
-                    .rev()
-                    .map(|&c| (c, place.clone())),
-            );
+            links.push(TreeLink {
+                joint: Some(j),
+                link: child,
+                parent: Some(parent),
+            });
+            let at = links.len() - 1;
+            stack.extend(self.children[child].iter().rev().map(|&c| (c, at)));
         }
         (links, reached)
     }
 
     /// The error for a link that the walk from the root did not reach: following parent
     /// joints from `start` ends on a closed loop of joints, which the error names.
-    fn cycle_error(&self, robot: &Robot, start: usize) -> SpecError {
+    fn cycle_error(&self, robot: &UrdfRobot, start: usize) -> SpecError {
         let mut seen: Vec<Option<usize>> = vec![None; robot.links.len()];
         let mut walked: Vec<usize> = Vec::new();
         let mut at = start;

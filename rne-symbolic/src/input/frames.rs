@@ -20,10 +20,10 @@
 //! In (a), R_i^{i−1}(q) = P·Ra(c)·Q · Qᵀ·Ra(±q)·Q = E·Rot(Qᵀ(±e_a), q), so u is b_i of (3.27);
 //! for the IRB 140, R_1^0 = Rz(q1)Rx(π/2)Rz(π/2) gives u = [1, 0, 0] as (5.17).
 
-use super::error::{SpecError, SpecErrorKind};
-use super::rewrite::{mentions, substitute};
+use super::transplant::{mentions, substitute};
 use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
 use crate::model::{rotation_about, rpy_rotation, Axis, Transform};
+use crate::spec::{SpecError, SpecErrorKind};
 
 /// The motion of a joint and its variable.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

@@ -3,14 +3,14 @@
 
 use std::path::Path;
 
-use super::error::{SpecError, SpecErrorKind};
 use super::LoadOptions;
+use crate::spec::{SpecError, SpecErrorKind};
 use crate::RobotModel;
 
 /// The format of a robot description.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum RobotFormat {
-    /// The TOML spec of DESIGN §2 (`.toml`), read by [`parse_str`](super::parse_str).
+    /// The TOML spec of DESIGN §2 (`.toml`), read by [`crate::spec::parse_str`].
     Toml,
     /// A URDF file (`.urdf`), read by [`crate::urdf::parse_str`].
     Urdf,
@@ -62,7 +62,7 @@ pub fn load_robot(path: &Path, options: &LoadOptions) -> Result<RobotModel, Spec
 }
 
 /// Reads a robot description in `format` from `text`; `origin` names the file in error
-/// messages. `options` matter only for a TOML spec: a URDF has no named parameters.
+/// messages.
 pub fn parse_robot(
     text: &str,
     origin: &str,
@@ -70,8 +70,8 @@ pub fn parse_robot(
     options: &LoadOptions,
 ) -> Result<RobotModel, SpecError> {
     match format {
-        RobotFormat::Toml => super::parse_str(text, origin, options),
-        RobotFormat::Urdf => crate::urdf::parse_str(text, origin),
+        RobotFormat::Toml => crate::spec::parse_str(text, origin, options),
+        RobotFormat::Urdf => crate::urdf::parse_str(text, origin, options),
     }
 }
 
