@@ -171,16 +171,19 @@ pub(crate) fn assemble(
         .map(|l| copy_link(&mut copier, l.link.clone()))
         .collect();
     let graph = copier.finish();
-    Ok(RobotModel {
+    let mut model = RobotModel {
         name: input.name,
         graph,
         parameters: input.parameters,
         gravity,
         links,
         joints: input.joints,
-        base: input.base,
+        base: Base::Fixed,
         warnings,
-    })
+    };
+    // A floating base turns the root body into a free-flyer (RobotModel::set_base).
+    model.set_base(input.base);
+    Ok(model)
 }
 
 /// Strict validation: the model's first warning as an error, when `strict`.
