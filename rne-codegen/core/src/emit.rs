@@ -5,7 +5,12 @@
 //! is respected without ever re-associating: `a + (b + c)` keeps its parentheses, because
 //! floating-point addition is not associative and the emitted code must compute exactly
 //! what the program says. The sine and cosine of each joint angle are computed once, with
-//! `sin_cos`, at the top of the function.
+//! the runtime's `Real::sin_cos` (or `Real::sin_cos_array` for several), at the top of the
+//! function.
+//!
+//! Emitted code names nothing but `core` and the runtime, which it reaches through the path
+//! in [`EmitContext::runtime`] (`::rne_codegen::__private` unless the `crate:` setting says
+//! otherwise).
 
 use std::collections::BTreeMap;
 
@@ -13,7 +18,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use rne_symbolic::{Symbol, SymbolTable};
 
-use crate::kernel::{Kernel, Shape};
+use crate::kernel::{Input, Kernel, Shape};
 use crate::program::{Instr, Operand, Program};
 use crate::scene::{ParameterMode, ScalarType};
 
@@ -26,6 +31,9 @@ pub struct EmitContext<'a> {
     pub scalar: ScalarType,
     /// Constant or runtime parameters.
     pub parameters: ParameterMode,
+    /// The path of the runtime crate (`rne-runtime`) from the generated code
+    /// ([`Scene::runtime_path`](crate::Scene::runtime_path)).
+    pub runtime: &'a TokenStream,
 }
 
 /// Binding strength of an emitted expression; a child is parenthesised when it binds less
@@ -48,6 +56,12 @@ struct Emitter<'a> {
 }
 
 impl Emitter<'_> {
+    /// `<path to the runtime>::Real`.
+    fn real(&self) -> TokenStream {
+        let runtime = self.ctx.runtime;
+        quote!(#runtime::Real)
+    }
+
     fn scalar_type(&self) -> TokenStream {
         match self.ctx.scalar {
             ScalarType::F64 => quote!(f64),
@@ -59,8 +73,9 @@ impl Emitter<'_> {
     fn constant(&self, c: f64) -> (TokenStream, Precedence) {
         let magnitude = if c.is_finite() {
             let lit = Literal::f64_unsuffixed(c.abs());
+            let real = self.real();
             match self.ctx.scalar {
-                ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(#lit)),
+                ScalarType::Generic => quote!(<T as #real>::from_f64(#lit)),
                 _ => quote!(#lit),
             }
         } else {
@@ -69,10 +84,11 @@ impl Emitter<'_> {
             } else {
                 quote!(INFINITY)
             };
+            let real = self.real();
             match self.ctx.scalar {
                 ScalarType::F32 => quote!(f32::#special),
                 ScalarType::F64 => quote!(f64::#special),
-                ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(f64::#special)),
+                ScalarType::Generic => quote!(<T as #real>::from_f64(f64::#special)),
             }
         };
         if c.is_sign_negative() && !c.is_nan() {
@@ -103,10 +119,11 @@ impl Emitter<'_> {
             }
             Symbol::Parameter(_) => {
                 let field = parameter_ident(&self.ctx.symbols.name(s));
+                let real = self.real();
                 match self.ctx.scalar {
                     ScalarType::F64 => quote!(p.#field),
                     ScalarType::F32 => quote!((p.#field as f32)),
-                    ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(p.#field)),
+                    ScalarType::Generic => quote!(<T as #real>::from_f64(p.#field)),
                 }
             }
         }
@@ -140,12 +157,13 @@ impl Emitter<'_> {
         }
     }
 
-    /// `sin`, `cos` and `sqrt` go through `rne_codegen::Real` for every scalar type, so that
-    /// `f64` kernels get the fast, accurate `rne_codegen::sin_cos`.
+    /// `sin`, `cos` and `sqrt` go through the runtime's `Real` for every scalar type, so that
+    /// `f64` kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`.
     fn call(&self, method: &str, a: Operand) -> (TokenStream, Precedence) {
         let method = Ident::new(method, Span::call_site());
         let arg = self.operand(a).0;
-        (quote!(::rne_codegen::Real::#method(#arg)), Precedence::Atom)
+        let real = self.real();
+        (quote!(#real::#method(#arg)), Precedence::Atom)
     }
 
     fn instr(&self, instr: Instr) -> (TokenStream, Precedence) {
@@ -206,18 +224,20 @@ impl Emitter<'_> {
                     let c = cos.then(|| quote!(let #c = cos_q[#lane];));
                     quote!(#s #c)
                 });
+            let real = self.real();
             return quote! {
-                let (sin_q, cos_q) = ::rne_codegen::Real::sin_cos_array(&[#(#angles),*]);
+                let (sin_q, cos_q) = #real::sin_cos_array(&[#(#angles),*]);
                 #(#lines)*
             };
         }
+        let real = self.real();
         let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
             let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
             let angle = self.input(Symbol::Position(k));
             match (sin, cos) {
-                (true, true) => quote!(let (#s, #c) = ::rne_codegen::Real::sin_cos(#angle);),
-                (true, false) => quote!(let #s = ::rne_codegen::Real::sin(#angle);),
-                (false, _) => quote!(let #c = ::rne_codegen::Real::cos(#angle);),
+                (true, true) => quote!(let (#s, #c) = #real::sin_cos(#angle);),
+                (true, false) => quote!(let #s = #real::sin(#angle);),
+                (false, _) => quote!(let #c = #real::cos(#angle);),
             }
         });
         quote!(#(#lines)*)
@@ -241,11 +261,21 @@ pub fn is_valid_parameter_name(name: &str) -> bool {
             && valid_ident(&format!("r#{name}")))
 }
 
+/// The return type of `kernel`'s function, in scalar `t`: a scalar, `[t; NV]` or
+/// `[[t; NV]; NV]`.
+pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
+    match kernel.shape() {
+        Shape::Scalar => quote!(#t),
+        Shape::Vector => quote!([#t; NV]),
+        Shape::Matrix => quote!([[#t; NV]; NV]),
+    }
+}
+
 /// Emits `kernel` as a function computing `program`'s outputs.
 pub fn emit_kernel(
     kernel: Kernel,
     program: &Program,
-    ndof: usize,
+    nv: usize,
     ctx: EmitContext<'_>,
 ) -> TokenStream {
     let uses = program.use_counts();
@@ -286,7 +316,7 @@ pub fn emit_kernel(
         Shape::Scalar => quote!(#(#outputs)*),
         Shape::Vector => quote!([#(#outputs),*]),
         Shape::Matrix => {
-            let rows = outputs.chunks(ndof.max(1)).map(|row| quote!([#(#row),*]));
+            let rows = outputs.chunks(nv.max(1)).map(|row| quote!([#(#row),*]));
             quote!([#(#rows),*])
         }
     };
@@ -294,23 +324,24 @@ pub fn emit_kernel(
     let t = emitter.scalar_type();
     let name = Ident::new(kernel.name(), Span::call_site());
     let doc = kernel.summary();
+    let real = emitter.real();
     let generics = match ctx.scalar {
-        ScalarType::Generic => quote!(<T: ::rne_codegen::Real>),
+        ScalarType::Generic => quote!(<T: #real>),
         _ => quote!(),
     };
     let params = match ctx.parameters {
         ParameterMode::Runtime => quote!(p: &Params,),
         ParameterMode::Constant => quote!(),
     };
-    let args = kernel.inputs().iter().map(|input| {
+    let args = kernel.inputs().iter().map(|&input| {
         let arg = Ident::new(input.name(), Span::call_site());
-        quote!(#arg: &[#t; NDOF])
+        let len = match input {
+            Input::Q => quote!(NQ),
+            _ => quote!(NV),
+        };
+        quote!(#arg: &[#t; #len])
     });
-    let ret = match kernel.shape() {
-        Shape::Scalar => quote!(#t),
-        Shape::Vector => quote!([#t; NDOF]),
-        Shape::Matrix => quote!([[#t; NDOF]; NDOF]),
-    };
+    let ret = return_type(kernel, &t);
     quote! {
         #[doc = #doc]
         #[inline]

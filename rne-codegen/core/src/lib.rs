@@ -39,18 +39,19 @@ mod error;
 mod kernel;
 mod linear;
 mod load;
+mod model_type;
 mod module;
 mod program;
 mod scene;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
-pub use emit::{emit_kernel, EmitContext};
+pub use emit::{emit_kernel, return_type, EmitContext};
 pub use error::CodegenError;
-pub use kernel::{Input, Kernel, Shape, UnknownKernel};
+pub use kernel::{build_outputs, Input, Kernel, Shape, UnknownKernel};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{
     build_kernel, generate, kernel_program, BuiltKernel, GeneratedModule, KernelReport,
 };
 pub use program::{Instr, Operand, Program};
-pub use scene::{ParameterMode, ScalarType, Scene};
+pub use scene::{ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH};
