@@ -353,3 +353,168 @@ pub fn emit_kernel(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Operand::{Const, Input as In, Temp};
+
+    const QD0: Operand = In(Symbol::Velocity(0));
+    const QD1: Operand = In(Symbol::Velocity(1));
+    const QD2: Operand = In(Symbol::Velocity(2));
+
+    /// The emitted function of a scalar kernel computing `instrs` (the last is the output),
+    /// without whitespace.
+    fn emit(instrs: Vec<Instr>, scalar: ScalarType) -> String {
+        let output = Temp(instrs.len() as u32 - 1);
+        emit_outputs(instrs, vec![output], scalar)
+    }
+
+    fn emit_outputs(instrs: Vec<Instr>, outputs: Vec<Operand>, scalar: ScalarType) -> String {
+        let symbols = SymbolTable::with_joints(["q1", "q2", "q3"]);
+        let runtime = quote!(::rt);
+        let ctx = EmitContext {
+            symbols: &symbols,
+            scalar,
+            parameters: ParameterMode::Constant,
+            runtime: &runtime,
+        };
+        let program = Program { instrs, outputs };
+        emit_kernel(Kernel::KineticEnergy, &program, 3, ctx)
+            .to_string()
+            .replace(' ', "")
+    }
+
+    /// The function's body after its signature.
+    fn body(code: &str) -> &str {
+        &code[code.find("->f64{").map_or(0, |i| i + "->f64{".len())..]
+    }
+
+    #[test]
+    fn right_nested_sums_and_products_keep_their_parentheses() {
+        let sum = emit(
+            vec![Instr::Add(QD1, QD2), Instr::Add(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&sum).starts_with("qd[0]+(qd[1]+qd[2])"), "{sum}");
+        let left = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Add(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&left).starts_with("qd[0]+qd[1]+qd[2]"), "{left}");
+        let product = emit(
+            vec![Instr::Mul(QD1, QD2), Instr::Mul(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&product).starts_with("qd[0]*(qd[1]*qd[2])"),
+            "{product}"
+        );
+        let difference = emit(
+            vec![Instr::Sub(QD1, QD2), Instr::Sub(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&difference).starts_with("qd[0]-(qd[1]-qd[2])"),
+            "{difference}"
+        );
+        let quotient = emit(
+            vec![Instr::Mul(QD1, QD2), Instr::Div(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&quotient).starts_with("qd[0]/(qd[1]*qd[2])"),
+            "{quotient}"
+        );
+    }
+
+    #[test]
+    fn a_sum_inside_a_product_is_parenthesised_and_a_product_inside_a_sum_is_not() {
+        let code = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Mul(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("(qd[0]+qd[1])*qd[2]"), "{code}");
+        let code = emit(
+            vec![Instr::Mul(QD0, QD1), Instr::Add(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("qd[0]*qd[1]+qd[2]"), "{code}");
+    }
+
+    #[test]
+    fn negation_binds_tighter_than_products_and_wraps_sums() {
+        let code = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Neg(Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("-(qd[0]+qd[1])"), "{code}");
+        let code = emit(
+            vec![Instr::Neg(QD0), Instr::Mul(Temp(0), QD1)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("-qd[0]*qd[1]"), "{code}");
+        let code = emit(
+            vec![Instr::Neg(QD1), Instr::Mul(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("qd[0]*-qd[1]"), "{code}");
+    }
+
+    #[test]
+    fn negative_and_non_finite_constants() {
+        let code = emit(vec![Instr::Mul(QD0, Const(-2.5))], ScalarType::F64);
+        assert!(body(&code).starts_with("qd[0]*-2.5"), "{code}");
+        let code = emit(vec![Instr::Sub(QD0, Const(-0.0))], ScalarType::F64);
+        assert!(body(&code).starts_with("qd[0]--0.0"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(f64::NAN)], ScalarType::F64);
+        assert!(code.contains("f64::NAN"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(f64::NEG_INFINITY)], ScalarType::F32);
+        assert!(code.contains("-f32::INFINITY"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(0.5)], ScalarType::Generic);
+        assert!(code.contains("<Tas::rt::Real>::from_f64(0.5)"), "{code}");
+    }
+
+    /// Sines of joints 1 to `joints`, summed.
+    fn sines(joints: u16) -> Vec<Instr> {
+        let mut instrs: Vec<Instr> = (0..joints)
+            .map(|k| Instr::Sin(In(Symbol::Position(k))))
+            .collect();
+        instrs.push(Instr::Add(Temp(0), Temp(1)));
+        for k in 2..u32::from(joints) {
+            instrs.push(Instr::Add(Temp(instrs.len() as u32 - 1), Temp(k)));
+        }
+        instrs
+    }
+
+    #[test]
+    fn an_odd_count_of_angles_is_padded_for_f64_and_f32_but_not_generic() {
+        for scalar in [ScalarType::F64, ScalarType::F32] {
+            let code = emit(sines(3), scalar);
+            assert!(
+                code.contains("::rt::Real::sin_cos_array(&[q[0],q[1],q[2],q[2]])"),
+                "{code}"
+            );
+        }
+        let code = emit(sines(3), ScalarType::Generic);
+        assert!(
+            code.contains("::rt::Real::sin_cos_array(&[q[0],q[1],q[2]])"),
+            "{code}"
+        );
+        let even = emit(sines(2), ScalarType::F64);
+        assert!(
+            even.contains("::rt::Real::sin_cos_array(&[q[0],q[1]])"),
+            "{even}"
+        );
+    }
+
+    #[test]
+    fn emitted_code_names_only_core_types_and_the_runtime_path() {
+        let code = emit(sines(3), ScalarType::Generic);
+        assert!(
+            !code.contains("rne_codegen") && !code.contains("std::"),
+            "{code}"
+        );
+        assert!(code.contains("<T:::rt::Real>"), "{code}");
+    }
+}
