@@ -234,9 +234,24 @@ mod tests {
         let p = Pendulum { m: 2.0, l: 0.5 };
         let q = core::f64::consts::FRAC_PI_2;
         assert_eq!(holding_torque(&p, q), Some(2.0 * GRAVITY * 0.5));
-        assert_eq!((&p).mass_matrix(&[0.0]), Some([[0.5]]));
-        assert_eq!(<&Pendulum as Dynamics<1, 1>>::NAME, "pendulum");
-        assert!((&p).has(Kernel::GravityTorques) && !(&p).has(Kernel::BiasTorques));
-        assert_eq!((&p).inverse_dynamics(&[0.0], &[0.0], &[0.0]), None);
+        type ByReference<'a> = &'a Pendulum;
+        let r: ByReference = &p;
+        assert_eq!(
+            <ByReference as Dynamics<1, 1>>::mass_matrix(&r, &[0.0]),
+            Some([[0.5]])
+        );
+        assert_eq!(<ByReference as Dynamics<1, 1>>::NAME, "pendulum");
+        assert!(<ByReference as Dynamics<1, 1>>::has(
+            &r,
+            Kernel::GravityTorques
+        ));
+        assert!(!<ByReference as Dynamics<1, 1>>::has(
+            &r,
+            Kernel::BiasTorques
+        ));
+        assert_eq!(
+            <ByReference as Dynamics<1, 1>>::inverse_dynamics(&r, &[0.0], &[0.0], &[0.0]),
+            None
+        );
     }
 }

@@ -87,14 +87,17 @@ fn gains<T: Real>() -> (T, T, T) {
     (T::from_f64(100.0), T::from_f64(10.0), T::from_f64(50.0))
 }
 
-/// The controller on each robot and scalar, so that every instantiation is compiled.
-pub fn control_every_robot() -> (
+/// The torques of [`control_every_robot`]: elbow (f64, f32), UR5 (f64, f32), generic elbow.
+pub type Torques = (
     [f64; elbow::NV],
     [f32; elbow_f32::NV],
     [f64; ur5::NV],
     [f32; ur5_f32::NV],
     [f64; elbow_generic::NV],
-) {
+);
+
+/// The controller on each robot and scalar, so that every instantiation is compiled.
+pub fn control_every_robot() -> Torques {
     let elbow = pd_with_gravity_compensation(
         &elbow::Model,
         &[0.1, 0.2],

@@ -49,7 +49,7 @@ const TWO_POW_MINUS_128: f64 = 2.938_735_877_055_718_8e-39;
 /// `(sin x, cos x)` for any `x` (NaN for infinite or NaN `x`), within 1 ulp.
 pub(super) fn sin_cos(x: f64) -> (f64, f64) {
     if !x.is_finite() {
-        return (x - x, x - x);
+        return (f64::NAN, f64::NAN);
     }
     let (quadrant, r_hi, r_lo) = reduce(x);
     let (s, c) = (sin_kernel(r_hi, r_lo), cos_kernel(r_hi, r_lo));
