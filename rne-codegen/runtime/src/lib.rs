@@ -11,7 +11,7 @@
 //! Generated code reaches this crate through `rne_codegen::__private`; users write
 //! `rne_codegen::Dynamics`, `rne_codegen::Real`, which re-export these items. `core` has no
 //! `sqrt`, `floor` or `round` for `f64`: the runtime has its own, bit for bit those of `std`.
-//! With the feature `nalgebra`, [`convert`] turns kernel arrays into nalgebra vectors and
+//! With the feature `nalgebra`, the module `convert` turns kernel arrays into nalgebra vectors and
 //! matrices and back.
 #![no_std]
 #![deny(missing_docs)]
