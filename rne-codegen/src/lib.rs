@@ -2,39 +2,82 @@
 //!
 //! Add `rne-codegen` to a crate and write
 //!
-//! ```ignore
+//! ```
 //! rne_codegen::derive_dynamics! {
-//!     /// The IRB 140's first three joints.
-//!     pub mod irb140 {
-//!         robot: "robots/irb140-3dof.toml",
+//!     /// The planar elbow manipulator of the thesis.
+//!     pub mod elbow {
+//!         robot: "tests/robots/planar-elbow.toml",
 //!         outputs: [inverse_dynamics, mass_matrix, forward_dynamics],
 //!     }
 //! }
-//! let tau = irb140::inverse_dynamics(&q, &qd, &qdd);
+//!
+//! let (q, qd, qdd) = ([0.3, -0.5], [1.0, 0.2], [0.0, 0.0]);
+//! let tau = elbow::inverse_dynamics(&q, &qd, &qdd);
+//! // Forward dynamics undoes inverse dynamics.
+//! let back = elbow::forward_dynamics(&q, &qd, &tau);
+//! assert!((back[0] - qdd[0]).abs() < 1e-12 && (back[1] - qdd[1]).abs() < 1e-12);
+//!
+//! // The same through the `Dynamics` trait, as generic code sees any robot.
+//! use rne_codegen::{Dynamics, Kernel};
+//! let robot = elbow::Model;
+//! assert_eq!(robot.inverse_dynamics(&q, &qd, &qdd), Some(tau));
+//! assert!(robot.has(Kernel::MassMatrix) && !robot.has(Kernel::GravityTorques));
+//! assert_eq!(robot.gravity_torques(&q), None);
+//! assert_eq!(elbow::Model::JOINTS, ["q1", "q2"]);
 //! ```
 //!
 //! to get flat, allocation-free functions (DESIGN.md §4): `inverse_dynamics`, `mass_matrix`,
 //! `coriolis_matrix` (Christoffel), `gravity_torques`, `bias_torques`, `forward_dynamics`,
-//! `kinetic_energy`, `potential_energy`, and the constants `NDOF` and `JOINTS`. The module is
-//! regenerated when the robot file changes. Scene settings generate only what the
-//! application needs: `gravity: [0.0, 0.0, 0.0]` removes every gravity term,
-//! `lock: { q1: 0.0 }` turns joints into constants, `velocities: zero` makes a static scene
-//! (q̇ = 0: no Coriolis or centrifugal terms), `parameters: runtime` reads the model
-//! parameters from a `Params` struct at run time, and `scalar: f32 | generic` changes the
-//! scalar type (generic functions take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits).
+//! `kinetic_energy`, `potential_energy`, the constants `NDOF`, `NQ`, `NV` and `JOINTS`, and
+//! a `Model` type implementing [`Dynamics`]. The module is regenerated when the robot file
+//! changes. Scene settings generate only what the application needs:
+//! `gravity: [0.0, 0.0, 0.0]` removes every gravity term, `lock: { q1: 0.0, "joint 8": 0.0 }`
+//! turns joints into constants, `velocities: zero` makes a static scene (q̇ = 0: no Coriolis
+//! or centrifugal terms), `parameters: runtime` reads the model parameters from a `Params`
+//! struct at run time, `scalar: f32 | generic` changes the scalar type (generic functions
+//! take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits), and
+//! `crate: ::my_reexport::rne_codegen` says where the generated code finds this crate when
+//! it is renamed or re-exported.
 //!
-//! Build scripts use [`Builder`] instead, which writes the same module to `OUT_DIR`.
+//! # What a crate links
+//! Generation runs inside the macro (or a build script); the generated code needs only the
+//! runtime (`rne-runtime`, re-exported here: [`Real`], [`Dynamics`], [`Kernel`],
+//! [`DoubleDouble`], [`sin_cos`]). Without features this crate is `#![no_std]` and depends
+//! on nothing but the runtime and the macro, so generated modules compile in `no_std`
+//! crates.
+//!
+//! # Build scripts
+//! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module
+//! to `OUT_DIR`:
+//! ```toml
+//! [build-dependencies]
+//! rne-codegen = { version = "0.1", features = ["builder"] }
+//! ```
 //!
 //! # Compile-time cost
 //! Generation runs in the macro at compile time. Proc macros are built without optimisation
 //! in debug builds; add `[profile.dev.build-override] opt-level = 3` to the workspace to make
 //! expansion of large robots fast.
+#![cfg_attr(not(feature = "builder"), no_std)]
 #![deny(missing_docs)]
 
+pub use rne_codegen_macros::derive_dynamics;
+pub use rne_runtime::{
+    sin_cos, sin_cos_array, DoubleDouble, Dynamics, Input, Kernel, Real, Shape, UnknownKernel,
+};
+
+#[cfg(feature = "nalgebra")]
+pub use rne_runtime::convert;
+
+#[cfg(feature = "builder")]
 pub use rne_codegen_core::{
     build_kernel, generate, generate_from_path, kernel_program, Builder, BuiltKernel, CodegenError,
-    GeneratedModule, Kernel, KernelReport, ParameterMode, Program, ScalarType, Scene,
-    KEEP_GENERATED_ENV,
+    GeneratedModule, KernelReport, ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
 };
-pub use rne_codegen_macros::derive_dynamics;
-pub use rne_symbolic::{DoubleDouble, Real};
+
+/// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not
+/// an API.
+#[doc(hidden)]
+pub mod __private {
+    pub use rne_runtime::*;
+}

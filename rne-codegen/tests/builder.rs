@@ -6,7 +6,7 @@ use rne_codegen::{generate_from_path, Builder, Kernel, Scene, KEEP_GENERATED_ENV
 
 fn robot_file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../rne-models/robots")
+        .join("tests/robots")
         .join(name)
 }
 

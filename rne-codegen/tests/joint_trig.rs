@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use rne_codegen::{generate_from_path, Kernel, ScalarType, Scene};
 
 fn puma560() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../rne-models/robots/puma560.toml")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/puma560.toml")
 }
 
 /// The angles passed to `sin_cos_array` in the emitted source of `kernel`.

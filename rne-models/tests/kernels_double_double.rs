@@ -34,6 +34,7 @@ fn generated(kernels: &dyn Kernels, kernel: Kernel, cases: &Cases, k: usize) -> 
         Kernel::ForwardDynamics => kernels.forward_dynamics(q, qd, tau),
         Kernel::KineticEnergy => kernels.kinetic_energy(q, qd).map(|e| vec![e]),
         Kernel::PotentialEnergy => kernels.potential_energy(q).map(|e| vec![e]),
+        other => panic!("`Kernels` has no method for {other}"),
     };
     value.expect("the sample has the robot's number of joints")
 }

@@ -9,20 +9,20 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod canonical;
-mod double_double;
 pub mod dynamics;
 pub mod expr;
 pub mod input;
 pub mod model;
 pub mod motion;
 pub mod newton_euler;
-mod real;
 pub mod spec;
-pub mod trig;
 pub mod urdf;
 
-pub use double_double::DoubleDouble;
 pub use dynamics::SymbolicDynamics;
 pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
 pub use model::{JointKind, Link, NumericLink, NumericModel, RobotModel};
-pub use real::Real;
+/// Sine and cosine for the kernels (`rne_runtime::trig`).
+pub use rne_runtime::trig;
+/// The scalar trait and the high-precision scalar, from the runtime that generated code
+/// links (`rne-runtime`).
+pub use rne_runtime::{DoubleDouble, Real};

@@ -15,7 +15,8 @@ pub const KEEP_GENERATED_ENV: &str = "RNE_KEEP_GENERATED";
 /// Generates a robot's dynamics module from `build.rs`.
 ///
 /// ```no_run
-/// // build.rs (users write `rne_codegen::`, which re-exports these)
+/// // build.rs, with `[build-dependencies] rne-codegen = { .., features = ["builder"] }`
+/// // (users write `rne_codegen::`, which re-exports these)
 /// use rne_codegen_core::{Builder, Kernel};
 /// Builder::new("robots/arm.toml")
 ///     .outputs(&[Kernel::InverseDynamics, Kernel::MassMatrix])
@@ -71,6 +72,13 @@ impl Builder {
     /// The scalar type.
     pub fn scalar(mut self, scalar: ScalarType) -> Builder {
         self.scene.scalar = scalar;
+        self
+    }
+
+    /// Where the generated code finds the `rne-codegen` crate, as a path
+    /// (`::my_reexport::rne_codegen`; default `::rne_codegen`). Checked by [`Builder::generate`].
+    pub fn crate_path(mut self, path: &str) -> Builder {
+        self.scene.crate_path = path.to_owned();
         self
     }
 

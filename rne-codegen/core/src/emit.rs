@@ -5,7 +5,12 @@
 //! is respected without ever re-associating: `a + (b + c)` keeps its parentheses, because
 //! floating-point addition is not associative and the emitted code must compute exactly
 //! what the program says. The sine and cosine of each joint angle are computed once, with
-//! `sin_cos`, at the top of the function.
+//! the runtime's `Real::sin_cos` (or `Real::sin_cos_array` for several), at the top of the
+//! function.
+//!
+//! Emitted code names nothing but `core` and the runtime, which it reaches through the path
+//! in [`EmitContext::runtime`] (`::rne_codegen::__private` unless the `crate:` setting says
+//! otherwise).
 
 use std::collections::BTreeMap;
 
@@ -13,7 +18,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use rne_symbolic::{Symbol, SymbolTable};
 
-use crate::kernel::{Kernel, Shape};
+use crate::kernel::{Input, Kernel, Shape};
 use crate::program::{Instr, Operand, Program};
 use crate::scene::{ParameterMode, ScalarType};
 
@@ -26,6 +31,9 @@ pub struct EmitContext<'a> {
     pub scalar: ScalarType,
     /// Constant or runtime parameters.
     pub parameters: ParameterMode,
+    /// The path of the runtime crate (`rne-runtime`) from the generated code
+    /// ([`Scene::runtime_path`](crate::Scene::runtime_path)).
+    pub runtime: &'a TokenStream,
 }
 
 /// Binding strength of an emitted expression; a child is parenthesised when it binds less
@@ -48,6 +56,12 @@ struct Emitter<'a> {
 }
 
 impl Emitter<'_> {
+    /// `<path to the runtime>::Real`.
+    fn real(&self) -> TokenStream {
+        let runtime = self.ctx.runtime;
+        quote!(#runtime::Real)
+    }
+
     fn scalar_type(&self) -> TokenStream {
         match self.ctx.scalar {
             ScalarType::F64 => quote!(f64),
@@ -59,8 +73,9 @@ impl Emitter<'_> {
     fn constant(&self, c: f64) -> (TokenStream, Precedence) {
         let magnitude = if c.is_finite() {
             let lit = Literal::f64_unsuffixed(c.abs());
+            let real = self.real();
             match self.ctx.scalar {
-                ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(#lit)),
+                ScalarType::Generic => quote!(<T as #real>::from_f64(#lit)),
                 _ => quote!(#lit),
             }
         } else {
@@ -69,10 +84,11 @@ impl Emitter<'_> {
             } else {
                 quote!(INFINITY)
             };
+            let real = self.real();
             match self.ctx.scalar {
                 ScalarType::F32 => quote!(f32::#special),
                 ScalarType::F64 => quote!(f64::#special),
-                ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(f64::#special)),
+                ScalarType::Generic => quote!(<T as #real>::from_f64(f64::#special)),
             }
         };
         if c.is_sign_negative() && !c.is_nan() {
@@ -103,10 +119,11 @@ impl Emitter<'_> {
             }
             Symbol::Parameter(_) => {
                 let field = parameter_ident(&self.ctx.symbols.name(s));
+                let real = self.real();
                 match self.ctx.scalar {
                     ScalarType::F64 => quote!(p.#field),
                     ScalarType::F32 => quote!((p.#field as f32)),
-                    ScalarType::Generic => quote!(<T as ::rne_codegen::Real>::from_f64(p.#field)),
+                    ScalarType::Generic => quote!(<T as #real>::from_f64(p.#field)),
                 }
             }
         }
@@ -140,12 +157,13 @@ impl Emitter<'_> {
         }
     }
 
-    /// `sin`, `cos` and `sqrt` go through `rne_codegen::Real` for every scalar type, so that
-    /// `f64` kernels get the fast, accurate `rne_codegen::sin_cos`.
+    /// `sin`, `cos` and `sqrt` go through the runtime's `Real` for every scalar type, so that
+    /// `f64` kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`.
     fn call(&self, method: &str, a: Operand) -> (TokenStream, Precedence) {
         let method = Ident::new(method, Span::call_site());
         let arg = self.operand(a).0;
-        (quote!(::rne_codegen::Real::#method(#arg)), Precedence::Atom)
+        let real = self.real();
+        (quote!(#real::#method(#arg)), Precedence::Atom)
     }
 
     fn instr(&self, instr: Instr) -> (TokenStream, Precedence) {
@@ -206,18 +224,20 @@ impl Emitter<'_> {
                     let c = cos.then(|| quote!(let #c = cos_q[#lane];));
                     quote!(#s #c)
                 });
+            let real = self.real();
             return quote! {
-                let (sin_q, cos_q) = ::rne_codegen::Real::sin_cos_array(&[#(#angles),*]);
+                let (sin_q, cos_q) = #real::sin_cos_array(&[#(#angles),*]);
                 #(#lines)*
             };
         }
+        let real = self.real();
         let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
             let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
             let angle = self.input(Symbol::Position(k));
             match (sin, cos) {
-                (true, true) => quote!(let (#s, #c) = ::rne_codegen::Real::sin_cos(#angle);),
-                (true, false) => quote!(let #s = ::rne_codegen::Real::sin(#angle);),
-                (false, _) => quote!(let #c = ::rne_codegen::Real::cos(#angle);),
+                (true, true) => quote!(let (#s, #c) = #real::sin_cos(#angle);),
+                (true, false) => quote!(let #s = #real::sin(#angle);),
+                (false, _) => quote!(let #c = #real::cos(#angle);),
             }
         });
         quote!(#(#lines)*)
@@ -241,11 +261,21 @@ pub fn is_valid_parameter_name(name: &str) -> bool {
             && valid_ident(&format!("r#{name}")))
 }
 
+/// The return type of `kernel`'s function, in scalar `t`: a scalar, `[t; NV]` or
+/// `[[t; NV]; NV]`.
+pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
+    match kernel.shape() {
+        Shape::Scalar => quote!(#t),
+        Shape::Vector => quote!([#t; NV]),
+        Shape::Matrix => quote!([[#t; NV]; NV]),
+    }
+}
+
 /// Emits `kernel` as a function computing `program`'s outputs.
 pub fn emit_kernel(
     kernel: Kernel,
     program: &Program,
-    ndof: usize,
+    nv: usize,
     ctx: EmitContext<'_>,
 ) -> TokenStream {
     let uses = program.use_counts();
@@ -286,7 +316,7 @@ pub fn emit_kernel(
         Shape::Scalar => quote!(#(#outputs)*),
         Shape::Vector => quote!([#(#outputs),*]),
         Shape::Matrix => {
-            let rows = outputs.chunks(ndof.max(1)).map(|row| quote!([#(#row),*]));
+            let rows = outputs.chunks(nv.max(1)).map(|row| quote!([#(#row),*]));
             quote!([#(#rows),*])
         }
     };
@@ -294,23 +324,24 @@ pub fn emit_kernel(
     let t = emitter.scalar_type();
     let name = Ident::new(kernel.name(), Span::call_site());
     let doc = kernel.summary();
+    let real = emitter.real();
     let generics = match ctx.scalar {
-        ScalarType::Generic => quote!(<T: ::rne_codegen::Real>),
+        ScalarType::Generic => quote!(<T: #real>),
         _ => quote!(),
     };
     let params = match ctx.parameters {
         ParameterMode::Runtime => quote!(p: &Params,),
         ParameterMode::Constant => quote!(),
     };
-    let args = kernel.inputs().iter().map(|input| {
+    let args = kernel.inputs().iter().map(|&input| {
         let arg = Ident::new(input.name(), Span::call_site());
-        quote!(#arg: &[#t; NDOF])
+        let len = match input {
+            Input::Q => quote!(NQ),
+            _ => quote!(NV),
+        };
+        quote!(#arg: &[#t; #len])
     });
-    let ret = match kernel.shape() {
-        Shape::Scalar => quote!(#t),
-        Shape::Vector => quote!([#t; NDOF]),
-        Shape::Matrix => quote!([[#t; NDOF]; NDOF]),
-    };
+    let ret = return_type(kernel, &t);
     quote! {
         #[doc = #doc]
         #[inline]
@@ -320,5 +351,170 @@ pub fn emit_kernel(
             #(#body)*
             #result
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Operand::{Const, Input as In, Temp};
+
+    const QD0: Operand = In(Symbol::Velocity(0));
+    const QD1: Operand = In(Symbol::Velocity(1));
+    const QD2: Operand = In(Symbol::Velocity(2));
+
+    /// The emitted function of a scalar kernel computing `instrs` (the last is the output),
+    /// without whitespace.
+    fn emit(instrs: Vec<Instr>, scalar: ScalarType) -> String {
+        let output = Temp(instrs.len() as u32 - 1);
+        emit_outputs(instrs, vec![output], scalar)
+    }
+
+    fn emit_outputs(instrs: Vec<Instr>, outputs: Vec<Operand>, scalar: ScalarType) -> String {
+        let symbols = SymbolTable::with_joints(["q1", "q2", "q3"]);
+        let runtime = quote!(::rt);
+        let ctx = EmitContext {
+            symbols: &symbols,
+            scalar,
+            parameters: ParameterMode::Constant,
+            runtime: &runtime,
+        };
+        let program = Program { instrs, outputs };
+        emit_kernel(Kernel::KineticEnergy, &program, 3, ctx)
+            .to_string()
+            .replace(' ', "")
+    }
+
+    /// The function's body after its signature.
+    fn body(code: &str) -> &str {
+        &code[code.find("->f64{").map_or(0, |i| i + "->f64{".len())..]
+    }
+
+    #[test]
+    fn right_nested_sums_and_products_keep_their_parentheses() {
+        let sum = emit(
+            vec![Instr::Add(QD1, QD2), Instr::Add(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&sum).starts_with("qd[0]+(qd[1]+qd[2])"), "{sum}");
+        let left = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Add(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&left).starts_with("qd[0]+qd[1]+qd[2]"), "{left}");
+        let product = emit(
+            vec![Instr::Mul(QD1, QD2), Instr::Mul(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&product).starts_with("qd[0]*(qd[1]*qd[2])"),
+            "{product}"
+        );
+        let difference = emit(
+            vec![Instr::Sub(QD1, QD2), Instr::Sub(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&difference).starts_with("qd[0]-(qd[1]-qd[2])"),
+            "{difference}"
+        );
+        let quotient = emit(
+            vec![Instr::Mul(QD1, QD2), Instr::Div(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(
+            body(&quotient).starts_with("qd[0]/(qd[1]*qd[2])"),
+            "{quotient}"
+        );
+    }
+
+    #[test]
+    fn a_sum_inside_a_product_is_parenthesised_and_a_product_inside_a_sum_is_not() {
+        let code = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Mul(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("(qd[0]+qd[1])*qd[2]"), "{code}");
+        let code = emit(
+            vec![Instr::Mul(QD0, QD1), Instr::Add(Temp(0), QD2)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("qd[0]*qd[1]+qd[2]"), "{code}");
+    }
+
+    #[test]
+    fn negation_binds_tighter_than_products_and_wraps_sums() {
+        let code = emit(
+            vec![Instr::Add(QD0, QD1), Instr::Neg(Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("-(qd[0]+qd[1])"), "{code}");
+        let code = emit(
+            vec![Instr::Neg(QD0), Instr::Mul(Temp(0), QD1)],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("-qd[0]*qd[1]"), "{code}");
+        let code = emit(
+            vec![Instr::Neg(QD1), Instr::Mul(QD0, Temp(0))],
+            ScalarType::F64,
+        );
+        assert!(body(&code).starts_with("qd[0]*-qd[1]"), "{code}");
+    }
+
+    #[test]
+    fn negative_and_non_finite_constants() {
+        let code = emit(vec![Instr::Mul(QD0, Const(-2.5))], ScalarType::F64);
+        assert!(body(&code).starts_with("qd[0]*-2.5"), "{code}");
+        let code = emit(vec![Instr::Sub(QD0, Const(-0.0))], ScalarType::F64);
+        assert!(body(&code).starts_with("qd[0]--0.0"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(f64::NAN)], ScalarType::F64);
+        assert!(code.contains("f64::NAN"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(f64::NEG_INFINITY)], ScalarType::F32);
+        assert!(code.contains("-f32::INFINITY"), "{code}");
+        let code = emit_outputs(vec![], vec![Const(0.5)], ScalarType::Generic);
+        assert!(code.contains("<Tas::rt::Real>::from_f64(0.5)"), "{code}");
+    }
+
+    /// Sines of joints 1 to `joints`, summed.
+    fn sines(joints: u16) -> Vec<Instr> {
+        let mut instrs: Vec<Instr> = (0..joints)
+            .map(|k| Instr::Sin(In(Symbol::Position(k))))
+            .collect();
+        instrs.push(Instr::Add(Temp(0), Temp(1)));
+        for k in 2..u32::from(joints) {
+            instrs.push(Instr::Add(Temp(instrs.len() as u32 - 1), Temp(k)));
+        }
+        instrs
+    }
+
+    #[test]
+    fn an_odd_count_of_angles_is_padded_for_f64_and_f32_but_not_generic() {
+        for scalar in [ScalarType::F64, ScalarType::F32] {
+            let code = emit(sines(3), scalar);
+            assert!(
+                code.contains("::rt::Real::sin_cos_array(&[q[0],q[1],q[2],q[2]])"),
+                "{code}"
+            );
+        }
+        let code = emit(sines(3), ScalarType::Generic);
+        assert!(
+            code.contains("::rt::Real::sin_cos_array(&[q[0],q[1],q[2]])"),
+            "{code}"
+        );
+        let even = emit(sines(2), ScalarType::F64);
+        assert!(
+            even.contains("::rt::Real::sin_cos_array(&[q[0],q[1]])"),
+            "{even}"
+        );
+    }
+
+    #[test]
+    fn emitted_code_names_only_core_types_and_the_runtime_path() {
+        let code = emit(sines(3), ScalarType::Generic);
+        assert!(
+            !code.contains("rne_codegen") && !code.contains("std::"),
+            "{code}"
+        );
+        assert!(code.contains("<T:::rt::Real>"), "{code}");
     }
 }

@@ -34,8 +34,16 @@ pub enum CodegenError {
         joint: rne_symbolic::model::MasslessJoint,
     },
     /// An `outputs` entry is not a kernel.
-    #[error(transparent)]
-    UnknownKernel(#[from] crate::kernel::UnknownKernel),
+    #[error("unknown output `{name}`; {source}")]
+    UnknownKernel {
+        /// The name given.
+        name: String,
+        /// The names there are.
+        source: crate::kernel::UnknownKernel,
+    },
+    /// The `crate` setting is not a path.
+    #[error("`{0}` is not a path to the rne-codegen crate (e.g. `::my_reexport::rne_codegen`)")]
+    CratePath(String),
     /// A parameter name cannot be a Rust field name.
     #[error("parameter `{0}` cannot be a Rust field name of `Params`")]
     ParameterName(String),

@@ -1,19 +1,23 @@
 //! The code generator behind `rne-codegen`: from a robot model and a scene to a module of
 //! flat Rust functions.
 //!
-//! Pipeline: the scene is applied to the model (gravity, locked joints); the symbolic
-//! dynamics build each requested kernel into one shared expression graph (so common
-//! subexpressions are shared and constants folded as they are created); each kernel is
-//! lowered to a straight-line [`Program`] (dead code removed, negations absorbed); the
-//! program is emitted with `quote`.
+//! Pipeline: the scene is applied to the model (gravity, locked joints); each requested
+//! kernel is built by the symbolic dynamics into an expression graph of its own
+//! ([`build_kernel`]: a kernel is the same code whichever other kernels the module has), in
+//! which common subexpressions are shared and constants folded as nodes are created; its
+//! linear combinations are rewritten ([`distribute_constants`]); it is lowered to a
+//! straight-line [`Program`] (dead code removed, negations absorbed); the program is emitted
+//! with `quote` as a function, next to the module's constants and its `Model` type.
 //!
 //! # Optimisations and their limits
-//! Every rewrite keeps or lowers the operation count ([`rne_symbolic::OpCount`]); none
-//! re-associates floating-point sums or products.
-//! - **Common subexpressions** are shared across all kernels of a module by hash-consing:
-//!   syntactically equal subtrees (commutative operands ordered) are one node. Limit: no
-//!   associativity or distributivity, so `a·b·c` built as `(a·b)·c` and `a·(b·c)` are two
-//!   nodes.
+//! Every rewrite keeps or lowers the operation count ([`rne_symbolic::OpCount`]). Only the
+//! linear-combination pass re-associates: it rebuilds the sums it opens as balanced trees
+//! (changing rounding in the last bits); graph construction, lowering and emission never
+//! re-associate floating-point sums or products.
+//! - **Common subexpressions** are shared within a kernel by hash-consing: syntactically
+//!   equal subtrees (commutative operands ordered) are one node. Limit: no associativity or
+//!   distributivity, so `a·b·c` built as `(a·b)·c` and `a·(b·c)` are two nodes; nothing is
+//!   shared between the kernels of a module.
 //! - **Constant folding and identities** as nodes are built: `x·0 = 0`, `x·1 = x`, `x + 0 = x`,
 //!   `x + (−x) = 0`, `−(−x) = x`, constant chains `c₁·(c₂·x)`, division by powers of two as
 //!   multiplication, and exact `sin`/`cos` at multiples of π/2 — which is how structural
@@ -26,7 +30,8 @@
 //!   each joint's pair is computed once with `sin_cos`.
 //! - **Dead code**: only the nodes an output needs are lowered ([`Program::lower`]).
 //! - **Linear combinations**: constant factors are distributed over sums used once, equal
-//!   terms merged and equal coefficients factored out again ([`distribute_constants`]).
+//!   terms merged, equal coefficients factored out again, and the sums rebuilt as balanced
+//!   trees (log₂ n deep instead of n − 1) ([`distribute_constants`]).
 //! - **Negations** are absorbed into subtractions and computed only when something other
 //!   than an addition uses them.
 //! - **Cost model**: [`rne_symbolic::OpCount::cost`] weighs the operations; `rne stats`
@@ -39,18 +44,19 @@ mod error;
 mod kernel;
 mod linear;
 mod load;
+mod model_type;
 mod module;
 mod program;
 mod scene;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
-pub use emit::{emit_kernel, EmitContext};
+pub use emit::{emit_kernel, return_type, EmitContext};
 pub use error::CodegenError;
-pub use kernel::{Input, Kernel, Shape, UnknownKernel};
+pub use kernel::{build_outputs, Input, Kernel, Shape, UnknownKernel};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{
     build_kernel, generate, kernel_program, BuiltKernel, GeneratedModule, KernelReport,
 };
 pub use program::{Instr, Operand, Program};
-pub use scene::{ParameterMode, ScalarType, Scene};
+pub use scene::{ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH};

@@ -1,4 +1,5 @@
-//! A whole generated module: constants, the runtime `Params` struct and the kernels.
+//! A whole generated module: constants, the runtime `Params` struct, the kernels and the
+//! `Model` type implementing the runtime's `Dynamics` trait.
 
 use std::time::{Duration, Instant};
 
@@ -8,8 +9,9 @@ use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_ident, EmitContext};
 use crate::error::CodegenError;
-use crate::kernel::Kernel;
+use crate::kernel::{build_outputs, Kernel};
 use crate::linear::distribute_constants;
+use crate::model_type::ModelType;
 use crate::program::Program;
 use crate::scene::{ParameterMode, Scene};
 
@@ -68,7 +70,7 @@ pub struct BuiltKernel {
 /// differently depending on which others were generated before them.
 pub fn build_kernel(dynamics: &SymbolicDynamics, kernel: Kernel) -> BuiltKernel {
     let mut dynamics = dynamics.clone();
-    let roots = kernel.build(&mut dynamics);
+    let roots = build_outputs(kernel, &mut dynamics);
     let outputs = distribute_constants(&mut dynamics.model.graph, &roots);
     let program = Program::lower(&dynamics.model.graph, &outputs);
     BuiltKernel {
@@ -91,6 +93,7 @@ pub fn generate(
     source: &str,
 ) -> Result<GeneratedModule, CodegenError> {
     let start = Instant::now();
+    let runtime = scene.runtime_path()?;
     let model = scene.apply(model)?;
     if scene.outputs.contains(&Kernel::ForwardDynamics) {
         model
@@ -124,7 +127,7 @@ pub fn generate(
             outputs.push(kernel);
         }
     }
-    for kernel in outputs {
+    for &kernel in &outputs {
         let kernel_start = Instant::now();
         let built = build_kernel(&dynamics, kernel);
         let program = built.program;
@@ -132,6 +135,7 @@ pub fn generate(
             symbols: built.dynamics.model.graph.symbols(),
             scalar: scene.scalar,
             parameters: scene.parameters,
+            runtime: &runtime,
         };
         functions.push(emit_kernel(kernel, &program, ndof, ctx));
         kernels.push(KernelReport {
@@ -151,14 +155,27 @@ pub fn generate(
         ParameterMode::Runtime => params_struct(&model),
         ParameterMode::Constant => quote!(),
     };
+    let model_type = ModelType {
+        robot: &model.name,
+        kernels: &outputs,
+        scalar: scene.scalar,
+        parameters: scene.parameters,
+        runtime: &runtime,
+    }
+    .emit();
     let items = quote! {
         #[doc = #header]
-        #[doc = "Number of joint variables (the length of every state array)."]
+        #[doc = "Number of joint variables."]
         pub const NDOF: usize = #ndof_lit;
+        #[doc = "Size of the configuration `q` (= `NDOF` on a fixed base)."]
+        pub const NQ: usize = #ndof_lit;
+        #[doc = "Size of the velocity `qd` and of `qdd`, `tau` and the outputs (= `NDOF` on a fixed base)."]
+        pub const NV: usize = #ndof_lit;
         #[doc = "Joint variable names, in state order."]
         pub const JOINTS: [&str; NDOF] = [#(#joint_names),*];
         #params
         #(#functions)*
+        #model_type
     };
     Ok(GeneratedModule {
         items,

@@ -1,5 +1,7 @@
 //! Scene settings: what the user's application needs, so that only that is generated.
 
+use proc_macro2::TokenStream;
+use quote::quote;
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
@@ -24,7 +26,7 @@ pub enum ScalarType {
     F64,
     /// `f32`.
     F32,
-    /// Generic over `rne_codegen::Real` (f32, f64, `DoubleDouble`, ...).
+    /// Generic over the runtime's `Real` (f32, f64, `DoubleDouble`, ...).
     Generic,
 }
 
@@ -44,7 +46,14 @@ pub struct Scene {
     pub parameters: ParameterMode,
     /// The scalar type.
     pub scalar: ScalarType,
+    /// The path of the `rne-codegen` crate as the generated code's crate sees it (the macro's
+    /// `crate:` setting, [`DEFAULT_CRATE_PATH`] by default); the code reaches the runtime
+    /// through `<path>::__private`.
+    pub crate_path: String,
 }
+
+/// Where generated code finds `rne-codegen` unless told otherwise.
+pub const DEFAULT_CRATE_PATH: &str = "::rne_codegen";
 
 impl Default for Scene {
     fn default() -> Scene {
@@ -55,6 +64,7 @@ impl Default for Scene {
             zero_velocities: false,
             parameters: ParameterMode::Constant,
             scalar: ScalarType::F64,
+            crate_path: DEFAULT_CRATE_PATH.to_owned(),
         }
     }
 }
@@ -77,5 +87,13 @@ impl Scene {
             model.lock_joint(joint, *value)?;
         }
         Ok(model)
+    }
+
+    /// The path generated code reaches the runtime by: `<crate_path>::__private`. An error
+    /// when `crate_path` is not a Rust path.
+    pub fn runtime_path(&self) -> Result<TokenStream, CodegenError> {
+        let path: syn::Path = syn::parse_str(&self.crate_path)
+            .map_err(|_| CodegenError::CratePath(self.crate_path.clone()))?;
+        Ok(quote!(#path::__private))
     }
 }

@@ -2,11 +2,12 @@
 //!
 //! ```text
 //! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],
-//!                         lock: { q1: 0.0, .. }, parameters: constant|runtime,
-//!                         scalar: f64|f32|generic }
+//!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, parameters: constant|runtime,
+//!                         scalar: f64|f32|generic, crate: ::path::to::rne_codegen }
 //! ```
 //! Parsing only checks the shape of each setting; meaning is checked in `check.rs`.
 
+use syn::ext::IdentExt;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
 use syn::{braced, bracketed, Attribute, Ident, LitStr, Token, Visibility};
@@ -33,8 +34,34 @@ pub enum Value {
     Ident(Ident),
     /// `[a, b, ..]` of identifiers or numbers.
     List(syn::token::Bracket, Vec<Element>),
-    /// `{ name: number, .. }`.
-    Map(syn::token::Brace, Vec<(Ident, Number)>),
+    /// `{ name: number, "name": number, .. }`.
+    Map(syn::token::Brace, Vec<(Key, Number)>),
+    /// `::a::b` (the value of `crate`).
+    Path(syn::Path),
+}
+
+/// A key of a map: an identifier or a string (URDF joint names can be anything).
+pub struct Key {
+    pub name: String,
+    pub span: proc_macro2::Span,
+}
+
+impl Parse for Key {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        if input.peek(LitStr) {
+            let s: LitStr = input.parse()?;
+            Ok(Key {
+                name: s.value(),
+                span: s.span(),
+            })
+        } else {
+            let ident: Ident = input.parse()?;
+            Ok(Key {
+                name: ident.to_string(),
+                span: ident.span(),
+            })
+        }
+    }
 }
 
 /// An element of a list.
@@ -69,9 +96,12 @@ impl Parse for DynamicsModule {
 
 impl Parse for Setting {
     fn parse(input: ParseStream) -> syn::Result<Self> {
-        let key: Ident = input.parse()?;
+        // `crate` is a keyword, hence `parse_any`.
+        let key = Ident::parse_any(input)?;
         input.parse::<Token![:]>()?;
-        let value = if input.peek(LitStr) {
+        let value = if key == "crate" && !input.peek(LitStr) {
+            Value::Path(input.parse()?)
+        } else if input.peek(LitStr) {
             Value::Str(input.parse()?)
         } else if input.peek(syn::token::Bracket) {
             let content;
@@ -96,7 +126,7 @@ impl Parse for Setting {
 }
 
 struct MapEntry {
-    key: Ident,
+    key: Key,
     value: Number,
 }
 

@@ -23,7 +23,7 @@ pub struct CheckedModule {
     pub output_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 7] = [
+const KEYS: [&str; 8] = [
     "robot",
     "outputs",
     "gravity",
@@ -31,6 +31,7 @@ const KEYS: [&str; 7] = [
     "velocities",
     "parameters",
     "scalar",
+    "crate",
 ];
 
 struct Errors(Option<syn::Error>);
@@ -74,16 +75,18 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                 let mut outputs = Vec::new();
                 for element in elements {
                     match element {
-                        Element::Ident(name) => match name.to_string().parse::<Kernel>() {
-                            Ok(kernel) if outputs.contains(&kernel) => {
-                                errors.push(name.span(), format!("output `{name}` is listed twice"))
+                        Element::Ident(name) => {
+                            match name.to_string().parse::<Kernel>() {
+                                Ok(kernel) if outputs.contains(&kernel) => errors
+                                    .push(name.span(), format!("output `{name}` is listed twice")),
+                                Ok(kernel) => {
+                                    outputs.push(kernel);
+                                    output_spans.push(name.span());
+                                }
+                                Err(e) => errors
+                                    .push(name.span(), format!("unknown output `{name}`; {e}")),
                             }
-                            Ok(kernel) => {
-                                outputs.push(kernel);
-                                output_spans.push(name.span());
-                            }
-                            Err(e) => errors.push(name.span(), e),
-                        },
+                        }
                         Element::Number(n) => errors.push(n.span, "expected an output name"),
                     }
                 }
@@ -118,13 +121,16 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
             ("lock", Value::Map(_, entries)) => {
                 let mut names = BTreeSet::new();
                 for (joint, value) in entries {
-                    if !names.insert(joint.to_string()) {
-                        errors.push(joint.span(), format!("joint `{joint}` is locked twice"));
+                    if !names.insert(joint.name.clone()) {
+                        errors.push(
+                            joint.span,
+                            format!("joint `{}` is locked twice", joint.name),
+                        );
                     } else if !value.value.is_finite() {
                         errors.push(value.span, "a locked joint's value must be finite");
                     } else {
-                        scene.lock.push((joint.to_string(), value.value));
-                        lock_spans.push(joint.span());
+                        scene.lock.push((joint.name.clone(), value.value));
+                        lock_spans.push(joint.span);
                     }
                 }
             }
@@ -155,6 +161,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
                 ),
             },
+            ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
             (key, value) => errors.push(value_span(value), expected_shape(key)),
         }
     }
@@ -182,6 +189,7 @@ fn value_span(value: &Value) -> Span {
         Value::Ident(i) => i.span(),
         Value::List(b, _) => b.span.join(),
         Value::Map(b, _) => b.span.join(),
+        Value::Path(p) => syn::spanned::Spanned::span(p),
     }
 }
 
@@ -195,6 +203,9 @@ fn expected_shape(key: &str) -> String {
         "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
         "velocities" => "expected `zero` or `free`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
+        "crate" => {
+            "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
+        }
         _ => "expected `f64`, `f32` or `generic`".into(),
     }
 }

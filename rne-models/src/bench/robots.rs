@@ -253,9 +253,8 @@ impl<'a> Candidates<'a> {
                     write(reference.gravity_torques_into(&s.q, out), out)
                 },
             )),
-            Kernel::CoriolisMatrix | Kernel::KineticEnergy | Kernel::PotentialEnergy => {
-                return Ok(())
-            }
+            // C(q, q̇), the energies and any later kernel have no reference implementation.
+            _ => return Ok(()),
         };
         self.list.push(Candidate {
             implementation: Implementation::Reference,
@@ -359,9 +358,8 @@ macro_rules! robot_candidates {
                     c.add::<f64, N, _, _>(Generated, |s| g::gravity_torques(&s.q))?;
                     return Ok(c.list);
                 }
-                Kernel::CoriolisMatrix | Kernel::KineticEnergy | Kernel::PotentialEnergy => {
-                    return Ok(c.list);
-                }
+                // C(q, q̇), the energies and any later kernel have no variants.
+                _ => return Ok(c.list),
             }
             c.interpreted::<N>(kernel)?;
             c.reference::<N>(kernel)?;

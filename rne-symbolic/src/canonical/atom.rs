@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use super::polynomial::Polynomial;
 use crate::expr::{ExprGraph, Id, Symbol};
-use crate::real::Real;
+use crate::Real;
 
 /// The argument of a trigonometric [`Atom`].
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -9,7 +9,7 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 use super::atom::Atom;
 use super::monomial::Monomial;
 use crate::expr::{ExprGraph, Id, Symbol};
-use crate::real::Real;
+use crate::Real;
 
 /// A polynomial in [`Atom`]s with `f64` coefficients, in canonical form.
 ///

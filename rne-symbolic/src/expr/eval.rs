@@ -2,7 +2,7 @@
 
 use super::graph::ExprGraph;
 use super::node::{Id, Node, Symbol};
-use crate::real::Real;
+use crate::Real;
 
 impl ExprGraph {
     /// The nodes needed to compute `outputs`, in increasing id order (children first).

@@ -54,6 +54,7 @@ pub fn symbol(kernel: Kernel) -> &'static str {
         Kernel::ForwardDynamics => "q̈",
         Kernel::KineticEnergy => "T",
         Kernel::PotentialEnergy => "V",
+        other => other.name(),
     }
 }
 

@@ -79,6 +79,7 @@ fn call(
         Kernel::ForwardDynamics => k.forward_dynamics(q, qd, tau)?,
         Kernel::KineticEnergy => vec![k.kinetic_energy(q, qd)?],
         Kernel::PotentialEnergy => vec![k.potential_energy(q)?],
+        other => unreachable!("`Kernels` has no method for {other}"),
     })
 }
 

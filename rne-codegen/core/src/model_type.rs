@@ -1,0 +1,176 @@
+//! The `Model` type of a generated module: a value implementing the runtime's `Dynamics`
+//! trait by calling the module's functions, so that generic code can take any robot.
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+use crate::emit::return_type;
+use crate::kernel::{Input, Kernel};
+use crate::scene::{ParameterMode, ScalarType};
+
+/// What the `Model` type depends on.
+pub struct ModelType<'a> {
+    /// The robot's name (`Dynamics::NAME`).
+    pub robot: &'a str,
+    /// The kernels the module generated, in emission order (`Dynamics::KERNELS`).
+    pub kernels: &'a [Kernel],
+    /// The scalar of the module's functions.
+    pub scalar: ScalarType,
+    /// Whether the functions take `p: &Params`.
+    pub parameters: ParameterMode,
+    /// The path of the runtime crate.
+    pub runtime: &'a TokenStream,
+}
+
+impl ModelType<'_> {
+    /// `pub struct Model` (a unit struct; with runtime parameters one holding them; generic
+    /// over the scalar for `scalar: generic`), its constructors and standard traits, and its
+    /// `Dynamics<NQ, NV>` implementation.
+    pub fn emit(&self) -> TokenStream {
+        let rt = self.runtime;
+        let (definition, impl_generics, self_ty, scalar) = match self.scalar {
+            ScalarType::Generic => (
+                self.generic_definition(),
+                quote!(<T: #rt::Real>),
+                quote!(Model<T>),
+                quote!(T),
+            ),
+            ScalarType::F64 => (self.definition(), quote!(), quote!(Model), quote!(f64)),
+            ScalarType::F32 => (self.definition(), quote!(), quote!(Model), quote!(f32)),
+        };
+        let robot = self.robot;
+        let kernels = self.kernels.iter().map(|k| {
+            let variant = Ident::new(&format!("{k:?}"), Span::call_site());
+            quote!(#rt::Kernel::#variant)
+        });
+        let methods = self.kernels.iter().map(|&k| self.method(k, &scalar));
+        quote! {
+            #definition
+            impl #impl_generics #rt::Dynamics<NQ, NV> for #self_ty {
+                type Scalar = #scalar;
+                const NAME: &'static str = #robot;
+                const JOINTS: &'static [&'static str] = &JOINTS;
+                const FLOATING_BASE: bool = false;
+                const KERNELS: &'static [#rt::Kernel] = &[#(#kernels),*];
+                #(#methods)*
+            }
+        }
+    }
+
+    /// The model of an `f64` or `f32` module.
+    fn definition(&self) -> TokenStream {
+        match self.parameters {
+            ParameterMode::Constant => quote! {
+                #[doc = "This robot's dynamics as a value implementing the runtime's `Dynamics` trait."]
+                #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+                pub struct Model;
+            },
+            ParameterMode::Runtime => quote! {
+                #[doc = "This robot's dynamics with its parameters, as a value implementing the runtime's `Dynamics` trait. `Default` holds the spec's parameters."]
+                #[derive(Clone, Debug, Default, PartialEq)]
+                pub struct Model {
+                    #[doc = "The parameters every kernel reads."]
+                    pub params: Params,
+                }
+                impl Model {
+                    #[doc = "The model with these parameters."]
+                    pub fn new(params: Params) -> Model {
+                        Model { params }
+                    }
+                }
+            },
+        }
+    }
+
+    /// The model of a `scalar: generic` module: generic over the scalar (default `f64`),
+    /// with the standard traits written out so that they do not require them of `T`.
+    fn generic_definition(&self) -> TokenStream {
+        let phantom = quote!(::core::marker::PhantomData);
+        match self.parameters {
+            ParameterMode::Constant => quote! {
+                #[doc = "This robot's dynamics in scalar `T`, as a value implementing the runtime's `Dynamics` trait."]
+                pub struct Model<T = f64> {
+                    _scalar: #phantom<fn() -> T>,
+                }
+                impl<T> Model<T> {
+                    #[doc = "The model (it holds nothing)."]
+                    pub const fn new() -> Model<T> {
+                        Model { _scalar: #phantom }
+                    }
+                }
+                impl<T> ::core::clone::Clone for Model<T> {
+                    fn clone(&self) -> Model<T> {
+                        *self
+                    }
+                }
+                impl<T> ::core::marker::Copy for Model<T> {}
+                impl<T> ::core::default::Default for Model<T> {
+                    fn default() -> Model<T> {
+                        Model::new()
+                    }
+                }
+                impl<T> ::core::fmt::Debug for Model<T> {
+                    fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
+                        f.write_str("Model")
+                    }
+                }
+            },
+            ParameterMode::Runtime => quote! {
+                #[doc = "This robot's dynamics in scalar `T` with its parameters, as a value implementing the runtime's `Dynamics` trait. `Default` holds the spec's parameters."]
+                pub struct Model<T = f64> {
+                    #[doc = "The parameters every kernel reads."]
+                    pub params: Params,
+                    _scalar: #phantom<fn() -> T>,
+                }
+                impl<T> Model<T> {
+                    #[doc = "The model with these parameters."]
+                    pub fn new(params: Params) -> Model<T> {
+                        Model { params, _scalar: #phantom }
+                    }
+                }
+                impl<T> ::core::clone::Clone for Model<T> {
+                    fn clone(&self) -> Model<T> {
+                        Model::new(self.params.clone())
+                    }
+                }
+                impl<T> ::core::default::Default for Model<T> {
+                    fn default() -> Model<T> {
+                        Model::new(Params::default())
+                    }
+                }
+                impl<T> ::core::fmt::Debug for Model<T> {
+                    fn fmt(&self, f: &mut ::core::fmt::Formatter<'_>) -> ::core::fmt::Result {
+                        f.debug_struct("Model").field("params", &self.params).finish()
+                    }
+                }
+            },
+        }
+    }
+
+    /// The trait method of `kernel`: `Some` of the module's function.
+    fn method(&self, kernel: Kernel, scalar: &TokenStream) -> TokenStream {
+        let name = Ident::new(kernel.name(), Span::call_site());
+        let inputs: Vec<Ident> = kernel
+            .inputs()
+            .iter()
+            .map(|input| Ident::new(input.name(), Span::call_site()))
+            .collect();
+        let args = kernel.inputs().iter().zip(&inputs).map(|(&input, arg)| {
+            let len = match input {
+                Input::Q => quote!(NQ),
+                _ => quote!(NV),
+            };
+            quote!(#arg: &[#scalar; #len])
+        });
+        let params = match self.parameters {
+            ParameterMode::Runtime => quote!(&self.params,),
+            ParameterMode::Constant => quote!(),
+        };
+        let ret = return_type(kernel, scalar);
+        quote! {
+            fn #name(&self, #(#args),*) -> ::core::option::Option<#ret> {
+                ::core::option::Option::Some(#name(#params #(#inputs),*))
+            }
+        }
+    }
+}
