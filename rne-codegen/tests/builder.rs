@@ -125,3 +125,34 @@ fn builder_reports_a_missing_robot_file_by_name() {
         "{error}"
     );
 }
+
+#[test]
+fn builder_code_reaches_the_runtime_through_the_crate_path_it_is_given() {
+    let default = Builder::new(robot()).generate().unwrap().to_pretty_string();
+    assert!(
+        default.contains("::rne_codegen::__private::Real"),
+        "{default}"
+    );
+    let renamed = Builder::new(robot())
+        .crate_path("::my_reexport::rne_codegen")
+        .generate()
+        .unwrap()
+        .to_pretty_string();
+    assert!(renamed.contains("::my_reexport::rne_codegen::__private::Real"));
+    assert!(
+        renamed.contains("impl ::my_reexport::rne_codegen::__private::Dynamics<NQ, NV> for Model")
+    );
+    assert!(!renamed.contains(":: rne_codegen") && !renamed.contains(" ::rne_codegen"));
+}
+
+#[test]
+fn builder_refuses_a_crate_path_that_is_not_a_path() {
+    let error = Builder::new(robot())
+        .crate_path("not a path")
+        .generate()
+        .unwrap_err();
+    assert!(
+        error.to_string().contains("`not a path` is not a path"),
+        "{error}"
+    );
+}

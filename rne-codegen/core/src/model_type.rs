@@ -168,6 +168,7 @@ impl ModelType<'_> {
         };
         let ret = return_type(kernel, scalar);
         quote! {
+            #[inline]
             fn #name(&self, #(#args),*) -> ::core::option::Option<#ret> {
                 ::core::option::Option::Some(#name(#params #(#inputs),*))
             }

@@ -60,9 +60,9 @@ pub fn scene(
         scene.outputs = outputs
             .split(',')
             .map(|name| {
-                name.trim()
-                    .parse::<Kernel>()
-                    .map_err(|e| CliError::Argument(e.to_string()))
+                let name = name.trim();
+                name.parse::<Kernel>()
+                    .map_err(|e| CliError::Argument(format!("unknown output `{name}`; {e}")))
             })
             .collect::<Result<_, _>>()?;
     }
