@@ -20,6 +20,8 @@ pub struct ModelType<'a> {
     pub parameters: ParameterMode,
     /// The path of the runtime crate.
     pub runtime: &'a TokenStream,
+    /// Whether the model has a free-flyer root (`Dynamics::FLOATING_BASE`).
+    pub floating_base: bool,
 }
 
 impl ModelType<'_> {
@@ -28,6 +30,7 @@ impl ModelType<'_> {
     /// `Dynamics<NQ, NV>` implementation.
     pub fn emit(&self) -> TokenStream {
         let rt = self.runtime;
+        let floating_base = self.floating_base;
         let (definition, impl_generics, self_ty, scalar) = match self.scalar {
             ScalarType::Generic => (
                 self.generic_definition(),
@@ -50,7 +53,7 @@ impl ModelType<'_> {
                 type Scalar = #scalar;
                 const NAME: &'static str = #robot;
                 const JOINTS: &'static [&'static str] = &JOINTS;
-                const FLOATING_BASE: bool = false;
+                const FLOATING_BASE: bool = #floating_base;
                 const KERNELS: &'static [#rt::Kernel] = &[#(#kernels),*];
                 #(#methods)*
             }

@@ -162,7 +162,7 @@ impl SymbolicDynamics {
     }
 
     /// M(q), row-major and symmetric (the same `Id` at (i, j) and (j, i)), by the
-    /// composite-rigid-body algorithm ([`crba`]): the coefficients of q̈ in (3.1).
+    /// composite-rigid-body algorithm (`crba`): the coefficients of q̈ in (3.1).
     pub fn mass_matrix(&mut self) -> Vec<Vec<Id>> {
         if let Some(m) = &self.mass_matrix {
             return m.clone();
