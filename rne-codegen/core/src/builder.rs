@@ -6,7 +6,8 @@ use crate::error::CodegenError;
 use crate::kernel::Kernel;
 use crate::load::generate_from_path;
 use crate::module::GeneratedModule;
-use crate::scene::{ParameterMode, ScalarType, Scene};
+use crate::scene::{MimicMode, ParameterMode, ScalarType, Scene};
+use rne_symbolic::model::Base;
 
 /// Environment variable naming a directory where [`Builder::write`] also puts a copy of the
 /// generated source, outside `target/`, for people to read.
@@ -60,6 +61,19 @@ impl Builder {
     /// Locks a joint at a value: it becomes a constant and leaves the state.
     pub fn lock(mut self, joint: &str, value: f64) -> Builder {
         self.scene.lock.push((joint.to_owned(), value));
+        self
+    }
+
+    /// A fixed or floating base, overriding the spec's (the macro's `base:`).
+    pub fn base(mut self, base: Base) -> Builder {
+        self.scene.base = Some(base);
+        self
+    }
+
+    /// Mimic followers constrained to their leaders (the default) or free (the macro's
+    /// `mimic:`).
+    pub fn mimic(mut self, mode: MimicMode) -> Builder {
+        self.scene.mimic = mode;
         self
     }
 

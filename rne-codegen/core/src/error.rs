@@ -19,6 +19,9 @@ pub enum CodegenError {
     /// A `lock` names no joint.
     #[error(transparent)]
     Lock(#[from] rne_symbolic::model::LockError),
+    /// Mimic joints that cannot be constrained (a loop, a missing leader).
+    #[error(transparent)]
+    Mimic(#[from] rne_symbolic::model::MimicError),
     /// A joint is locked twice.
     #[error("joint `{0}` is locked twice")]
     LockedTwice(String),

@@ -59,4 +59,4 @@ pub use module::{
     build_kernel, generate, kernel_program, BuiltKernel, GeneratedModule, KernelReport,
 };
 pub use program::{Instr, Operand, Program};
-pub use scene::{ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH};
+pub use scene::{MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH};

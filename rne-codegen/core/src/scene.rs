@@ -2,6 +2,7 @@
 
 use proc_macro2::TokenStream;
 use quote::quote;
+use rne_symbolic::model::Base;
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
@@ -50,6 +51,21 @@ pub struct Scene {
     /// `crate:` setting, [`DEFAULT_CRATE_PATH`] by default); the code reaches the runtime
     /// through `<path>::__private`.
     pub crate_path: String,
+    /// The base overriding the spec's (`base: fixed | floating`); `None` keeps the spec's.
+    pub base: Option<Base>,
+    /// Whether mimic followers follow their leaders (the default, URDF semantics) or are
+    /// joints of their own.
+    pub mimic: MimicMode,
+}
+
+/// How mimic joints are generated (the macro's `mimic:` setting).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum MimicMode {
+    /// URDF semantics: a follower has no variable; `q_f = multiplier · q_leader + offset`.
+    #[default]
+    Constrained,
+    /// Every follower is an independent joint (Pinocchio's default when loading a URDF).
+    Free,
 }
 
 /// Where generated code finds `rne-codegen` unless told otherwise.
@@ -65,15 +81,24 @@ impl Default for Scene {
             parameters: ParameterMode::Constant,
             scalar: ScalarType::F64,
             crate_path: DEFAULT_CRATE_PATH.to_owned(),
+            base: None,
+            mimic: MimicMode::Constrained,
         }
     }
 }
 
 impl Scene {
-    /// The model as this scene sees it: gravity overridden, joints locked. Gravity must be
-    /// finite, and each joint locked once at a finite position.
+    /// The model as this scene sees it: the base set, mimic followers constrained (unless
+    /// free), gravity overridden, joints locked. Gravity must be finite, and each joint locked
+    /// once at a finite position.
     pub fn apply(&self, model: &RobotModel) -> Result<RobotModel, CodegenError> {
         let mut model = model.clone();
+        if let Some(base) = self.base {
+            model.set_base(base);
+        }
+        if self.mimic == MimicMode::Constrained {
+            model.constrain_mimic_joints()?;
+        }
         if let Some(gravity) = self.gravity {
             if !gravity.iter().all(|g| g.is_finite()) {
                 return Err(CodegenError::Gravity(gravity));

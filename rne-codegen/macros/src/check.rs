@@ -4,7 +4,8 @@
 use std::collections::BTreeSet;
 
 use proc_macro2::Span;
-use rne_codegen_core::{Kernel, ParameterMode, ScalarType, Scene};
+use rne_codegen_core::{Kernel, MimicMode, ParameterMode, ScalarType, Scene};
+use rne_symbolic::model::Base;
 use syn::{Attribute, Ident, LitStr, Visibility};
 
 use crate::ast::{DynamicsModule, Element, Value};
@@ -23,12 +24,14 @@ pub struct CheckedModule {
     pub output_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 8] = [
+const KEYS: [&str; 10] = [
     "robot",
     "outputs",
     "gravity",
     "lock",
     "velocities",
+    "base",
+    "mimic",
     "parameters",
     "scalar",
     "crate",
@@ -144,6 +147,22 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     ),
                 ),
             },
+            ("base", Value::Ident(base)) => match base.to_string().as_str() {
+                "fixed" => scene.base = Some(Base::Fixed),
+                "floating" => scene.base = Some(Base::Floating),
+                other => errors.push(
+                    base.span(),
+                    format!("unknown base `{other}`; expected `fixed` or `floating`"),
+                ),
+            },
+            ("mimic", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "constrained" => scene.mimic = MimicMode::Constrained,
+                "free" => scene.mimic = MimicMode::Free,
+                other => errors.push(
+                    mode.span(),
+                    format!("unknown mimic mode `{other}`; expected `constrained` or `free`"),
+                ),
+            },
             ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
                 "constant" => scene.parameters = ParameterMode::Constant,
                 "runtime" => scene.parameters = ParameterMode::Runtime,
@@ -202,6 +221,8 @@ fn expected_shape(key: &str) -> String {
         "gravity" => "expected three numbers: `gravity: [0.0, 0.0, -9.81]`".into(),
         "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
         "velocities" => "expected `zero` or `free`".into(),
+        "base" => "expected `fixed` or `floating`".into(),
+        "mimic" => "expected `constrained` or `free`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
