@@ -51,6 +51,29 @@ fn faster(s: &State, k: usize, h: f64) -> State {
     out
 }
 
+/// The tangent-space partials `(∂f/∂q, ∂f/∂v)` (row-major, NV × NV) of the kernel `f` at `s`
+/// against central differences of `f` along each tangent and velocity direction.
+fn check_partials(
+    d: &SymbolicDynamics,
+    f: &[Id],
+    (dq, dv): (&[f64], &[f64]),
+    s: &State,
+    what: &str,
+) {
+    let (nv, h) = (s.v.len(), 1e-6);
+    let scale = dq.iter().chain(dv).fold(1.0f64, |m, x| m.max(x.abs()));
+    for c in 0..nv {
+        let (plus, minus) = (eval(d, f, &moved(s, c, h)), eval(d, f, &moved(s, c, -h)));
+        let (fast, slow) = (eval(d, f, &faster(s, c, h)), eval(d, f, &faster(s, c, -h)));
+        for i in 0..nv {
+            let fd_q = (plus[i] - minus[i]) / (2.0 * h);
+            assert_close(dq[i * nv + c], fd_q, scale, &format!("∂{what}[{i}]/∂q{c}"));
+            let fd_v = (fast[i] - slow[i]) / (2.0 * h);
+            assert_close(dv[i * nv + c], fd_v, scale, &format!("∂{what}[{i}]/∂v{c}"));
+        }
+    }
+}
+
 fn assert_close(got: f64, expected: f64, scale: f64, what: &str) {
     assert!(
         (got - expected).abs() <= 1e-6 * scale,
@@ -64,34 +87,10 @@ fn inverse_dynamics_derivatives_match_finite_differences_in_the_tangent_space() 
     let tau = d.inverse_dynamics();
     let (dq, dv) = d.inverse_dynamics_derivatives();
     let (dq, dv): (Vec<Id>, Vec<Id>) = (dq.concat(), dv.concat());
-    let nv = 8;
-    let h = 1e-6;
     for k in 0..10 {
         let s = state(k);
         let (gq, gv) = (eval(&d, &dq, &s), eval(&d, &dv, &s));
-        let scale = gq.iter().chain(&gv).fold(1.0f64, |m, x| m.max(x.abs()));
-        for c in 0..nv {
-            let plus = eval(&d, &tau, &moved(&s, c, h));
-            let minus = eval(&d, &tau, &moved(&s, c, -h));
-            let tp = eval(&d, &tau, &faster(&s, c, h));
-            let tm = eval(&d, &tau, &faster(&s, c, -h));
-            for i in 0..nv {
-                let fd_q = (plus[i] - minus[i]) / (2.0 * h);
-                assert_close(
-                    gq[i * nv + c],
-                    fd_q,
-                    scale,
-                    &format!("dτ{i}/dq{c} state {k}"),
-                );
-                let fd_v = (tp[i] - tm[i]) / (2.0 * h);
-                assert_close(
-                    gv[i * nv + c],
-                    fd_v,
-                    scale,
-                    &format!("dτ{i}/dv{c} state {k}"),
-                );
-            }
-        }
+        check_partials(&d, &tau, (&gq, &gv), &s, &format!("τ at state {k}"));
     }
 }
 
@@ -103,7 +102,6 @@ fn forward_dynamics_derivatives_match_finite_differences_and_minv_inverts_m() {
     let (dq, dv, minv): (Vec<Id>, Vec<Id>, Vec<Id>) = (dq.concat(), dv.concat(), minv.concat());
     let m: Vec<Id> = d.mass_matrix().concat();
     let nv = 8;
-    let h = 1e-6;
     for k in 0..10 {
         let s = state(k);
         let (gq, gv) = (eval(&d, &dq, &s), eval(&d, &dv, &s));
@@ -115,29 +113,7 @@ fn forward_dynamics_derivatives_match_finite_differences_and_minv_inverts_m() {
                 assert!((product - identity).abs() < 1e-12, "M⁻¹ M at ({i}, {j})");
             }
         }
-        let scale = gq.iter().chain(&gv).fold(1.0f64, |m, x| m.max(x.abs()));
-        for c in 0..nv {
-            let plus = eval(&d, &fd, &moved(&s, c, h));
-            let minus = eval(&d, &fd, &moved(&s, c, -h));
-            let ap = eval(&d, &fd, &faster(&s, c, h));
-            let am = eval(&d, &fd, &faster(&s, c, -h));
-            for i in 0..nv {
-                let fd_q = (plus[i] - minus[i]) / (2.0 * h);
-                assert_close(
-                    gq[i * nv + c],
-                    fd_q,
-                    scale,
-                    &format!("dq̈{i}/dq{c} state {k}"),
-                );
-                let fd_v = (ap[i] - am[i]) / (2.0 * h);
-                assert_close(
-                    gv[i * nv + c],
-                    fd_v,
-                    scale,
-                    &format!("dq̈{i}/dv{c} state {k}"),
-                );
-            }
-        }
+        check_partials(&d, &fd, (&gq, &gv), &s, &format!("q̈ at state {k}"));
     }
 }
 
