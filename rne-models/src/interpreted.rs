@@ -27,7 +27,7 @@ impl Interpreted {
     /// Builds every kernel of `model` (numeric or symbolic parameters).
     pub fn new(model: &RobotModel) -> Interpreted {
         let dynamics = SymbolicDynamics::new(model);
-        let programs = Kernel::ALL
+        let programs = Kernel::DYNAMICS
             .iter()
             .map(|&k| (k, kernel_program(&dynamics, k)))
             .collect();

@@ -29,7 +29,7 @@ fn graph_evaluation_propagates_nan_and_infinity() {
     let c = check(
         "random-5",
         &Interpreted::new(&model),
-        &Probe::new(&model, &Kernel::ALL),
+        &Probe::new(&model, &Kernel::DYNAMICS),
         1,
     )
     .unwrap();

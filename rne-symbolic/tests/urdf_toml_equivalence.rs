@@ -43,7 +43,8 @@ impl SameExpression<'_> {
             (Node::Neg(x), Node::Neg(y))
             | (Node::Sin(x), Node::Sin(y))
             | (Node::Cos(x), Node::Cos(y))
-            | (Node::Sqrt(x), Node::Sqrt(y)) => self.same(x, y),
+            | (Node::Sqrt(x), Node::Sqrt(y))
+            | (Node::Sign(x), Node::Sign(y)) => self.same(x, y),
             _ => false,
         };
         self.memo.insert((a, b), result);

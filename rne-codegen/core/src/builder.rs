@@ -77,6 +77,20 @@ impl Builder {
         self
     }
 
+    /// Joint friction included in the inverse and forward dynamics and the regressor (the
+    /// macro's `friction: include`).
+    pub fn friction(mut self, include: bool) -> Builder {
+        self.scene.friction = include;
+        self
+    }
+
+    /// The frames (link names) of the kinematics kernels, in output order (the macro's
+    /// `frames:`; every link by default).
+    pub fn frames(mut self, frames: &[&str]) -> Builder {
+        self.scene.frames = Some(frames.iter().map(|f| (*f).to_owned()).collect());
+        self
+    }
+
     /// Constant (folded) or runtime (`Params`) parameters.
     pub fn parameters(mut self, mode: ParameterMode) -> Builder {
         self.scene.parameters = mode;

@@ -18,9 +18,10 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use rne_symbolic::{Symbol, SymbolTable};
 
-use crate::kernel::{Input, Kernel, Shape};
+use crate::kernel::{Dims, Input, Kernel};
 use crate::program::{Instr, Operand, Program};
 use crate::scene::{ParameterMode, ScalarType};
+use crate::shape::Layout;
 
 /// What the emitter needs besides the program.
 #[derive(Clone, Copy, Debug)]
@@ -53,6 +54,9 @@ struct Emitter<'a> {
     names: Vec<Option<Ident>>,
     /// `sin`/`cos` of joint k: which of the two are used.
     trig: BTreeMap<u16, (bool, bool)>,
+    /// Whether the kernel reads standard parameters (`base_parameters`), which its program
+    /// holds as `Symbol::Parameter(i)` = `standard[i]`.
+    reads_standard: bool,
 }
 
 impl Emitter<'_> {
@@ -117,6 +121,10 @@ impl Emitter<'_> {
                 let k = index(k);
                 quote!(tau[#k])
             }
+            Symbol::Parameter(i) if self.reads_standard => {
+                let i = index(i);
+                quote!(standard[#i])
+            }
             Symbol::Parameter(_) => {
                 let field = parameter_ident(&self.ctx.symbols.name(s));
                 let real = self.real();
@@ -157,7 +165,7 @@ impl Emitter<'_> {
         }
     }
 
-    /// `sin`, `cos` and `sqrt` go through the runtime's `Real` for every scalar type, so that
+    /// `sin`, `cos`, `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that
     /// `f64` kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`.
     fn call(&self, method: &str, a: Operand) -> (TokenStream, Precedence) {
         let method = Ident::new(method, Span::call_site());
@@ -195,6 +203,7 @@ impl Emitter<'_> {
             Instr::Sin(a) => self.call("sin", a),
             Instr::Cos(a) => self.call("cos", a),
             Instr::Sqrt(a) => self.call("sqrt", a),
+            Instr::Sign(a) => self.call("sign", a),
         }
     }
 
@@ -261,21 +270,29 @@ pub fn is_valid_parameter_name(name: &str) -> bool {
             && valid_ident(&format!("r#{name}")))
 }
 
-/// The return type of `kernel`'s function, in scalar `t`: a scalar, `[t; NV]` or
-/// `[[t; NV]; NV]`.
+/// The return type of `kernel`'s function in scalar `t` (DESIGN.md §4), naming the module's
+/// sizes `NV`, `NF`, `NP`, `NB`.
 pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
-    match kernel.shape() {
-        Shape::Scalar => quote!(#t),
-        Shape::Vector => quote!([#t; NV]),
-        Shape::Matrix => quote!([[#t; NV]; NV]),
-    }
+    Layout::of(kernel, Dims::default()).type_tokens(t)
 }
 
-/// Emits `kernel` as a function computing `program`'s outputs.
+/// The argument `input` of a kernel, in scalar `t`: `q: &[t; NQ]`, `standard: &[t; NP]`, or a
+/// velocity-sized array.
+pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
+    let arg = Ident::new(input.name(), Span::call_site());
+    let len = match input {
+        Input::Q => quote!(NQ),
+        Input::Standard => quote!(NP),
+        _ => quote!(NV),
+    };
+    quote!(#arg: &[#t; #len])
+}
+
+/// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`.
 pub fn emit_kernel(
     kernel: Kernel,
     program: &Program,
-    nv: usize,
+    dims: Dims,
     ctx: EmitContext<'_>,
 ) -> TokenStream {
     let uses = program.use_counts();
@@ -284,6 +301,7 @@ pub fn emit_kernel(
         ctx,
         names: vec![None; program.instrs.len()],
         trig: BTreeMap::new(),
+        reads_standard: kernel.inputs().contains(&Input::Standard),
     };
     let mut body = Vec::new();
     let mut next = 0usize;
@@ -307,19 +325,14 @@ pub fn emit_kernel(
         }
     }
     let trig = emitter.trig_bindings();
-    let outputs: Vec<TokenStream> = program
-        .outputs
-        .iter()
-        .map(|&o| emitter.operand(o).0)
-        .collect();
-    let result = match kernel.shape() {
-        Shape::Scalar => quote!(#(#outputs)*),
-        Shape::Vector => quote!([#(#outputs),*]),
-        Shape::Matrix => {
-            let rows = outputs.chunks(nv.max(1)).map(|row| quote!([#(#row),*]));
-            quote!([#(#rows),*])
-        }
-    };
+    let layout = Layout::of(kernel, dims);
+    assert_eq!(
+        layout.len(),
+        program.outputs.len(),
+        "`{kernel}` computes one output per scalar of its result"
+    );
+    let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o).0);
+    let result = layout.value_tokens(&mut outputs);
 
     let t = emitter.scalar_type();
     let name = Ident::new(kernel.name(), Span::call_site());
@@ -333,15 +346,8 @@ pub fn emit_kernel(
         ParameterMode::Runtime => quote!(p: &Params,),
         ParameterMode::Constant => quote!(),
     };
-    let args = kernel.inputs().iter().map(|&input| {
-        let arg = Ident::new(input.name(), Span::call_site());
-        let len = match input {
-            Input::Q => quote!(NQ),
-            _ => quote!(NV),
-        };
-        quote!(#arg: &[#t; #len])
-    });
-    let ret = return_type(kernel, &t);
+    let args = kernel.inputs().iter().map(|&input| argument(input, &t));
+    let ret = layout.type_tokens(&t);
     quote! {
         #[doc = #doc]
         #[inline]
@@ -380,7 +386,11 @@ mod tests {
             runtime: &runtime,
         };
         let program = Program { instrs, outputs };
-        emit_kernel(Kernel::KineticEnergy, &program, 3, ctx)
+        let dims = Dims {
+            nv: 3,
+            ..Dims::default()
+        };
+        emit_kernel(Kernel::KineticEnergy, &program, dims, ctx)
             .to_string()
             .replace(' ', "")
     }

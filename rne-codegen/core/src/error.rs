@@ -44,6 +44,17 @@ pub enum CodegenError {
         /// The names there are.
         source: crate::kernel::UnknownKernel,
     },
+    /// A `frames` entry names no link of the robot.
+    #[error("unknown frame `{frame}`; the robot's frames are: {}", known.join(", "))]
+    UnknownFrame {
+        /// The name given.
+        frame: String,
+        /// The robot's frames (link names).
+        known: Vec<String>,
+    },
+    /// A frame is listed twice in `frames`.
+    #[error("frame `{0}` is listed twice")]
+    FrameTwice(String),
     /// The `crate` setting is not a path.
     #[error("`{0}` is not a path to the rne-codegen crate (e.g. `::my_reexport::rne_codegen`)")]
     CratePath(String),

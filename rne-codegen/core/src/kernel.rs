@@ -1,16 +1,65 @@
 //! The functions a generated module can contain (DESIGN.md §4): the runtime's [`Kernel`],
 //! with their names, inputs and shapes, and here their symbolic construction.
 
-use rne_symbolic::{Id, SymbolicDynamics};
+use rne_symbolic::dynamics::base_parameters::BaseParameters;
+use rne_symbolic::{Id, Symbol, SymbolicDynamics};
 
 pub use rne_runtime::{Input, Kernel, Shape, UnknownKernel};
 
-/// Builds `kernel`'s outputs (flattened row-major for matrices) into the dynamics' graph.
+/// What the kinematics and identification kernels need besides the dynamics: the frames they
+/// are about and the base parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KernelSetup {
+    /// Indices into [`SymbolicDynamics::frames`] of the frames of the kinematics kernels, in
+    /// output order (the `frames:` setting; every frame by default).
+    pub frames: Vec<usize>,
+    /// The base parameters, when an identification kernel is generated.
+    pub base_parameters: Option<BaseParameters>,
+}
+
+impl KernelSetup {
+    /// Every frame, and the base parameters when `kernels` has an identification kernel.
+    pub fn new(dynamics: &SymbolicDynamics, kernels: &[Kernel]) -> KernelSetup {
+        KernelSetup {
+            frames: (0..dynamics.frames().len()).collect(),
+            base_parameters: kernels
+                .iter()
+                .any(|k| k.is_identification())
+                .then(|| dynamics.base_parameters()),
+        }
+    }
+}
+
+/// The sizes of a module's arrays: NV velocities, NF frames, NP standard and NB base
+/// parameters.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct Dims {
+    /// Velocity variables.
+    pub nv: usize,
+    /// Frames of the kinematics kernels.
+    pub nf: usize,
+    /// Standard parameters.
+    pub np: usize,
+    /// Base parameters.
+    pub nb: usize,
+}
+
+/// Builds `kernel`'s outputs (flattened row-major for matrices, tuples in order) into the
+/// dynamics' graph.
+///
+/// `base_parameters` reads the standard parameters as `Symbol::Parameter(i)` = π_i: its
+/// coefficients are numbers, so it never reads a model parameter, and the emitter gives it
+/// `standard[i]` for them.
 ///
 /// # Panics
-/// For a kernel of the runtime that the generator cannot build yet; every kernel of
-/// [`Kernel::ALL`] has a construction (a test checks it).
-pub fn build_outputs(kernel: Kernel, dynamics: &mut SymbolicDynamics) -> Vec<Id> {
+/// For an identification kernel when `setup` has no base parameters ([`KernelSetup::new`]
+/// finds them whenever they are needed).
+pub fn build_outputs(
+    kernel: Kernel,
+    dynamics: &mut SymbolicDynamics,
+    setup: &KernelSetup,
+) -> Vec<Id> {
+    let frames = &setup.frames;
     match kernel {
         Kernel::InverseDynamics => dynamics.inverse_dynamics(),
         Kernel::MassMatrix => dynamics.mass_matrix().concat(),
@@ -20,6 +69,71 @@ pub fn build_outputs(kernel: Kernel, dynamics: &mut SymbolicDynamics) -> Vec<Id>
         Kernel::ForwardDynamics => dynamics.forward_dynamics(),
         Kernel::KineticEnergy => vec![dynamics.kinetic_energy()],
         Kernel::PotentialEnergy => vec![dynamics.potential_energy()],
+        Kernel::InverseDynamicsDerivatives => {
+            let (dq, dv) = dynamics.inverse_dynamics_derivatives();
+            [dq.concat(), dv.concat()].concat()
+        }
+        Kernel::ForwardDynamicsDerivatives => {
+            let (dq, dv, inverse) = dynamics.forward_dynamics_derivatives();
+            [dq.concat(), dv.concat(), inverse.concat()].concat()
+        }
+        Kernel::MassMatrixInverse => dynamics.mass_matrix_inverse().concat(),
+        Kernel::FramePlacements => dynamics
+            .frame_placements(frames)
+            .into_iter()
+            .flat_map(|(rotation, position)| rotation.concat().into_iter().chain(position))
+            .collect(),
+        Kernel::FrameJacobians => dynamics
+            .frame_jacobians(frames)
+            .into_iter()
+            .flat_map(|j| j.concat())
+            .collect(),
+        Kernel::FrameJacobianDotQd => dynamics
+            .frame_jacobian_dot_qd(frames)
+            .into_iter()
+            .flatten()
+            .collect(),
+        Kernel::FrictionTorques => dynamics.friction_torques(),
+        Kernel::Regressor => dynamics.regressor().concat(),
+        Kernel::BaseRegressor => {
+            let base = base_parameters(setup, kernel);
+            dynamics
+                .regressor()
+                .iter()
+                .flat_map(|row| base.independent.iter().map(|&c| row[c]))
+                .collect()
+        }
+        Kernel::BaseParameters => {
+            let base = base_parameters(setup, kernel);
+            let g = &mut dynamics.model.graph;
+            let standard = |g: &mut rne_symbolic::ExprGraph, i: usize| {
+                g.symbol(Symbol::Parameter(
+                    u16::try_from(i).expect("at most 65 536 standard parameters"),
+                ))
+            };
+            base.independent
+                .iter()
+                .zip(&base.k)
+                .map(|(&i, row)| {
+                    let mut terms = vec![standard(g, i)];
+                    for (&k, &d) in row.iter().zip(&base.dependent) {
+                        if k != 0.0 {
+                            let coefficient = g.constant(k);
+                            let pi = standard(g, d);
+                            terms.push(g.mul(coefficient, pi));
+                        }
+                    }
+                    g.sum(terms)
+                })
+                .collect()
+        }
         other => unreachable!("the generator has no construction for `{other}`"),
     }
+}
+
+fn base_parameters(setup: &KernelSetup, kernel: Kernel) -> &BaseParameters {
+    setup
+        .base_parameters
+        .as_ref()
+        .unwrap_or_else(|| panic!("`{kernel}` needs the base parameters in its KernelSetup"))
 }

@@ -67,6 +67,7 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
                 Node::Sin(a) => graph.sin(r(a)),
                 Node::Cos(a) => graph.cos(r(a)),
                 Node::Sqrt(a) => graph.sqrt(r(a)),
+                Node::Sign(a) => graph.sign(r(a)),
                 Node::Add(..) | Node::Neg(_) => unreachable!("linear nodes are handled above"),
             }
         };

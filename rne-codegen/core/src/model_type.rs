@@ -4,8 +4,8 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
-use crate::emit::return_type;
-use crate::kernel::{Input, Kernel};
+use crate::emit::{argument, return_type};
+use crate::kernel::Kernel;
 use crate::scene::{ParameterMode, ScalarType};
 
 /// What the `Model` type depends on.
@@ -26,8 +26,9 @@ pub struct ModelType<'a> {
 
 impl ModelType<'_> {
     /// `pub struct Model` (a unit struct; with runtime parameters one holding them; generic
-    /// over the scalar for `scalar: generic`), its constructors and standard traits, and its
-    /// `Dynamics<NQ, NV>` implementation.
+    /// over the scalar for `scalar: generic`), its constructors and standard traits, its
+    /// `Dynamics<NQ, NV>` implementation, and `Kinematics<NQ, NV, NF>` and
+    /// `Identification<NQ, NV, NP, NB>` when the module has such kernels.
     pub fn emit(&self) -> TokenStream {
         let rt = self.runtime;
         let floating_base = self.floating_base;
@@ -46,7 +47,33 @@ impl ModelType<'_> {
             let variant = Ident::new(&format!("{k:?}"), Span::call_site());
             quote!(#rt::Kernel::#variant)
         });
-        let methods = self.kernels.iter().map(|&k| self.method(k, &scalar));
+        let methods = |select: fn(Kernel) -> bool| -> Vec<TokenStream> {
+            self.kernels
+                .iter()
+                .filter(|&&k| select(k))
+                .map(|&k| self.method(k, &scalar))
+                .collect()
+        };
+        let dynamics = methods(|k| !k.is_kinematics() && !k.is_identification());
+        let kinematics = self.kernels.iter().any(|k| k.is_kinematics()).then(|| {
+            let methods = methods(Kernel::is_kinematics);
+            quote! {
+                impl #impl_generics #rt::Kinematics<NQ, NV, NF> for #self_ty {
+                    const FRAMES: &'static [&'static str] = &FRAMES;
+                    #(#methods)*
+                }
+            }
+        });
+        let identification = self.kernels.iter().any(|k| k.is_identification()).then(|| {
+            let methods = methods(Kernel::is_identification);
+            quote! {
+                impl #impl_generics #rt::Identification<NQ, NV, NP, NB> for #self_ty {
+                    const PARAMETERS: &'static [&'static str] = &PARAMETERS;
+                    const BASE_PARAMETERS: &'static [&'static str] = &BASE_PARAMETERS;
+                    #(#methods)*
+                }
+            }
+        });
         quote! {
             #definition
             impl #impl_generics #rt::Dynamics<NQ, NV> for #self_ty {
@@ -55,8 +82,10 @@ impl ModelType<'_> {
                 const JOINTS: &'static [&'static str] = &JOINTS;
                 const FLOATING_BASE: bool = #floating_base;
                 const KERNELS: &'static [#rt::Kernel] = &[#(#kernels),*];
-                #(#methods)*
+                #(#dynamics)*
             }
+            #kinematics
+            #identification
         }
     }
 
@@ -158,13 +187,7 @@ impl ModelType<'_> {
             .iter()
             .map(|input| Ident::new(input.name(), Span::call_site()))
             .collect();
-        let args = kernel.inputs().iter().zip(&inputs).map(|(&input, arg)| {
-            let len = match input {
-                Input::Q => quote!(NQ),
-                _ => quote!(NV),
-            };
-            quote!(#arg: &[#scalar; #len])
-        });
+        let args = kernel.inputs().iter().map(|&input| argument(input, scalar));
         let params = match self.parameters {
             ParameterMode::Runtime => quote!(&self.params,),
             ParameterMode::Constant => quote!(),

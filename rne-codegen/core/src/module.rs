@@ -9,7 +9,7 @@ use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_ident, EmitContext};
 use crate::error::CodegenError;
-use crate::kernel::{build_outputs, Kernel};
+use crate::kernel::{build_outputs, Dims, Kernel, KernelSetup};
 use crate::linear::distribute_constants;
 use crate::model_type::ModelType;
 use crate::program::Program;
@@ -64,13 +64,23 @@ pub struct BuiltKernel {
     pub program: Program,
 }
 
-/// Builds `kernel` into a copy of `dynamics` and optimises it. Given dynamics in which nothing
-/// has been built yet, the result depends on the model and the kernel alone: the order of
-/// the terms of rewritten sums follows node ids, so kernels sharing one graph would round
-/// differently depending on which others were generated before them.
+/// Builds `kernel` into a copy of `dynamics` and optimises it, for every frame and with the
+/// base parameters found from the dynamics ([`KernelSetup::new`]).
 pub fn build_kernel(dynamics: &SymbolicDynamics, kernel: Kernel) -> BuiltKernel {
+    build_kernel_with(dynamics, kernel, &KernelSetup::new(dynamics, &[kernel]))
+}
+
+/// Builds `kernel` into a copy of `dynamics` and optimises it. Given dynamics in which nothing
+/// has been built yet, the result depends on the model, the kernel and `setup` alone: the
+/// order of the terms of rewritten sums follows node ids, so kernels sharing one graph would
+/// round differently depending on which others were generated before them.
+pub fn build_kernel_with(
+    dynamics: &SymbolicDynamics,
+    kernel: Kernel,
+    setup: &KernelSetup,
+) -> BuiltKernel {
     let mut dynamics = dynamics.clone();
-    let roots = build_outputs(kernel, &mut dynamics);
+    let roots = build_outputs(kernel, &mut dynamics, setup);
     let outputs = distribute_constants(&mut dynamics.model.graph, &roots);
     let program = Program::lower(&dynamics.model.graph, &outputs);
     BuiltKernel {
@@ -95,7 +105,12 @@ pub fn generate(
     let start = Instant::now();
     let runtime = scene.runtime_path()?;
     let model = scene.apply(model)?;
-    if scene.outputs.contains(&Kernel::ForwardDynamics) {
+    let needs_inverse = [
+        Kernel::ForwardDynamics,
+        Kernel::ForwardDynamicsDerivatives,
+        Kernel::MassMatrixInverse,
+    ];
+    if scene.outputs.iter().any(|k| needs_inverse.contains(k)) {
         model
             .check_mass_matrix_invertible()
             .map_err(|joint| CodegenError::Massless {
@@ -116,21 +131,34 @@ pub fn generate(
     if scene.zero_velocities {
         dynamics = dynamics.at_rest();
     }
+    if scene.friction {
+        dynamics = dynamics.with_friction();
+    }
     let ndof = dynamics.dof();
     let layout = dynamics.layout();
     let joints = dynamics.model.joint_names();
     let mut kernels = Vec::new();
     let mut functions = Vec::new();
-    // Each kernel once, at its first mention (a Builder or `rne emit` may repeat one).
-    let mut outputs: Vec<Kernel> = Vec::new();
-    for &kernel in &scene.outputs {
-        if !outputs.contains(&kernel) {
-            outputs.push(kernel);
-        }
-    }
+    let outputs = scene.kernels();
+    let setup = KernelSetup {
+        frames: scene.frame_indices(dynamics.frames())?,
+        ..KernelSetup::new(&dynamics, &outputs)
+    };
+    let parameter_names = dynamics.parameter_names();
+    let base_parameter_names = setup
+        .base_parameters
+        .as_ref()
+        .map(|base| base.names(&parameter_names))
+        .unwrap_or_default();
+    let dims = Dims {
+        nv: layout.nv(),
+        nf: setup.frames.len(),
+        np: parameter_names.len(),
+        nb: base_parameter_names.len(),
+    };
     for &kernel in &outputs {
         let kernel_start = Instant::now();
-        let built = build_kernel(&dynamics, kernel);
+        let built = build_kernel_with(&dynamics, kernel, &setup);
         let program = built.program;
         let ctx = EmitContext {
             symbols: built.dynamics.model.graph.symbols(),
@@ -138,7 +166,7 @@ pub fn generate(
             parameters: scene.parameters,
             runtime: &runtime,
         };
-        functions.push(emit_kernel(kernel, &program, layout.nv(), ctx));
+        functions.push(emit_kernel(kernel, &program, dims, ctx));
         kernels.push(KernelReport {
             kernel,
             ops: program.op_count(),
@@ -167,6 +195,26 @@ pub fn generate(
         floating_base: layout.floating,
     }
     .emit();
+    let frame_names: Vec<&str> = setup
+        .frames
+        .iter()
+        .map(|&f| dynamics.frames()[f].name.as_str())
+        .collect();
+    let frames = outputs.iter().any(|k| k.is_kinematics()).then(|| {
+        names_const(
+            "NF",
+            "FRAMES",
+            "The frames of the kinematics functions (link names), in output order.",
+            &frame_names,
+        )
+    });
+    let parameters = outputs.iter().any(|k| k.is_identification()).then(|| {
+        let standard: Vec<&str> = parameter_names.iter().map(String::as_str).collect();
+        let base: Vec<&str> = base_parameter_names.iter().map(String::as_str).collect();
+        let standard = names_const("NP", "PARAMETERS", "The standard parameters π of `regressor` (per body m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz about the body origin; then per joint fv, fc, f0, Ia as present), in column order.", &standard);
+        let base = names_const("NB", "BASE_PARAMETERS", "The base parameters π_b of `base_regressor`: each named after the standard parameter it keeps, with `R` when others are regrouped into it (`base_parameters`).", &base);
+        quote!(#standard #base)
+    });
     let items = quote! {
         #[doc = #header]
         #[doc = "Number of joint variables."]
@@ -177,6 +225,8 @@ pub fn generate(
         pub const NV: usize = #nv_lit;
         #[doc = "Joint variable names, in state order."]
         pub const JOINTS: [&str; NDOF] = [#(#joint_names),*];
+        #frames
+        #parameters
         #params
         #(#functions)*
         #model_type
@@ -188,6 +238,20 @@ pub fn generate(
         kernels,
         generation_time: start.elapsed(),
     })
+}
+
+/// `pub const SIZE: usize = n; pub const NAMES: [&str; SIZE] = [..];`.
+fn names_const(size: &str, names: &str, doc: &str, values: &[&str]) -> TokenStream {
+    let size = proc_macro2::Ident::new(size, proc_macro2::Span::call_site());
+    let names = proc_macro2::Ident::new(names, proc_macro2::Span::call_site());
+    let count = Literal::usize_unsuffixed(values.len());
+    let size_doc = format!("The length of `{names}`.");
+    quote! {
+        #[doc = #size_doc]
+        pub const #size: usize = #count;
+        #[doc = #doc]
+        pub const #names: [&str; #size] = [#(#values),*];
+    }
 }
 
 fn params_struct(model: &RobotModel) -> TokenStream {

@@ -40,6 +40,8 @@ pub enum Instr {
     Cos(Operand),
     /// `sqrt a`.
     Sqrt(Operand),
+    /// `sign a`.
+    Sign(Operand),
 }
 
 impl Instr {
@@ -47,7 +49,9 @@ impl Instr {
     pub fn operands(&self) -> Vec<Operand> {
         match *self {
             Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) | Instr::Div(a, b) => vec![a, b],
-            Instr::Neg(a) | Instr::Sin(a) | Instr::Cos(a) | Instr::Sqrt(a) => vec![a],
+            Instr::Neg(a) | Instr::Sin(a) | Instr::Cos(a) | Instr::Sqrt(a) | Instr::Sign(a) => {
+                vec![a]
+            }
         }
     }
 }
@@ -107,6 +111,7 @@ impl Program {
                 Node::Sin(a) => program.push(Instr::Sin(op(a))),
                 Node::Cos(a) => program.push(Instr::Cos(op(a))),
                 Node::Sqrt(a) => program.push(Instr::Sqrt(op(a))),
+                Node::Sign(a) => program.push(Instr::Sign(op(a))),
             };
             operand.insert(id, value);
         }
@@ -131,6 +136,7 @@ impl Program {
                 Instr::Sin(_) => count.sin += 1,
                 Instr::Cos(_) => count.cos += 1,
                 Instr::Sqrt(_) => count.sqrt += 1,
+                Instr::Sign(_) => count.sign += 1,
             }
         }
         count
@@ -172,6 +178,7 @@ impl Program {
                 Instr::Sin(a) => v(a).sin(),
                 Instr::Cos(a) => v(a).cos(),
                 Instr::Sqrt(a) => v(a).sqrt(),
+                Instr::Sign(a) => v(a).sign(),
             };
             temps.push(x);
         }

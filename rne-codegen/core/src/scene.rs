@@ -2,7 +2,7 @@
 
 use proc_macro2::TokenStream;
 use quote::quote;
-use rne_symbolic::model::Base;
+use rne_symbolic::model::{Base, Frame};
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
@@ -56,6 +56,12 @@ pub struct Scene {
     /// Whether mimic followers follow their leaders (the default, URDF semantics) or are
     /// joints of their own.
     pub mimic: MimicMode,
+    /// The frames (link names) of the kinematics kernels, in output order; `None` for every
+    /// link of the robot file (the `frames:` setting).
+    pub frames: Option<Vec<String>>,
+    /// Joint friction in the inverse and forward dynamics and the regressor
+    /// (`friction: include`); `friction_torques` is available either way.
+    pub friction: bool,
 }
 
 /// How mimic joints are generated (the macro's `mimic:` setting).
@@ -74,7 +80,7 @@ pub const DEFAULT_CRATE_PATH: &str = "::rne_codegen";
 impl Default for Scene {
     fn default() -> Scene {
         Scene {
-            outputs: Kernel::ALL.to_vec(),
+            outputs: Kernel::DYNAMICS.to_vec(),
             gravity: None,
             lock: Vec::new(),
             zero_velocities: false,
@@ -83,6 +89,8 @@ impl Default for Scene {
             crate_path: DEFAULT_CRATE_PATH.to_owned(),
             base: None,
             mimic: MimicMode::Constrained,
+            frames: None,
+            friction: false,
         }
     }
 }
@@ -112,6 +120,47 @@ impl Scene {
             model.lock_joint(joint, *value)?;
         }
         Ok(model)
+    }
+
+    /// The kernels to generate: each of `outputs` once, at its first mention (a Builder or
+    /// `rne emit` may repeat one), and `base_parameters` after them when an identification
+    /// kernel is asked for without it (the map from π to the base regressor's π_b).
+    pub fn kernels(&self) -> Vec<Kernel> {
+        let mut kernels: Vec<Kernel> = Vec::new();
+        for &kernel in &self.outputs {
+            if !kernels.contains(&kernel) {
+                kernels.push(kernel);
+            }
+        }
+        if kernels.iter().any(|k| k.is_identification())
+            && !kernels.contains(&Kernel::BaseParameters)
+        {
+            kernels.push(Kernel::BaseParameters);
+        }
+        kernels
+    }
+
+    /// The indices into `frames` (the robot's, [`rne_symbolic::SymbolicDynamics::frames`]) of
+    /// the frames this scene asks for; an error names a frame the robot does not have.
+    pub fn frame_indices(&self, frames: &[Frame]) -> Result<Vec<usize>, CodegenError> {
+        let Some(names) = &self.frames else {
+            return Ok((0..frames.len()).collect());
+        };
+        names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| {
+                if names[..i].contains(name) {
+                    return Err(CodegenError::FrameTwice(name.clone()));
+                }
+                frames.iter().position(|f| &f.name == name).ok_or_else(|| {
+                    CodegenError::UnknownFrame {
+                        frame: name.clone(),
+                        known: frames.iter().map(|f| f.name.clone()).collect(),
+                    }
+                })
+            })
+            .collect()
     }
 
     /// The path generated code reaches the runtime by: `<crate_path>::__private`. An error

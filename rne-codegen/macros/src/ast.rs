@@ -68,6 +68,8 @@ impl Parse for Key {
 pub enum Element {
     Ident(Ident),
     Number(Number),
+    /// A string, for names that are not identifiers (URDF link names can be anything).
+    Str(LitStr),
 }
 
 /// A possibly negated numeric literal, with its span.
@@ -145,6 +147,8 @@ impl Parse for Element {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         if input.peek(Ident) {
             Ok(Element::Ident(input.parse()?))
+        } else if input.peek(LitStr) {
+            Ok(Element::Str(input.parse()?))
         } else {
             Ok(Element::Number(input.parse()?))
         }

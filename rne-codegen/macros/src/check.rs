@@ -22,9 +22,11 @@ pub struct CheckedModule {
     /// The span of each listed output (empty when `outputs` is left to its default), for
     /// errors about a kernel the robot cannot have.
     pub output_spans: Vec<Span>,
+    /// The span of each listed frame, for errors about frames the robot lacks.
+    pub frame_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 10] = [
+const KEYS: [&str; 12] = [
     "robot",
     "outputs",
     "gravity",
@@ -32,6 +34,8 @@ const KEYS: [&str; 10] = [
     "velocities",
     "base",
     "mimic",
+    "friction",
+    "frames",
     "parameters",
     "scalar",
     "crate",
@@ -56,6 +60,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
     let mut scene = Scene::default();
     let mut lock_spans = Vec::new();
     let mut output_spans = Vec::new();
+    let mut frame_spans = Vec::new();
     for setting in &input.settings {
         let key = setting.key.to_string();
         if !KEYS.contains(&key.as_str()) {
@@ -91,6 +96,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                             }
                         }
                         Element::Number(n) => errors.push(n.span, "expected an output name"),
+                        Element::Str(s) => errors.push(s.span(), "expected an output name"),
                     }
                 }
                 if elements.is_empty() {
@@ -110,6 +116,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                             errors.push(n.span, "gravity components must be finite")
                         }
                         Element::Ident(name) => errors.push(name.span(), "expected a number"),
+                        Element::Str(s) => errors.push(s.span(), "expected a number"),
                     }
                 }
                 match <[f64; 3]>::try_from(gravity) {
@@ -163,6 +170,37 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     format!("unknown mimic mode `{other}`; expected `constrained` or `free`"),
                 ),
             },
+            ("friction", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "include" => scene.friction = true,
+                "exclude" => scene.friction = false,
+                other => errors.push(
+                    mode.span(),
+                    format!("unknown friction `{other}`; expected `include` or `exclude`"),
+                ),
+            },
+            ("frames", Value::List(bracket, elements)) => {
+                let mut frames: Vec<String> = Vec::new();
+                for element in elements {
+                    let (name, span) = match element {
+                        Element::Ident(name) => (name.to_string(), name.span()),
+                        Element::Str(s) => (s.value(), s.span()),
+                        Element::Number(n) => {
+                            errors.push(n.span, "expected a frame (link) name");
+                            continue;
+                        }
+                    };
+                    if frames.contains(&name) {
+                        errors.push(span, format!("frame `{name}` is listed twice"));
+                    } else {
+                        frames.push(name);
+                        frame_spans.push(span);
+                    }
+                }
+                if elements.is_empty() {
+                    errors.push(bracket.span.join(), "`frames` must name at least one frame");
+                }
+                scene.frames = Some(frames);
+            }
             ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
                 "constant" => scene.parameters = ParameterMode::Constant,
                 "runtime" => scene.parameters = ParameterMode::Runtime,
@@ -197,6 +235,7 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
             scene,
             lock_spans,
             output_spans,
+            frame_spans,
         }),
         (None, None) => Err(syn::Error::new(input.name.span(), "missing `robot`")),
     }
@@ -223,6 +262,8 @@ fn expected_shape(key: &str) -> String {
         "velocities" => "expected `zero` or `free`".into(),
         "base" => "expected `fixed` or `floating`".into(),
         "mimic" => "expected `constrained` or `free`".into(),
+        "friction" => "expected `include` or `exclude`".into(),
+        "frames" => "expected a list of link names: `frames: [tool0, \"camera-link\"]`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()

@@ -37,9 +37,26 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
                     .scene
                     .outputs
                     .iter()
-                    .position(|&k| k == Kernel::ForwardDynamics)
+                    .position(|k| {
+                        matches!(
+                            k,
+                            Kernel::ForwardDynamics
+                                | Kernel::ForwardDynamicsDerivatives
+                                | Kernel::MassMatrixInverse
+                        )
+                    })
                     .and_then(|k| module.output_spans.get(k).copied())
                     .unwrap_or_else(|| module.robot.span());
+                syn::Error::new(span, e.to_string())
+            }
+            CodegenError::UnknownFrame { frame, .. } => {
+                let span = module
+                    .scene
+                    .frames
+                    .iter()
+                    .flatten()
+                    .position(|f| f == frame)
+                    .map_or(module.robot.span(), |k| module.frame_spans[k]);
                 syn::Error::new(span, e.to_string())
             }
             _ => syn::Error::new(module.robot.span(), e.to_string()),

@@ -108,6 +108,46 @@ pub trait Dynamics<const NQ: usize, const NV: usize> {
         let _ = q;
         None
     }
+
+    /// (∂τ/∂q, ∂τ/∂q̇), ∂/∂q in the tangent space; ∂τ/∂q̈ is the mass matrix.
+    #[allow(clippy::type_complexity)]
+    fn inverse_dynamics_derivatives(
+        &self,
+        q: &[Self::Scalar; NQ],
+        qd: &[Self::Scalar; NV],
+        qdd: &[Self::Scalar; NV],
+    ) -> Option<([[Self::Scalar; NV]; NV], [[Self::Scalar; NV]; NV])> {
+        let _ = (q, qd, qdd);
+        None
+    }
+
+    /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, τ); ∂q̈/∂τ is M⁻¹.
+    #[allow(clippy::type_complexity)]
+    fn forward_dynamics_derivatives(
+        &self,
+        q: &[Self::Scalar; NQ],
+        qd: &[Self::Scalar; NV],
+        tau: &[Self::Scalar; NV],
+    ) -> Option<(
+        [[Self::Scalar; NV]; NV],
+        [[Self::Scalar; NV]; NV],
+        [[Self::Scalar; NV]; NV],
+    )> {
+        let _ = (q, qd, tau);
+        None
+    }
+
+    /// Inverse mass matrix M(q)⁻¹.
+    fn mass_matrix_inverse(&self, q: &[Self::Scalar; NQ]) -> Option<[[Self::Scalar; NV]; NV]> {
+        let _ = q;
+        None
+    }
+
+    /// Joint friction f_v q̇ + f_c sign(q̇) + offset.
+    fn friction_torques(&self, qd: &[Self::Scalar; NV]) -> Option<[Self::Scalar; NV]> {
+        let _ = qd;
+        None
+    }
 }
 
 /// A reference to a model is the model: generic code can take `&D` or `D` alike.
@@ -175,6 +215,38 @@ impl<const NQ: usize, const NV: usize, D: Dynamics<NQ, NV> + ?Sized> Dynamics<NQ
     fn potential_energy(&self, q: &[Self::Scalar; NQ]) -> Option<Self::Scalar> {
         (**self).potential_energy(q)
     }
+
+    #[allow(clippy::type_complexity)]
+    fn inverse_dynamics_derivatives(
+        &self,
+        q: &[Self::Scalar; NQ],
+        qd: &[Self::Scalar; NV],
+        qdd: &[Self::Scalar; NV],
+    ) -> Option<([[Self::Scalar; NV]; NV], [[Self::Scalar; NV]; NV])> {
+        (**self).inverse_dynamics_derivatives(q, qd, qdd)
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn forward_dynamics_derivatives(
+        &self,
+        q: &[Self::Scalar; NQ],
+        qd: &[Self::Scalar; NV],
+        tau: &[Self::Scalar; NV],
+    ) -> Option<(
+        [[Self::Scalar; NV]; NV],
+        [[Self::Scalar; NV]; NV],
+        [[Self::Scalar; NV]; NV],
+    )> {
+        (**self).forward_dynamics_derivatives(q, qd, tau)
+    }
+
+    fn mass_matrix_inverse(&self, q: &[Self::Scalar; NQ]) -> Option<[[Self::Scalar; NV]; NV]> {
+        (**self).mass_matrix_inverse(q)
+    }
+
+    fn friction_torques(&self, qd: &[Self::Scalar; NV]) -> Option<[Self::Scalar; NV]> {
+        (**self).friction_torques(qd)
+    }
 }
 
 #[cfg(test)]
@@ -227,6 +299,10 @@ mod tests {
         assert_eq!(p.forward_dynamics(&[0.1], &[0.2], &[0.3]), None);
         assert_eq!(p.kinetic_energy(&[0.1], &[0.2]), None);
         assert_eq!(p.potential_energy(&[0.1]), None);
+        assert_eq!(p.inverse_dynamics_derivatives(&[0.1], &[0.2], &[0.3]), None);
+        assert_eq!(p.forward_dynamics_derivatives(&[0.1], &[0.2], &[0.3]), None);
+        assert_eq!(p.mass_matrix_inverse(&[0.1]), None);
+        assert_eq!(p.friction_torques(&[0.2]), None);
     }
 
     #[test]

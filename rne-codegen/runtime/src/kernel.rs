@@ -6,8 +6,7 @@ use core::str::FromStr;
 
 /// One generated function of a module (DESIGN.md §4).
 ///
-/// More kernels (derivatives, kinematics, regressors) will join as further variants, hence
-/// `#[non_exhaustive]`.
+/// Further kernels may join as variants, hence `#[non_exhaustive]`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[non_exhaustive]
 pub enum Kernel {
@@ -27,6 +26,30 @@ pub enum Kernel {
     KineticEnergy,
     /// `potential_energy(q) -> T`.
     PotentialEnergy,
+    /// `inverse_dynamics_derivatives(q, qd, qdd) -> ([[T; NV]; NV], [[T; NV]; NV])`:
+    /// (∂τ/∂q, ∂τ/∂q̇), ∂/∂q in the tangent space; ∂τ/∂q̈ is M.
+    InverseDynamicsDerivatives,
+    /// `forward_dynamics_derivatives(q, qd, tau) -> (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹)`, three
+    /// `[[T; NV]; NV]`.
+    ForwardDynamicsDerivatives,
+    /// `mass_matrix_inverse(q) -> [[T; NV]; NV]`: M(q)⁻¹, symmetric.
+    MassMatrixInverse,
+    /// `frame_placements(q) -> [([[T; 3]; 3], [T; 3]); NF]`: rotation and origin of each frame
+    /// in the world.
+    FramePlacements,
+    /// `frame_jacobians(q) -> [[[T; NV]; 6]; NF]`: geometric Jacobians, rows [v; ω] of the
+    /// frame origin in world axes.
+    FrameJacobians,
+    /// `frame_jacobian_dot_qd(q, qd) -> [[T; 6]; NF]`: J̇ q̇ of each frame.
+    FrameJacobianDotQd,
+    /// `friction_torques(qd) -> [T; NV]`: joint friction f_v q̇ + f_c sign(q̇) + offset.
+    FrictionTorques,
+    /// `regressor(q, qd, qdd) -> [[T; NP]; NV]`: Y of τ = Y(q, q̇, q̈) π.
+    Regressor,
+    /// `base_regressor(q, qd, qdd) -> [[T; NB]; NV]`: Y_b of τ = Y_b π_b, full column rank.
+    BaseRegressor,
+    /// `base_parameters(standard) -> [T; NB]`: π_b as linear combinations of π.
+    BaseParameters,
 }
 
 /// The state arrays a kernel takes, in order.
@@ -40,6 +63,8 @@ pub enum Input {
     Qdd,
     /// Joint torques `tau` (NV).
     Tau,
+    /// Standard parameters `standard` (NP).
+    Standard,
 }
 
 impl Input {
@@ -50,12 +75,15 @@ impl Input {
             Input::Qd => "qd",
             Input::Qdd => "qdd",
             Input::Tau => "tau",
+            Input::Standard => "standard",
         }
     }
 }
 
-/// What a kernel returns.
+/// What a kernel returns. NV is the size of the velocity, NF the number of frames, NP of
+/// standard and NB of base parameters.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Shape {
     /// One scalar.
     Scalar,
@@ -63,11 +91,47 @@ pub enum Shape {
     Vector,
     /// `[[T; NV]; NV]`, row-major.
     Matrix,
+    /// A tuple of this many `[[T; NV]; NV]`.
+    Matrices(usize),
+    /// `[([[T; 3]; 3], [T; 3]); NF]`: a rotation (row-major) and a position per frame.
+    Placements,
+    /// `[[[T; NV]; 6]; NF]`: a 6 × NV matrix per frame.
+    FrameMatrices,
+    /// `[[T; 6]; NF]`: a 6-vector per frame.
+    FrameVectors,
+    /// `[[T; NP]; NV]`: one row per velocity, one column per standard parameter.
+    Regressor,
+    /// `[[T; NB]; NV]`: one row per velocity, one column per base parameter.
+    BaseRegressor,
+    /// `[T; NB]`.
+    BaseVector,
 }
 
 impl Kernel {
     /// Every kernel, in the order of DESIGN.md §4.
-    pub const ALL: [Kernel; 8] = [
+    pub const ALL: [Kernel; 18] = [
+        Kernel::InverseDynamics,
+        Kernel::MassMatrix,
+        Kernel::CoriolisMatrix,
+        Kernel::GravityTorques,
+        Kernel::BiasTorques,
+        Kernel::ForwardDynamics,
+        Kernel::KineticEnergy,
+        Kernel::PotentialEnergy,
+        Kernel::InverseDynamicsDerivatives,
+        Kernel::ForwardDynamicsDerivatives,
+        Kernel::MassMatrixInverse,
+        Kernel::FramePlacements,
+        Kernel::FrameJacobians,
+        Kernel::FrameJacobianDotQd,
+        Kernel::FrictionTorques,
+        Kernel::Regressor,
+        Kernel::BaseRegressor,
+        Kernel::BaseParameters,
+    ];
+
+    /// The dynamics of (3.1): what a module generates when `outputs:` is not given.
+    pub const DYNAMICS: [Kernel; 8] = [
         Kernel::InverseDynamics,
         Kernel::MassMatrix,
         Kernel::CoriolisMatrix,
@@ -77,6 +141,22 @@ impl Kernel {
         Kernel::KineticEnergy,
         Kernel::PotentialEnergy,
     ];
+
+    /// Whether this kernel computes something per frame (NF, the `frames:` setting).
+    pub fn is_kinematics(self) -> bool {
+        matches!(
+            self,
+            Kernel::FramePlacements | Kernel::FrameJacobians | Kernel::FrameJacobianDotQd
+        )
+    }
+
+    /// Whether this kernel is about the standard or base parameters (NP, NB).
+    pub fn is_identification(self) -> bool {
+        matches!(
+            self,
+            Kernel::Regressor | Kernel::BaseRegressor | Kernel::BaseParameters
+        )
+    }
 
     /// The generated function's name (also the name `outputs:` takes).
     pub fn name(self) -> &'static str {
@@ -89,30 +169,64 @@ impl Kernel {
             Kernel::ForwardDynamics => "forward_dynamics",
             Kernel::KineticEnergy => "kinetic_energy",
             Kernel::PotentialEnergy => "potential_energy",
+            Kernel::InverseDynamicsDerivatives => "inverse_dynamics_derivatives",
+            Kernel::ForwardDynamicsDerivatives => "forward_dynamics_derivatives",
+            Kernel::MassMatrixInverse => "mass_matrix_inverse",
+            Kernel::FramePlacements => "frame_placements",
+            Kernel::FrameJacobians => "frame_jacobians",
+            Kernel::FrameJacobianDotQd => "frame_jacobian_dot_qd",
+            Kernel::FrictionTorques => "friction_torques",
+            Kernel::Regressor => "regressor",
+            Kernel::BaseRegressor => "base_regressor",
+            Kernel::BaseParameters => "base_parameters",
         }
     }
 
     /// The arrays it takes.
     pub fn inputs(self) -> &'static [Input] {
         match self {
-            Kernel::InverseDynamics => &[Input::Q, Input::Qd, Input::Qdd],
-            Kernel::MassMatrix | Kernel::GravityTorques | Kernel::PotentialEnergy => &[Input::Q],
-            Kernel::CoriolisMatrix | Kernel::BiasTorques | Kernel::KineticEnergy => {
-                &[Input::Q, Input::Qd]
+            Kernel::InverseDynamics
+            | Kernel::InverseDynamicsDerivatives
+            | Kernel::Regressor
+            | Kernel::BaseRegressor => &[Input::Q, Input::Qd, Input::Qdd],
+            Kernel::MassMatrix
+            | Kernel::GravityTorques
+            | Kernel::PotentialEnergy
+            | Kernel::MassMatrixInverse
+            | Kernel::FramePlacements
+            | Kernel::FrameJacobians => &[Input::Q],
+            Kernel::CoriolisMatrix
+            | Kernel::BiasTorques
+            | Kernel::KineticEnergy
+            | Kernel::FrameJacobianDotQd => &[Input::Q, Input::Qd],
+            Kernel::ForwardDynamics | Kernel::ForwardDynamicsDerivatives => {
+                &[Input::Q, Input::Qd, Input::Tau]
             }
-            Kernel::ForwardDynamics => &[Input::Q, Input::Qd, Input::Tau],
+            Kernel::FrictionTorques => &[Input::Qd],
+            Kernel::BaseParameters => &[Input::Standard],
         }
     }
 
     /// What it returns.
     pub fn shape(self) -> Shape {
         match self {
-            Kernel::MassMatrix | Kernel::CoriolisMatrix => Shape::Matrix,
+            Kernel::MassMatrix | Kernel::CoriolisMatrix | Kernel::MassMatrixInverse => {
+                Shape::Matrix
+            }
             Kernel::KineticEnergy | Kernel::PotentialEnergy => Shape::Scalar,
             Kernel::InverseDynamics
             | Kernel::GravityTorques
             | Kernel::BiasTorques
-            | Kernel::ForwardDynamics => Shape::Vector,
+            | Kernel::ForwardDynamics
+            | Kernel::FrictionTorques => Shape::Vector,
+            Kernel::InverseDynamicsDerivatives => Shape::Matrices(2),
+            Kernel::ForwardDynamicsDerivatives => Shape::Matrices(3),
+            Kernel::FramePlacements => Shape::Placements,
+            Kernel::FrameJacobians => Shape::FrameMatrices,
+            Kernel::FrameJacobianDotQd => Shape::FrameVectors,
+            Kernel::Regressor => Shape::Regressor,
+            Kernel::BaseRegressor => Shape::BaseRegressor,
+            Kernel::BaseParameters => Shape::BaseVector,
         }
     }
 
@@ -129,6 +243,20 @@ impl Kernel {
             }
             Kernel::KineticEnergy => "Kinetic energy ½ q̇ᵀ M(q) q̇.",
             Kernel::PotentialEnergy => "Potential energy, zero with every centre of mass at the base origin.",
+            Kernel::InverseDynamicsDerivatives => {
+                "(∂τ/∂q, ∂τ/∂q̇): derivatives of the inverse dynamics, ∂/∂q in the tangent space (for a floating base, q ⊕ δ with δ in the base frame); ∂τ/∂q̈ is M(q)."
+            }
+            Kernel::ForwardDynamicsDerivatives => {
+                "(∂q̈/∂q, ∂q̈/∂q̇, M⁻¹): derivatives of the forward dynamics, ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ = FD(q, q̇, τ); ∂q̈/∂τ is M⁻¹."
+            }
+            Kernel::MassMatrixInverse => "Inverse mass matrix M(q)⁻¹, row-major and symmetric.",
+            Kernel::FramePlacements => "Rotation (row-major) and origin in the world of each frame of `FRAMES`.",
+            Kernel::FrameJacobians => "Geometric Jacobian of each frame of `FRAMES`: rows [v; ω] of the frame origin in world axes.",
+            Kernel::FrameJacobianDotQd => "J̇ q̇ of each frame of `FRAMES` (world axes): its acceleration is J q̈ + J̇ q̇.",
+            Kernel::FrictionTorques => "Joint friction f_v q̇ + f_c sign(q̇) + offset, with sign(0) = 0.",
+            Kernel::Regressor => "Joint-torque regressor Y(q, q̇, q̈) of τ = Y π, columns in the order of `PARAMETERS`.",
+            Kernel::BaseRegressor => "Base regressor Y_b(q, q̇, q̈) of τ = Y_b π_b (full column rank), columns in the order of `BASE_PARAMETERS`.",
+            Kernel::BaseParameters => "The base parameters π_b (`BASE_PARAMETERS`) of standard parameters π (`PARAMETERS`).",
         }
     }
 }
@@ -193,10 +321,16 @@ mod tests {
     }
 
     #[test]
-    fn every_kernel_takes_q_first_and_forward_dynamics_takes_torques() {
+    fn state_kernels_take_q_first_and_forward_dynamics_takes_torques() {
         for kernel in Kernel::ALL {
-            assert_eq!(kernel.inputs()[0], Input::Q, "{kernel}");
+            let first = kernel.inputs()[0];
+            match kernel {
+                Kernel::FrictionTorques => assert_eq!(first, Input::Qd),
+                Kernel::BaseParameters => assert_eq!(first, Input::Standard),
+                _ => assert_eq!(first, Input::Q, "{kernel}"),
+            }
         }
+        assert!(Kernel::DYNAMICS.iter().all(|k| Kernel::ALL.contains(k)));
         assert_eq!(Kernel::ForwardDynamics.inputs().last(), Some(&Input::Tau));
         assert_eq!(Kernel::MassMatrix.shape(), Shape::Matrix);
         assert_eq!(Kernel::KineticEnergy.shape(), Shape::Scalar);

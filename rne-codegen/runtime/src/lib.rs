@@ -6,7 +6,8 @@
 //! - [`sin_cos`] and [`sin_cos_array`]: the fast, accurate sine and cosine the `f64`
 //!   kernels call for every joint angle;
 //! - [`Dynamics`] and [`Kernel`]: the trait every generated module's `Model` implements,
-//!   and the names of the functions a module can contain.
+//!   and the names of the functions a module can contain; [`Kinematics`] and
+//!   [`Identification`] for modules with frame or regressor kernels.
 //!
 //! Generated code reaches this crate through `rne_codegen::__private`; users write
 //! `rne_codegen::Dynamics`, `rne_codegen::Real`, which re-export these items. `core` has no
@@ -28,12 +29,16 @@ mod double_double;
 mod dynamics;
 mod eft;
 mod float;
+mod identification;
 mod kernel;
+mod kinematics;
 mod real;
 pub mod trig;
 
 pub use double_double::{DoubleDouble, MAX_DIGITS};
 pub use dynamics::Dynamics;
+pub use identification::Identification;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
+pub use kinematics::Kinematics;
 pub use real::Real;
 pub use trig::{sin_cos, sin_cos_array};

@@ -50,6 +50,17 @@ pub trait Real:
     fn one() -> Self {
         Self::from_f64(1.0)
     }
+    /// −1, 0 or 1 as `self` is negative, zero or positive (zero keeps its sign, NaN stays
+    /// NaN): the Coulomb friction law's sign(q̇), with no friction at rest.
+    fn sign(self) -> Self {
+        if self > Self::zero() {
+            Self::one()
+        } else if self < Self::zero() {
+            -Self::one()
+        } else {
+            self
+        }
+    }
     /// Absolute value.
     fn abs(self) -> Self {
         if self < Self::zero() {

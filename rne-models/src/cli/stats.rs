@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use clap::Args;
-use rne_codegen::{generate, Scene};
+use rne_codegen::{generate, Kernel, Scene};
 
 use super::model::ModelOptions;
 use super::CliError;
@@ -22,11 +22,15 @@ pub struct StatsArgs {
     pub json: bool,
 }
 
-/// Generates every kernel and reports its cost.
+/// Generates every kernel of DESIGN.md §4 and reports its cost.
 pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
-    let module = generate(&model, &Scene::default(), &source.display_name())?;
+    let scene = Scene {
+        outputs: Kernel::ALL.to_vec(),
+        ..Scene::default()
+    };
+    let module = generate(&model, &scene, &source.display_name())?;
     if args.json {
         let kernels: Vec<serde_json::Value> = module
             .kernels
@@ -35,7 +39,8 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 serde_json::json!({
                     "kernel": k.kernel.name(),
                     "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
-                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "cost": k.ops.cost(),
+                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "sign": k.ops.sign,
+                    "cost": k.ops.cost(),
                     "generation_ms": k.generation_time.as_secs_f64() * 1e3,
                 })
             })
@@ -52,14 +57,14 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
     writeln!(
         out,
-        "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>6} {:>10}",
-        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "cost", "gen (ms)"
+        "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10}",
+        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "sign", "cost", "gen (ms)"
     )?;
     for k in &module.kernels {
         let o = k.ops;
         writeln!(
             out,
-            "{:<18} {:>6} {:>6} {:>5} {:>5} {:>5} {:>5} {:>5} {:>6} {:>10.3}",
+            "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10.3}",
             k.kernel.name(),
             o.mul,
             o.add,
@@ -68,6 +73,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             o.sin,
             o.cos,
             o.sqrt,
+            o.sign,
             o.cost(),
             k.generation_time.as_secs_f64() * 1e3
         )?;

@@ -33,6 +33,8 @@ pub enum Atom {
     /// Square root of a polynomial that is not a constant. Its positive exponents are at
     /// most 1 in canonical form (`sqrt(p)² = p`).
     Sqrt(Arc<Polynomial>),
+    /// Sign of a polynomial that is not a constant (Coulomb friction's sign(q̇)).
+    Sign(Arc<Polynomial>),
 }
 
 impl Atom {
@@ -84,6 +86,10 @@ impl Atom {
                 let a = p.to_expr(graph);
                 graph.sqrt(a)
             }
+            Atom::Sign(p) => {
+                let a = p.to_expr(graph);
+                graph.sign(a)
+            }
         }
     }
 
@@ -94,6 +100,7 @@ impl Atom {
             Atom::Sin(angle) => angle.eval(value).sin(),
             Atom::Cos(angle) => angle.eval(value).cos(),
             Atom::Sqrt(p) => p.eval_with(value).sqrt(),
+            Atom::Sign(p) => p.eval_with(value).sign(),
         }
     }
 }

@@ -239,6 +239,16 @@ impl<'g> Expansion<'g> {
                 Some(x) if x >= 0.0 => Polynomial::constant(x.sqrt()),
                 _ => Polynomial::atom(Atom::Sqrt(Arc::new(self.get(a).clone()))),
             },
+            Node::Sign(a) => match self.get(a).as_constant() {
+                Some(x) => Polynomial::constant(if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }),
+                _ => Polynomial::atom(Atom::Sign(Arc::new(self.get(a).clone()))),
+            },
         })
     }
 

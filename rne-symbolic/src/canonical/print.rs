@@ -258,6 +258,10 @@ impl<'a> Printer<'a> {
                 PrintFormat::Text => format!("sqrt({})", self.print(p)),
                 PrintFormat::Latex => format!("\\sqrt{{{}}}", self.print(p)),
             },
+            Atom::Sign(p) => match self.format {
+                PrintFormat::Text => format!("sign({})", self.print(p)),
+                PrintFormat::Latex => format!("\\operatorname{{sgn}}({})", self.print(p)),
+            },
         }
     }
 

@@ -137,6 +137,20 @@ impl BaseParameters {
         self.independent.is_empty()
     }
 
+    /// The names of the base parameters given those of the standard ones: each is named after
+    /// the standard parameter it keeps, with `R` appended when others are regrouped into it
+    /// (Khalil and Dombre's notation, e.g. `link2.IzzR`).
+    pub fn names(&self, standard: &[String]) -> Vec<String> {
+        self.independent
+            .iter()
+            .zip(&self.k)
+            .map(|(&i, row)| {
+                let regrouped = row.iter().any(|&k| k != 0.0);
+                format!("{}{}", standard[i], if regrouped { "R" } else { "" })
+            })
+            .collect()
+    }
+
     /// π_b = π₁ + K π₂ of the standard parameters `standard`.
     pub fn of(&self, standard: &[f64]) -> Vec<f64> {
         self.independent

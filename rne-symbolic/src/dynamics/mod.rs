@@ -7,6 +7,7 @@ mod christoffel;
 mod crba;
 pub mod derivatives;
 mod energy;
+pub mod friction;
 mod kinematics;
 mod ldlt;
 pub mod regressor;
@@ -15,9 +16,15 @@ use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
 use crate::model::{Frame, RobotModel, StateLayout};
 use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
+use base_parameters::BaseParameters;
 
 /// A matrix of expressions, row-major.
 pub type Matrix = Vec<Vec<Id>>;
+
+/// States the base parameters are found from ([`SymbolicDynamics::base_parameters`]): each
+/// gives NV equations, and a body has at most 10 + 4 parameters per joint variable, so 40
+/// states stack at least twice as many equations as there are parameters.
+pub const BASE_PARAMETER_SAMPLES: usize = 40;
 
 /// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
 ///
@@ -29,6 +36,7 @@ pub struct SymbolicDynamics {
     /// The model (fixed links merged) whose graph holds every expression built so far.
     pub model: RobotModel,
     at_rest: bool,
+    friction: bool,
     full: Option<NewtonEuler>,
     mass_matrix: Option<Vec<Vec<Id>>>,
     gravity_torques: Option<Vec<Id>>,
@@ -51,6 +59,7 @@ impl SymbolicDynamics {
             model: model.merge_fixed_links(),
             frames,
             at_rest: false,
+            friction: false,
             full: None,
             mass_matrix: None,
             gravity_torques: None,
@@ -70,6 +79,19 @@ impl SymbolicDynamics {
     pub fn at_rest(mut self) -> SymbolicDynamics {
         self.at_rest = true;
         self
+    }
+
+    /// The dynamics with joint friction ([`friction`]) in the inverse and forward dynamics and
+    /// friction columns in the regressor (`friction: include`); without, friction is only
+    /// available through [`Self::friction_torques`]. Must be chosen before anything is built.
+    pub fn with_friction(mut self) -> SymbolicDynamics {
+        self.friction = true;
+        self
+    }
+
+    /// Whether friction is part of the inverse and forward dynamics.
+    pub fn includes_friction(&self) -> bool {
+        self.friction
     }
 
     /// Number of joint variables (NDOF).
@@ -151,9 +173,41 @@ impl SymbolicDynamics {
         self.full.as_ref().expect("just built")
     }
 
-    /// τ(q, q̇, q̈): the joint torques of the full recursion.
+    /// τ(q, q̇, q̈): the joint torques of the full recursion, plus the joint friction when it
+    /// is included.
     pub fn inverse_dynamics(&mut self) -> Vec<Id> {
-        self.full().torques.clone()
+        let torques = self.full().torques.clone();
+        if !self.friction {
+            return torques;
+        }
+        let friction = self.friction_torques();
+        let g = &mut self.model.graph;
+        torques
+            .iter()
+            .zip(&friction)
+            .map(|(&t, &f)| g.add(t, f))
+            .collect()
+    }
+
+    /// τ_f(q̇) = f_v q̇ + f_c sign(q̇) + offset of every entry of v ([`friction`]), whether or not
+    /// friction is included in the dynamics.
+    pub fn friction_torques(&mut self) -> Vec<Id> {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        friction::friction_torques(&mut self.model, &qd)
+    }
+
+    /// u − τ_f(q̇): the generalised forces that accelerate the robot, with friction included.
+    fn driving_forces(&mut self) -> Vec<Id> {
+        let u = self.velocity_symbols(Symbol::Force);
+        if !self.friction {
+            return u;
+        }
+        let friction = self.friction_torques();
+        let g = &mut self.model.graph;
+        u.iter()
+            .zip(&friction)
+            .map(|(&u, &f)| g.sub(u, f))
+            .collect()
     }
 
     /// The joint reactions f_i, τ_i of every link (body frames), from the full recursion.
@@ -243,15 +297,16 @@ impl SymbolicDynamics {
         v
     }
 
-    /// q̈ = M(q)⁻¹ (u − C(q, q̇) q̇ − g(q)) (6.2), with u the `Force` symbols, through a
-    /// symbolic LᵀDL factorisation of M that keeps M's structural zeros.
+    /// q̈ = M(q)⁻¹ (u − C(q, q̇) q̇ − g(q)) (6.2), with u the `Force` symbols (less the
+    /// friction when it is included), through a symbolic LᵀDL factorisation of M that keeps
+    /// M's structural zeros.
     pub fn forward_dynamics(&mut self) -> Vec<Id> {
         if let Some(f) = &self.forward_dynamics {
             return f.clone();
         }
         let m = self.mass_matrix();
         let bias = self.bias_torques();
-        let u = self.velocity_symbols(Symbol::Force);
+        let u = self.driving_forces();
         let g = &mut self.model.graph;
         let rhs: Vec<Id> = u.iter().zip(&bias).map(|(&u, &b)| g.sub(u, b)).collect();
         let factor = ldlt::LtdlFactor::new(g, &m);
@@ -387,19 +442,36 @@ impl SymbolicDynamics {
     }
 
     /// The joint-torque regressor Y(q, q̇, q̈) of τ = Y π ([`regressor`]): NV rows, one column
-    /// per standard parameter ([`regressor::regressor_columns`]).
+    /// per standard parameter ([`Self::parameter_names`]).
     pub fn regressor(&mut self) -> Matrix {
         let qd = self.velocity_symbols(Symbol::Velocity);
         let qdd = self.velocity_symbols(Symbol::Acceleration);
         let motion = self.motion(qd, qdd);
         let gravity = self.model.gravity;
-        regressor::regressor(&mut self.model, &motion, gravity)
+        regressor::regressor(&mut self.model, &motion, gravity, self.friction)
+    }
+
+    /// The names of the standard parameters, in the regressor's column order (`link.m`,
+    /// `link.mcx`, ..., `link.fv`, `link.Ia`).
+    pub fn parameter_names(&self) -> Vec<String> {
+        regressor::regressor_columns(&self.model, self.friction)
+            .iter()
+            .map(|column| column.name(&self.model))
+            .collect()
+    }
+
+    /// The base parameters of the regressor ([`base_parameters`]), from
+    /// [`BASE_PARAMETER_SAMPLES`] seeded states, built in a copy of the graph.
+    pub fn base_parameters(&self) -> BaseParameters {
+        let mut scratch = self.clone();
+        let y = scratch.regressor();
+        BaseParameters::find(&scratch.model, &y, BASE_PARAMETER_SAMPLES)
     }
 
     /// The standard parameters π of the model, in the order of the regressor's columns, as
     /// expressions: per body m, m c and the inertia about the body origin; armatures.
     pub fn standard_parameters(&mut self) -> Vec<Id> {
-        let columns = regressor::regressor_columns(&self.model);
+        let columns = regressor::regressor_columns(&self.model, self.friction);
         let g = &mut self.model.graph;
         columns
             .iter()
@@ -416,6 +488,10 @@ impl SymbolicDynamics {
                         }
                     }
                 }
+                regressor::RegressorColumn::Friction { link, parameter } => {
+                    let friction = self.model.links[link].friction.expect("a friction column");
+                    [friction.viscous, friction.coulomb, friction.offset][parameter]
+                }
                 regressor::RegressorColumn::Armature { link } => {
                     self.model.links[link].armature.unwrap_or_else(|| g.zero())
                 }
@@ -427,7 +503,7 @@ impl SymbolicDynamics {
     /// links; `None` for a floating base or mimic couplings (use [`Self::forward_dynamics`]).
     pub fn forward_dynamics_articulated(&mut self) -> Option<Vec<Id>> {
         let qd = self.velocity_symbols(Symbol::Velocity);
-        let u = self.velocity_symbols(Symbol::Force);
+        let u = self.driving_forces();
         let zeros = self.zeros();
         let motion = self.motion(qd, zeros);
         let gravity = self.model.gravity;

@@ -4,7 +4,9 @@
 //!
 //! Per moving body, in model order: `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, with
 //! c the centre of mass and I the inertia about the body frame's origin, in body axes; then
-//! the armature I_a of each joint that has one, in link order. A body's wrench at its origin
+//! per joint, in link order, its friction coefficients `fv, fc, f0` when friction is included
+//! and the joint has friction ([`super::friction`]), and its armature `Ia` when it has one.
+//! A body's wrench at its origin
 //! is linear in its parameters,
 //!
 //! ```text
@@ -22,6 +24,7 @@ use crate::motion::{JointMotion, LinkPlacement};
 use crate::newton_euler::newton_euler;
 
 use super::crba::columns;
+use super::friction::{friction_joint, FRICTION_PARAMETER_NAMES};
 
 /// Inertial parameters per body.
 pub const PARAMETERS_PER_BODY: usize = 10;
@@ -45,6 +48,14 @@ pub enum RegressorColumn {
         /// The parameter.
         parameter: usize,
     },
+    /// Friction coefficient `parameter` (index into [`FRICTION_PARAMETER_NAMES`]) of a link's
+    /// joint.
+    Friction {
+        /// The link index.
+        link: usize,
+        /// The coefficient.
+        parameter: usize,
+    },
     /// The armature of a link's joint.
     Armature {
         /// The link index.
@@ -52,18 +63,39 @@ pub enum RegressorColumn {
     },
 }
 
-/// The columns of the regressor of `model` (merged: every link moves), in order.
-pub fn regressor_columns(model: &RobotModel) -> Vec<RegressorColumn> {
+impl RegressorColumn {
+    /// The parameter's name: `link.m`, `link.mcx`, ..., `link.fv`, `link.Ia`.
+    pub fn name(&self, model: &RobotModel) -> String {
+        let (link, parameter) = match *self {
+            RegressorColumn::Body { link, parameter } => (link, BODY_PARAMETER_NAMES[parameter]),
+            RegressorColumn::Friction { link, parameter } => {
+                (link, FRICTION_PARAMETER_NAMES[parameter])
+            }
+            RegressorColumn::Armature { link } => (link, "Ia"),
+        };
+        format!("{}.{parameter}", model.links[link].name)
+    }
+}
+
+/// The columns of the regressor of `model` (merged: every link moves), in order; friction
+/// columns only when `friction` is included in the dynamics.
+pub fn regressor_columns(model: &RobotModel, friction: bool) -> Vec<RegressorColumn> {
     let mut out: Vec<RegressorColumn> = (0..model.links.len())
         .flat_map(|link| {
             (0..PARAMETERS_PER_BODY).map(move |parameter| RegressorColumn::Body { link, parameter })
         })
         .collect();
-    out.extend(
-        (0..model.links.len())
-            .filter(|&i| model.links[i].armature.is_some() && model.links[i].joint.is_some())
-            .map(|link| RegressorColumn::Armature { link }),
-    );
+    for (link, l) in model.links.iter().enumerate() {
+        if l.joint.is_none() {
+            continue;
+        }
+        if friction && l.friction.is_some() {
+            out.extend((0..3).map(|parameter| RegressorColumn::Friction { link, parameter }));
+        }
+        if l.armature.is_some() {
+            out.push(RegressorColumn::Armature { link });
+        }
+    }
     out
 }
 
@@ -100,11 +132,17 @@ fn unit_wrench(
 }
 
 /// Y(q, q̇, q̈), NV rows, the columns of [`regressor_columns`], at `motion` with `gravity`.
-pub fn regressor(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3) -> Vec<Vec<Id>> {
+pub fn regressor(
+    model: &mut RobotModel,
+    motion: &JointMotion,
+    gravity: Vec3,
+    friction: bool,
+) -> Vec<Vec<Id>> {
     let kinematics = newton_euler(model, motion, gravity).motion;
     let columns_of_link = columns(model);
-    let nv = model.state_layout().nv();
-    let layout_columns = regressor_columns(model);
+    let layout = model.state_layout();
+    let nv = layout.nv();
+    let layout_columns = regressor_columns(model, friction);
     let g = &mut model.graph;
     let links = &model.links;
     let placements = LinkPlacement::all(g, links, motion);
@@ -133,6 +171,21 @@ pub fn regressor(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3) ->
                     force = f;
                     j = p;
                 }
+            }
+            RegressorColumn::Friction { link, parameter } => {
+                let Some(joint) = friction_joint(g, &links[link], &motion.qd, 0) else {
+                    continue;
+                };
+                // f_v rate, f_c sign(rate) or f0, times the multiplier of a mimic follower.
+                let mut value = match parameter {
+                    0 => joint.rate,
+                    1 => g.sign(joint.rate),
+                    _ => g.one(),
+                };
+                if let Some(m) = joint.multiplier {
+                    value = g.mul(m, value);
+                }
+                terms[layout.v_offset() + joint.index][column].push(value);
             }
             RegressorColumn::Armature { link } => {
                 let (Some(joint), Some(cb)) = (links[link].joint, columns_of_link[link].first())

@@ -25,21 +25,28 @@ pub struct OpCount {
     pub cos: usize,
     /// Square roots.
     pub sqrt: usize,
+    /// Signs (Coulomb friction).
+    pub sign: usize,
 }
 
 impl OpCount {
     /// Total number of operations of any kind.
     pub fn total(&self) -> usize {
-        self.mul + self.add + self.div + self.neg + self.sin + self.cos + self.sqrt
+        self.mul + self.add + self.div + self.neg + self.sin + self.cos + self.sqrt + self.sign
     }
 
     /// Estimated cost in units of one addition, the cost model the code generator reports:
     /// addition, multiplication and negation 1, division and square root 4 (their latency
     /// relative to a multiplication on current x86-64 and AArch64 cores, throughput aside),
     /// and a sine–cosine pair 10 (the polynomial evaluation of `trig::sin_cos`, shared by
-    /// the two), i.e. 5 each.
+    /// the two), i.e. 5 each; a sign 2 (two comparisons and selects).
     pub fn cost(&self) -> usize {
-        self.add + self.mul + self.neg + 4 * (self.div + self.sqrt) + 5 * (self.sin + self.cos)
+        self.add
+            + self.mul
+            + self.neg
+            + 4 * (self.div + self.sqrt)
+            + 5 * (self.sin + self.cos)
+            + 2 * self.sign
     }
 }
 
@@ -54,6 +61,7 @@ impl Add for OpCount {
             sin: self.sin + o.sin,
             cos: self.cos + o.cos,
             sqrt: self.sqrt + o.sqrt,
+            sign: self.sign + o.sign,
         }
     }
 }
@@ -64,7 +72,11 @@ impl fmt::Display for OpCount {
             f,
             "{} mul, {} add, {} div, {} neg, {} sin, {} cos, {} sqrt",
             self.mul, self.add, self.div, self.neg, self.sin, self.cos, self.sqrt
-        )
+        )?;
+        if self.sign > 0 {
+            write!(f, ", {} sign", self.sign)?;
+        }
+        Ok(())
     }
 }
 
@@ -94,6 +106,7 @@ impl ExprGraph {
                 Node::Sin(_) => count.sin += 1,
                 Node::Cos(_) => count.cos += 1,
                 Node::Sqrt(_) => count.sqrt += 1,
+                Node::Sign(_) => count.sign += 1,
             }
         }
         count

@@ -69,6 +69,8 @@ impl Differentiator {
                     let ds = graph.mul(s, da);
                     graph.neg(ds)
                 }
+                // Zero wherever it is differentiable (everywhere but at 0).
+                Node::Sign(_) => graph.zero(),
                 Node::Sqrt(a) => {
                     let da = d(a);
                     let two = graph.constant(2.0);

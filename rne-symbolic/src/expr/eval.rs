@@ -83,6 +83,7 @@ impl Evaluator {
                 Node::Sin(a) => v(a).sin(),
                 Node::Cos(a) => v(a).cos(),
                 Node::Sqrt(a) => v(a).sqrt(),
+                Node::Sign(a) => v(a).sign(),
             };
             values.push(x);
         }

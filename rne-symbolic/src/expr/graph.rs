@@ -254,6 +254,27 @@ impl ExprGraph {
         self.intern(Node::Sqrt(a))
     }
 
+    /// `sign a` (−1, 0 or 1): folded for constants, `sign(−x) = −sign x`, and idempotent.
+    pub fn sign(&mut self, a: Id) -> Id {
+        if let Some(x) = self.as_const(a) {
+            return self.constant(if x > 0.0 {
+                1.0
+            } else if x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            });
+        }
+        match self.node(a) {
+            Node::Neg(x) => {
+                let s = self.sign(x);
+                self.neg(s)
+            }
+            Node::Sign(_) => a,
+            _ => self.intern(Node::Sign(a)),
+        }
+    }
+
     /// Sum of a list (zero when empty), accumulated left to right.
     pub fn sum(&mut self, terms: impl IntoIterator<Item = Id>) -> Id {
         let mut total = self.zero();

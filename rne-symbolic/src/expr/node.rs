@@ -96,6 +96,8 @@ pub enum Node {
     Cos(Id),
     /// `sqrt a`.
     Sqrt(Id),
+    /// `sign a`: −1, 0 or 1 (NaN for NaN); the Coulomb friction law's sign(q̇).
+    Sign(Id),
 }
 
 impl Node {
@@ -104,7 +106,9 @@ impl Node {
         let (a, b) = match *self {
             Node::Const(_) | Node::Symbol(_) => (None, None),
             Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) => (Some(a), Some(b)),
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) => (Some(a), None),
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Sqrt(a) | Node::Sign(a) => {
+                (Some(a), None)
+            }
         };
         a.into_iter().chain(b)
     }

@@ -54,6 +54,7 @@ impl ExprGraph {
             Node::Sin(a) => list("sin", &[a], out),
             Node::Cos(a) => list("cos", &[a], out),
             Node::Sqrt(a) => list("sqrt", &[a], out),
+            Node::Sign(a) => list("sign", &[a], out),
         }
     }
 
@@ -111,6 +112,7 @@ impl ExprGraph {
             ("sin", [a]) => self.sin(*a),
             ("cos", [a]) => self.cos(*a),
             ("sqrt", [a]) => self.sqrt(*a),
+            ("sign", [a]) => self.sign(*a),
             _ => return Err(arity()),
         })
     }

@@ -24,6 +24,7 @@ impl ExprGraph {
                 Node::Sin(a) => self.sin(r(a)),
                 Node::Cos(a) => self.cos(r(a)),
                 Node::Sqrt(a) => self.sqrt(r(a)),
+                Node::Sign(a) => self.sign(r(a)),
             };
             rebuilt.insert(id, new);
         }

@@ -97,6 +97,7 @@ fn rebuild(graph: &mut ExprGraph, node: Node, image: &HashMap<Id, Id>) -> Id {
         Node::Sin(a) => graph.sin(child(a)),
         Node::Cos(a) => graph.cos(child(a)),
         Node::Sqrt(a) => graph.sqrt(child(a)),
+        Node::Sign(a) => graph.sign(child(a)),
     }
 }
 

@@ -54,7 +54,7 @@ pub const SCALES: [(f64, f64, f64, f64); 4] = [
     (1e9, 1.0, 1.0, 1.0),
 ];
 
-/// Every kernel's outputs at one state, flattened, in the order of `Kernel::ALL`.
+/// Every kernel's outputs at one state, flattened, in the order of `Kernel::DYNAMICS`.
 fn outputs(
     k: &dyn Kernels,
     q: &[f64],
@@ -146,7 +146,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
             "Every compiled value ({}) equals the program's `f64` value bit for bit, so the \
              errors measured on programs in the cases below are the errors of the generated \
              kernels, also for the stress robots that are not compiled into `rne`.",
-            Kernel::ALL.map(symbol).join(", ")
+            Kernel::DYNAMICS.map(symbol).join(", ")
         )
     } else {
         format!(

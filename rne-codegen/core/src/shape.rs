@@ -1,0 +1,195 @@
+//! The Rust type a kernel returns and how its flat outputs fill it: scalars, arrays of the
+//! module's sizes (NV, NF, NP, NB) and tuples, nested.
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+use crate::kernel::{Dims, Kernel, Shape};
+
+/// A return type, as a tree.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Layout {
+    /// One scalar.
+    Scalar,
+    /// `[element; N]`, N named by a module constant (`NV`, `NF`, ...) or a literal size.
+    Array(Box<Layout>, Size),
+    /// `(a, b, ...)`.
+    Tuple(Vec<Layout>),
+}
+
+/// The length of an array.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Size {
+    /// The module constant naming it, or `None` for a literal.
+    pub name: Option<&'static str>,
+    /// Its value in this module.
+    pub value: usize,
+}
+
+impl Size {
+    fn named(name: &'static str, value: usize) -> Size {
+        Size {
+            name: Some(name),
+            value,
+        }
+    }
+
+    fn literal(value: usize) -> Size {
+        Size { name: None, value }
+    }
+}
+
+impl Layout {
+    /// The layout of `kernel`'s result in a module of sizes `dims`.
+    pub fn of(kernel: Kernel, dims: Dims) -> Layout {
+        let nv = Size::named("NV", dims.nv);
+        let array = |element: Layout, size: Size| Layout::Array(Box::new(element), size);
+        let vector = |size: Size| array(Layout::Scalar, size);
+        let matrix = |rows: Size, columns: Size| array(vector(columns), rows);
+        match kernel.shape() {
+            Shape::Scalar => Layout::Scalar,
+            Shape::Vector => vector(nv),
+            Shape::Matrix => matrix(nv, nv),
+            Shape::Matrices(count) => Layout::Tuple(vec![matrix(nv, nv); count]),
+            Shape::Placements => {
+                let three = Size::literal(3);
+                let placement = Layout::Tuple(vec![matrix(three, three), vector(three)]);
+                array(placement, Size::named("NF", dims.nf))
+            }
+            Shape::FrameMatrices => array(matrix(Size::literal(6), nv), Size::named("NF", dims.nf)),
+            Shape::FrameVectors => matrix(Size::named("NF", dims.nf), Size::literal(6)),
+            Shape::Regressor => matrix(nv, Size::named("NP", dims.np)),
+            Shape::BaseRegressor => matrix(nv, Size::named("NB", dims.nb)),
+            Shape::BaseVector => vector(Size::named("NB", dims.nb)),
+            other => unreachable!("no layout for the shape {other:?}"),
+        }
+    }
+
+    /// Number of scalars.
+    pub fn len(&self) -> usize {
+        match self {
+            Layout::Scalar => 1,
+            Layout::Array(element, size) => element.len() * size.value,
+            Layout::Tuple(parts) => parts.iter().map(Layout::len).sum(),
+        }
+    }
+
+    /// Whether it holds no scalar.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The Rust type, with scalar `t`.
+    pub fn type_tokens(&self, t: &TokenStream) -> TokenStream {
+        match self {
+            Layout::Scalar => t.clone(),
+            Layout::Array(element, size) => {
+                let element = element.type_tokens(t);
+                let size = size.tokens();
+                quote!([#element; #size])
+            }
+            Layout::Tuple(parts) => {
+                let parts = parts.iter().map(|p| p.type_tokens(t));
+                quote!((#(#parts),*))
+            }
+        }
+    }
+
+    /// The value built from `scalars`, taken in order (row-major, tuple parts in turn).
+    pub fn value_tokens(&self, scalars: &mut impl Iterator<Item = TokenStream>) -> TokenStream {
+        match self {
+            Layout::Scalar => scalars.next().expect("one scalar per output"),
+            Layout::Array(element, size) => {
+                let elements: Vec<TokenStream> = (0..size.value)
+                    .map(|_| element.value_tokens(scalars))
+                    .collect();
+                quote!([#(#elements),*])
+            }
+            Layout::Tuple(parts) => {
+                let parts: Vec<TokenStream> =
+                    parts.iter().map(|p| p.value_tokens(scalars)).collect();
+                quote!((#(#parts),*))
+            }
+        }
+    }
+}
+
+impl Size {
+    fn tokens(&self) -> TokenStream {
+        match self.name {
+            Some(name) => {
+                let name = Ident::new(name, Span::call_site());
+                quote!(#name)
+            }
+            None => {
+                let value = proc_macro2::Literal::usize_unsuffixed(self.value);
+                quote!(#value)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DIMS: Dims = Dims {
+        nv: 2,
+        nf: 3,
+        np: 20,
+        nb: 5,
+    };
+
+    fn type_of(kernel: Kernel) -> String {
+        Layout::of(kernel, DIMS)
+            .type_tokens(&quote!(f64))
+            .to_string()
+            .replace(' ', "")
+    }
+
+    #[test]
+    fn return_types_are_those_of_design_section_4() {
+        assert_eq!(type_of(Kernel::KineticEnergy), "f64");
+        assert_eq!(type_of(Kernel::InverseDynamics), "[f64;NV]");
+        assert_eq!(type_of(Kernel::MassMatrix), "[[f64;NV];NV]");
+        assert_eq!(
+            type_of(Kernel::InverseDynamicsDerivatives),
+            "([[f64;NV];NV],[[f64;NV];NV])"
+        );
+        assert_eq!(
+            type_of(Kernel::FramePlacements),
+            "[([[f64;3];3],[f64;3]);NF]"
+        );
+        assert_eq!(type_of(Kernel::FrameJacobians), "[[[f64;NV];6];NF]");
+        assert_eq!(type_of(Kernel::FrameJacobianDotQd), "[[f64;6];NF]");
+        assert_eq!(type_of(Kernel::Regressor), "[[f64;NP];NV]");
+        assert_eq!(type_of(Kernel::BaseRegressor), "[[f64;NB];NV]");
+        assert_eq!(type_of(Kernel::BaseParameters), "[f64;NB]");
+    }
+
+    #[test]
+    fn lengths_count_every_scalar() {
+        assert_eq!(
+            Layout::of(Kernel::ForwardDynamicsDerivatives, DIMS).len(),
+            12
+        );
+        assert_eq!(Layout::of(Kernel::FramePlacements, DIMS).len(), 36);
+        assert_eq!(Layout::of(Kernel::FrameJacobians, DIMS).len(), 36);
+        assert_eq!(Layout::of(Kernel::Regressor, DIMS).len(), 40);
+    }
+
+    #[test]
+    fn values_fill_row_major_and_tuples_in_turn() {
+        let layout = Layout::of(Kernel::InverseDynamicsDerivatives, DIMS);
+        let mut scalars = (0..8).map(|i| {
+            let i = proc_macro2::Literal::usize_unsuffixed(i);
+            quote!(#i)
+        });
+        let value = layout
+            .value_tokens(&mut scalars)
+            .to_string()
+            .replace(' ', "");
+        assert_eq!(value, "([[0,1],[2,3]],[[4,5],[6,7]])");
+        assert!(scalars.next().is_none());
+    }
+}
