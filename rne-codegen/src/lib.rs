@@ -63,7 +63,8 @@
 
 pub use rne_codegen_macros::derive_dynamics;
 pub use rne_runtime::{
-    sin_cos, sin_cos_array, DoubleDouble, Dynamics, Input, Kernel, Real, Shape, UnknownKernel,
+    sin_cos, sin_cos_array, DoubleDouble, Dynamics, Identification, Input, Kernel, Kinematics,
+    Real, Shape, UnknownKernel,
 };
 
 #[cfg(feature = "nalgebra")]
@@ -71,8 +72,9 @@ pub use rne_runtime::convert;
 
 #[cfg(feature = "builder")]
 pub use rne_codegen_core::{
-    build_kernel, generate, generate_from_path, kernel_program, Builder, BuiltKernel, CodegenError,
-    GeneratedModule, KernelReport, ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
+    build_kernel, build_kernel_with, generate, generate_from_path, kernel_program, Builder,
+    BuiltKernel, CodegenError, GeneratedModule, KernelReport, KernelSetup, MimicMode,
+    ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
 };
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not
