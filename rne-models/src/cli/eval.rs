@@ -5,6 +5,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 
+use super::eval_kernels::{self, Group, State};
 use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
@@ -42,6 +43,12 @@ pub enum Quantity {
     Fd,
     /// Kinetic and potential energy.
     Energy,
+    /// ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (∂/∂q in the tangent space).
+    Derivatives,
+    /// Placements, Jacobians and J̇q̇ of every frame.
+    Kinematics,
+    /// The regressor and the base regressor, with the parameters' names.
+    Regressor,
     /// Everything.
     All,
 }
@@ -81,7 +88,10 @@ pub struct EvalArgs {
 pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
-    let n = model.dof();
+    let n = rne_codegen::Scene::default()
+        .apply(&model)?
+        .state_layout()
+        .nv();
     let q = parse_list("q", &args.q)?;
     let state = |name: &str, text: &Option<String>| match text {
         Some(text) => parse_list(name, text),
@@ -217,6 +227,26 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
     }
 
+    let groups = [
+        (Quantity::Derivatives, Group::Derivatives),
+        (Quantity::Kinematics, Group::Kinematics),
+        (Quantity::Regressor, Group::Regressor),
+    ];
+    let at = State {
+        q: &q,
+        qd: &qd,
+        qdd: &qdd,
+        tau: &tau,
+    };
+    for (quantity, group) in groups {
+        if !wants(quantity) || (group == Group::Derivatives && singular.is_some()) {
+            continue;
+        }
+        results.extend(match args.engine {
+            Engine::Symbolic => eval_kernels::symbolic(&model, group, &at)?,
+            Engine::Numeric => eval_kernels::numeric(&model, group, &at)?,
+        });
+    }
     if let Some(e) = &singular {
         results.push(("qdd_undefined", serde_json::json!(e.to_string())));
     }

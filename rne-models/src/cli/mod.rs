@@ -4,6 +4,7 @@ mod bench;
 mod check;
 mod emit;
 mod eval;
+mod eval_kernels;
 mod list;
 mod model;
 mod options;

@@ -14,6 +14,9 @@ pub enum CliError {
     /// A state vector has the wrong length.
     #[error(transparent)]
     Dimension(#[from] crate::kernels::DimensionError),
+    /// The numeric reference refused the model or the state.
+    #[error(transparent)]
+    Reference(#[from] rne_reference::ReferenceError),
     /// A malformed argument.
     #[error("{0}")]
     Argument(String),

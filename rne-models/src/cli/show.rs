@@ -30,7 +30,10 @@ pub enum Part {
     /// each link, in the link's body frame; the components off the joint axis are the loads
     /// the joint must resist (thesis section 5.4). Not part of `all`.
     Reactions,
-    /// Everything but the reactions.
+    /// The derivatives ∂τ/∂q and ∂τ/∂q̇ of the joint torques (∂τ/∂q̈ is M), entry by entry: the
+    /// derivatives of (4.45)–(4.47) for the planar elbow. Not part of `all`.
+    Dtau,
+    /// Everything but the reactions and the derivatives.
     All,
 }
 
@@ -68,7 +71,9 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();
-    let want = |p: Part| args.what == p || (args.what == Part::All && p != Part::Reactions);
+    let want = |p: Part| {
+        args.what == p || (args.what == Part::All && !matches!(p, Part::Reactions | Part::Dtau))
+    };
     let mut sections: Vec<(&str, Vec<(String, Id)>)> = Vec::new();
     let latex = args.format == Format::Latex;
     let sub = |a: usize, b: Option<usize>| match (latex, b) {
@@ -129,6 +134,30 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         let t = dynamics.kinetic_energy();
         let v = dynamics.potential_energy();
         sections.push(("energy", vec![("T".to_owned(), t), ("V".to_owned(), v)]));
+    }
+
+    if want(Part::Dtau) {
+        let (dq, dv) = dynamics.inverse_dynamics_derivatives();
+        for (matrix, title, text, tex) in [
+            (dq, "dtau/dq", "dtau_dq", "\\partial\\tau/\\partial q"),
+            (
+                dv,
+                "dtau/dqd",
+                "dtau_dqd",
+                "\\partial\\tau/\\partial\\dot{q}",
+            ),
+        ] {
+            let entries = (0..n)
+                .flat_map(|i| (0..n).map(move |j| (i, j)))
+                .map(|(i, j)| {
+                    (
+                        format!("{}{}", name(text, tex), sub(i + 1, Some(j + 1))),
+                        matrix[i][j],
+                    )
+                })
+                .collect();
+            sections.push((title, entries));
+        }
     }
 
     if want(Part::Reactions) {
