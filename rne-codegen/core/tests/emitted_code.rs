@@ -26,6 +26,15 @@ fn planar_elbow_every_kernel() {
 }
 
 #[test]
+fn planar_elbow_control_and_identification_kernels() {
+    let control: Vec<Kernel> = Kernel::ALL
+        .into_iter()
+        .filter(|k| !Kernel::DYNAMICS.contains(k))
+        .collect();
+    insta::assert_snapshot!(emitted("planar-elbow.toml", &control));
+}
+
+#[test]
 fn puma560_inverse_and_forward_dynamics() {
     insta::assert_snapshot!(emitted(
         "puma560.toml",
@@ -36,16 +45,16 @@ fn puma560_inverse_and_forward_dynamics() {
 #[test]
 fn the_module_is_byte_identical_from_one_generation_to_the_next() {
     assert_eq!(
-        emitted("puma560.toml", &Kernel::DYNAMICS),
-        emitted("puma560.toml", &Kernel::DYNAMICS)
+        emitted("puma560.toml", &Kernel::ALL),
+        emitted("puma560.toml", &Kernel::ALL)
     );
 }
 
 #[test]
 fn every_kernel_of_the_runtime_has_a_construction() {
     // `build_outputs` panics for a kernel it cannot build; the module lists each in KERNELS.
-    let module = emitted("planar-elbow.toml", &Kernel::DYNAMICS);
-    for kernel in Kernel::DYNAMICS {
+    let module = emitted("planar-elbow.toml", &Kernel::ALL);
+    for kernel in Kernel::ALL {
         assert!(
             module.contains(&format!("pub fn {}(", kernel.name())),
             "{kernel}"
