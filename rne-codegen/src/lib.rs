@@ -73,8 +73,9 @@ pub use rne_runtime::convert;
 #[cfg(feature = "builder")]
 pub use rne_codegen_core::{
     build_kernel, build_kernel_with, generate, generate_from_path, kernel_program, Builder,
-    BuiltKernel, CodegenError, GeneratedModule, KernelReport, KernelSetup, MimicMode,
-    ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
+    BuiltKernel, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule,
+    KernelReport, KernelSetup, MimicMode, ParameterMode, Program, ScalarType, Scene,
+    KEEP_GENERATED_ENV,
 };
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not

@@ -6,7 +6,7 @@ use crate::error::CodegenError;
 use crate::kernel::Kernel;
 use crate::load::generate_from_path;
 use crate::module::GeneratedModule;
-use crate::scene::{MimicMode, ParameterMode, ScalarType, Scene};
+use crate::scene::{ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene};
 use rne_symbolic::model::Base;
 
 /// Environment variable naming a directory where [`Builder::write`] also puts a copy of the
@@ -81,6 +81,13 @@ impl Builder {
     /// macro's `friction: include`).
     pub fn friction(mut self, include: bool) -> Builder {
         self.scene.friction = include;
+        self
+    }
+
+    /// How `forward_dynamics` is generated (the macro's `forward_dynamics:`; by default the
+    /// cheaper of the articulated-body algorithm and M + LᵀDL).
+    pub fn forward_dynamics(mut self, method: ForwardDynamicsMethod) -> Builder {
+        self.scene.forward_dynamics = method;
         self
     }
 

@@ -15,6 +15,9 @@ pub struct KernelSetup {
     pub frames: Vec<usize>,
     /// The base parameters, when an identification kernel is generated.
     pub base_parameters: Option<BaseParameters>,
+    /// Whether `forward_dynamics` is built by the articulated-body algorithm (where the model
+    /// allows it) rather than the LᵀDL factorisation of M.
+    pub articulated: bool,
 }
 
 impl KernelSetup {
@@ -26,6 +29,7 @@ impl KernelSetup {
                 .iter()
                 .any(|k| k.is_identification())
                 .then(|| dynamics.base_parameters()),
+            articulated: false,
         }
     }
 }
@@ -66,6 +70,9 @@ pub fn build_outputs(
         Kernel::CoriolisMatrix => dynamics.coriolis_matrix().concat(),
         Kernel::GravityTorques => dynamics.gravity_torques(),
         Kernel::BiasTorques => dynamics.bias_torques(),
+        Kernel::ForwardDynamics if setup.articulated && articulated_applies(dynamics) => dynamics
+            .forward_dynamics_articulated()
+            .unwrap_or_else(|| dynamics.forward_dynamics()),
         Kernel::ForwardDynamics => dynamics.forward_dynamics(),
         Kernel::KineticEnergy => vec![dynamics.kinetic_energy()],
         Kernel::PotentialEnergy => vec![dynamics.potential_energy()],
@@ -129,6 +136,15 @@ pub fn build_outputs(
         }
         other => unreachable!("the generator has no construction for `{other}`"),
     }
+}
+
+/// Whether the articulated-body algorithm builds this model's forward dynamics: a fixed base,
+/// no mimic couplings and no armature (the recursion does not add reflected rotor inertia).
+pub fn articulated_applies(dynamics: &SymbolicDynamics) -> bool {
+    let model = &dynamics.model;
+    !model.is_floating()
+        && !model.has_couplings()
+        && model.links.iter().all(|l| l.armature.is_none())
 }
 
 fn base_parameters(setup: &KernelSetup, kernel: Kernel) -> &BaseParameters {

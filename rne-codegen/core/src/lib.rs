@@ -53,13 +53,17 @@ mod shape;
 pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
 pub use error::CodegenError;
-pub use kernel::{build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel};
+pub use kernel::{
+    articulated_applies, build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel,
+};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{
-    build_kernel, build_kernel_with, generate, kernel_program, BuiltKernel, GeneratedModule,
-    KernelReport,
+    build_kernel, build_kernel_with, generate, kernel_program, BuiltKernel, ForwardDynamicsChoice,
+    GeneratedModule, KernelReport,
 };
 pub use program::{Instr, Operand, Program};
-pub use scene::{MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH};
+pub use scene::{
+    ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH,
+};
 pub use shape::{Layout, Size};

@@ -9,11 +9,12 @@ use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_ident, EmitContext};
 use crate::error::CodegenError;
+use crate::kernel::articulated_applies;
 use crate::kernel::{build_outputs, Dims, Kernel, KernelSetup};
 use crate::linear::distribute_constants;
 use crate::model_type::ModelType;
 use crate::program::Program;
-use crate::scene::{ParameterMode, Scene};
+use crate::scene::{ForwardDynamicsMethod, ParameterMode, Scene};
 
 /// What was generated for one kernel.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,6 +38,9 @@ pub struct GeneratedModule {
     pub joints: Vec<String>,
     /// One report per kernel, in emission order.
     pub kernels: Vec<KernelReport>,
+    /// When `forward_dynamics` was generated and both algorithms apply: the operations of
+    /// each, articulated-body first and factorised second, and which was emitted.
+    pub forward_dynamics_choice: Option<ForwardDynamicsChoice>,
     /// Total generation time.
     pub generation_time: Duration,
 }
@@ -49,6 +53,17 @@ impl GeneratedModule {
             Err(_) => self.items.to_string(),
         }
     }
+}
+
+/// The two ways `forward_dynamics` could be generated, and the one that was.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForwardDynamicsChoice {
+    /// Operations of the articulated-body algorithm.
+    pub aba: OpCount,
+    /// Operations of M + LᵀDL.
+    pub ldlt: OpCount,
+    /// The one emitted.
+    pub chosen: ForwardDynamicsMethod,
 }
 
 /// One kernel built in an expression graph of its own.
@@ -140,10 +155,16 @@ pub fn generate(
     let mut kernels = Vec::new();
     let mut functions = Vec::new();
     let outputs = scene.kernels();
-    let setup = KernelSetup {
+    let mut setup = KernelSetup {
         frames: scene.frame_indices(dynamics.frames())?,
         ..KernelSetup::new(&dynamics, &outputs)
     };
+    let forward_dynamics_choice = (outputs.contains(&Kernel::ForwardDynamics)
+        && articulated_applies(&dynamics))
+    .then(|| choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics));
+    setup.articulated = forward_dynamics_choice
+        .as_ref()
+        .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
     let parameter_names = dynamics.parameter_names();
     let base_parameter_names = setup
         .base_parameters
@@ -236,8 +257,34 @@ pub fn generate(
         ndof,
         joints,
         kernels,
+        forward_dynamics_choice,
         generation_time: start.elapsed(),
     })
+}
+
+/// Builds `forward_dynamics` both ways and keeps the one `method` asks for, or with `Auto` the
+/// one of lower cost ([`OpCount::cost`]).
+fn choose_forward_dynamics(
+    dynamics: &SymbolicDynamics,
+    setup: &KernelSetup,
+    method: ForwardDynamicsMethod,
+) -> ForwardDynamicsChoice {
+    let ops = |articulated: bool| {
+        let setup = KernelSetup {
+            articulated,
+            ..setup.clone()
+        };
+        build_kernel_with(dynamics, Kernel::ForwardDynamics, &setup)
+            .program
+            .op_count()
+    };
+    let (aba, ldlt) = (ops(true), ops(false));
+    let chosen = match method {
+        ForwardDynamicsMethod::Auto if aba.cost() < ldlt.cost() => ForwardDynamicsMethod::Aba,
+        ForwardDynamicsMethod::Auto => ForwardDynamicsMethod::Ldlt,
+        forced => forced,
+    };
+    ForwardDynamicsChoice { aba, ldlt, chosen }
 }
 
 /// `pub const SIZE: usize = n; pub const NAMES: [&str; SIZE] = [..];`.

@@ -62,6 +62,21 @@ pub struct Scene {
     /// Joint friction in the inverse and forward dynamics and the regressor
     /// (`friction: include`); `friction_torques` is available either way.
     pub friction: bool,
+    /// How `forward_dynamics` solves for q̈ (the `forward_dynamics:` setting).
+    pub forward_dynamics: ForwardDynamicsMethod,
+}
+
+/// The algorithm of the `forward_dynamics` kernel.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ForwardDynamicsMethod {
+    /// Whichever of the two costs fewer operations for this robot and scene (the default).
+    #[default]
+    Auto,
+    /// The articulated-body algorithm (Featherstone, RBDA ch. 7), linear in the number of
+    /// links; fixed-base models without mimic couplings only (others use `Ldlt`).
+    Aba,
+    /// M(q) and C q̇ + g, solved by a generated LᵀDL factorisation of M (thesis (6.2)).
+    Ldlt,
 }
 
 /// How mimic joints are generated (the macro's `mimic:` setting).
@@ -91,6 +106,7 @@ impl Default for Scene {
             mimic: MimicMode::Constrained,
             frames: None,
             friction: false,
+            forward_dynamics: ForwardDynamicsMethod::Auto,
         }
     }
 }

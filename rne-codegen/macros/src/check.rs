@@ -4,7 +4,9 @@
 use std::collections::BTreeSet;
 
 use proc_macro2::Span;
-use rne_codegen_core::{Kernel, MimicMode, ParameterMode, ScalarType, Scene};
+use rne_codegen_core::{
+    ForwardDynamicsMethod, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
+};
 use rne_symbolic::model::Base;
 use syn::{Attribute, Ident, LitStr, Visibility};
 
@@ -26,7 +28,7 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 12] = [
+const KEYS: [&str; 13] = [
     "robot",
     "outputs",
     "gravity",
@@ -36,6 +38,7 @@ const KEYS: [&str; 12] = [
     "mimic",
     "friction",
     "frames",
+    "forward_dynamics",
     "parameters",
     "scalar",
     "crate",
@@ -201,6 +204,15 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                 }
                 scene.frames = Some(frames);
             }
+            ("forward_dynamics", Value::Ident(method)) => match method.to_string().as_str() {
+                "auto" => scene.forward_dynamics = ForwardDynamicsMethod::Auto,
+                "aba" => scene.forward_dynamics = ForwardDynamicsMethod::Aba,
+                "ldlt" => scene.forward_dynamics = ForwardDynamicsMethod::Ldlt,
+                other => errors.push(
+                    method.span(),
+                    format!("unknown forward_dynamics `{other}`; expected `auto`, `aba` or `ldlt`"),
+                ),
+            },
             ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
                 "constant" => scene.parameters = ParameterMode::Constant,
                 "runtime" => scene.parameters = ParameterMode::Runtime,
@@ -263,6 +275,7 @@ fn expected_shape(key: &str) -> String {
         "base" => "expected `fixed` or `floating`".into(),
         "mimic" => "expected `constrained` or `free`".into(),
         "friction" => "expected `include` or `exclude`".into(),
+        "forward_dynamics" => "expected `auto`, `aba` or `ldlt`".into(),
         "frames" => "expected a list of link names: `frames: [tool0, \"camera-link\"]`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
         "crate" => {

@@ -50,6 +50,11 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             "dof": module.ndof,
             "kernels": kernels,
             "generation_ms": module.generation_time.as_secs_f64() * 1e3,
+            "forward_dynamics_choice": module.forward_dynamics_choice.as_ref().map(|c| serde_json::json!({
+                "aba": {"mul": c.aba.mul, "add": c.aba.add, "cost": c.aba.cost()},
+                "ldlt": {"mul": c.ldlt.mul, "add": c.ldlt.add, "cost": c.ldlt.cost()},
+                "chosen": format!("{:?}", c.chosen).to_lowercase(),
+            })),
         });
         writeln!(out, "{report}")?;
         return Ok(());
@@ -76,6 +81,19 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             o.sign,
             o.cost(),
             k.generation_time.as_secs_f64() * 1e3
+        )?;
+    }
+    if let Some(choice) = &module.forward_dynamics_choice {
+        writeln!(
+            out,
+            "forward_dynamics: articulated-body {} mul {} add (cost {}), M + LDLT {} mul {} add (cost {}); emitted: {:?}",
+            choice.aba.mul,
+            choice.aba.add,
+            choice.aba.cost(),
+            choice.ldlt.mul,
+            choice.ldlt.add,
+            choice.ldlt.cost(),
+            choice.chosen
         )?;
     }
     writeln!(
