@@ -3,7 +3,7 @@
 //! ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (docs/control.md).
 //!
 //! ```sh
-//! cargo run --release -p rne-examples --example ilqr_swing_up -- --svg docs/figures/ilqr_swing_up.svg
+//! cargo run --release -p rne-examples --example ilqr_swing_up -- --repeat 20 --svg docs/figures/ilqr_swing_up.svg
 //! cargo run -p rne-examples --example ilqr_swing_up -- --quick     # the short form CI runs
 //! ```
 
@@ -12,7 +12,10 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use clap::Parser;
-use rne_examples::{render_swing_up, Solution, SwingUp, TORQUE_LIMIT, UPRIGHT};
+use rne_examples::{render_swing_up, Solution, SwingUp, Timings, TORQUE_LIMIT, UPRIGHT};
+
+/// How far from upright at rest (rad, rad/s) the end of the swing may be before the run fails.
+const UPRIGHT_TOLERANCE: f64 = 1e-2;
 
 /// Swing the planar elbow up by iLQR with the generated derivatives.
 #[derive(Parser)]
@@ -23,6 +26,11 @@ struct Arguments {
     /// Write the figure (joint angles, torques, cost per iteration) to this .svg (or .png) file.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    /// Solve this many times and report, per iteration, each phase's shortest time: the
+    /// optimiser is deterministic, so the runs do the same work and only the machine's noise
+    /// differs.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    repeat: u32,
 }
 
 fn main() -> ExitCode {
@@ -32,27 +40,51 @@ fn main() -> ExitCode {
     } else {
         SwingUp::full()
     };
-    let solution = match problem.solve() {
-        Ok(solution) => solution,
-        Err(error) => {
-            eprintln!("error: {error}");
-            return ExitCode::FAILURE;
+    let mut runs = Vec::new();
+    for _ in 0..arguments.repeat {
+        match problem.solve() {
+            Ok(solution) => runs.push(solution),
+            Err(error) => {
+                eprintln!("error: {error}");
+                return ExitCode::FAILURE;
+            }
         }
-    };
-    report(&problem, &solution);
+    }
+    let solution = &runs[0];
+    if runs
+        .iter()
+        .any(|run| run.cost_history() != solution.cost_history())
+    {
+        eprintln!("error: the repeated runs differ; the optimiser should be deterministic");
+        return ExitCode::FAILURE;
+    }
+    let timings: Vec<Timings> = (0..solution.iterations.len())
+        .map(|i| {
+            runs.iter()
+                .map(|run| run.iterations[i].timings)
+                .reduce(Timings::fastest)
+                .expect("at least one run")
+        })
+        .collect();
+    report(&problem, solution, &timings, runs.len());
     if let Some(path) = &arguments.svg {
-        if let Err(error) = render_swing_up(&solution, problem.time_step, path) {
+        if let Err(error) = render_swing_up(solution, problem.time_step, path) {
             eprintln!("error: {error}");
             return ExitCode::FAILURE;
         }
         println!("figure: {}", path.display());
     }
+    let last = solution.trajectory.states.last().expect("N + 1 states");
+    if (0..4).any(|i| (last[i] - UPRIGHT[i]).abs() > UPRIGHT_TOLERANCE) {
+        eprintln!("error: the final state {last:?} is not upright within {UPRIGHT_TOLERANCE}");
+        return ExitCode::FAILURE;
+    }
     ExitCode::SUCCESS
 }
 
 /// Prints the iterations and the summary: cost, final state, saturation, and where the time
-/// went.
-fn report(problem: &SwingUp, solution: &Solution<4, 2>) {
+/// went (`timings` per iteration, each phase the shortest of `runs` runs).
+fn report(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings], runs: usize) {
     let h = problem.time_step;
     println!(
         "planar elbow swing-up: RK4 h = {} ms, N = {} ({} s), |u| <= {TORQUE_LIMIT} N m",
@@ -62,7 +94,7 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>) {
     );
     println!(" iter        cost   step alpha    mu        expected   time (ms)");
     println!("    0  {:>10.4}", solution.initial_cost);
-    for (i, iteration) in solution.iterations.iter().enumerate() {
+    for (i, (iteration, time)) in solution.iterations.iter().zip(timings).enumerate() {
         let step = iteration
             .step
             .map_or_else(|| "rejected".to_owned(), |a| format!("{a:.4}"));
@@ -72,7 +104,7 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>) {
             iteration.cost,
             iteration.regularisation,
             iteration.expected_reduction,
-            ms(iteration.timings.total)
+            ms(time.total)
         );
     }
     let trajectory = &solution.trajectory;
@@ -109,15 +141,16 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>) {
         "torque: peak {peak:.2} N m, {at_limit} of {} controls at the limit",
         2 * trajectory.controls.len()
     );
-    let t = solution.total_timings();
+    let t: Timings = timings.iter().copied().sum();
     let count = solution.iterations.len().max(1) as f64;
     let other = t
         .total
         .saturating_sub(t.linearisation + t.backward_pass + t.forward_pass);
     println!(
-        "time per iteration: {:.3} ms (total {:.1} ms)",
+        "time per iteration: {:.3} ms (total {:.1} ms; each time the shortest of {runs} run{})",
         ms(t.total) / count,
-        ms(t.total)
+        ms(t.total),
+        if runs == 1 { "" } else { "s" }
     );
     println!(
         "  generated derivative kernels: {:>8.1} ms ({:4.1} %), {} calls, {:.0} ns/call",
@@ -131,7 +164,7 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>) {
         ("stage states and chain rule", chain_rule),
         ("backward pass", t.backward_pass),
         ("forward pass (line search)", t.forward_pass),
-        ("bookkeeping", other),
+        ("other", other),
     ] {
         println!(
             "  {name:<29} {:>8.1} ms ({:4.1} %)",

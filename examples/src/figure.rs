@@ -106,7 +106,7 @@ fn draw<DB: DrawingBackend>(
             legend(series, "upright (π/2, 0)", REFERENCE.into());
         }
     }
-    labels(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    labels(&mut chart, SeriesLabelPosition::LowerRight)?;
 
     let margin = 0.1 * TORQUE_LIMIT;
     let limits = -TORQUE_LIMIT - margin..TORQUE_LIMIT + margin;

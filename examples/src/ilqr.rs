@@ -163,17 +163,42 @@ impl<const NX: usize, const NU: usize> Solution<NX, NU> {
 
     /// The timings summed over all iterations.
     pub fn total_timings(&self) -> Timings {
-        self.iterations
-            .iter()
-            .fold(Timings::default(), |sum, i| Timings {
-                linearisation: sum.linearisation + i.timings.linearisation,
-                derivative_kernels: sum.derivative_kernels + i.timings.derivative_kernels,
-                derivative_kernel_calls: sum.derivative_kernel_calls
-                    + i.timings.derivative_kernel_calls,
-                backward_pass: sum.backward_pass + i.timings.backward_pass,
-                forward_pass: sum.forward_pass + i.timings.forward_pass,
-                total: sum.total + i.timings.total,
-            })
+        self.iterations.iter().map(|i| i.timings).sum()
+    }
+}
+
+impl Timings {
+    /// Each phase's shorter time of two measurements of the same work.
+    pub fn fastest(self, other: Timings) -> Timings {
+        Timings {
+            linearisation: self.linearisation.min(other.linearisation),
+            derivative_kernels: self.derivative_kernels.min(other.derivative_kernels),
+            derivative_kernel_calls: self.derivative_kernel_calls,
+            backward_pass: self.backward_pass.min(other.backward_pass),
+            forward_pass: self.forward_pass.min(other.forward_pass),
+            total: self.total.min(other.total),
+        }
+    }
+}
+
+impl std::ops::Add for Timings {
+    type Output = Timings;
+
+    fn add(self, other: Timings) -> Timings {
+        Timings {
+            linearisation: self.linearisation + other.linearisation,
+            derivative_kernels: self.derivative_kernels + other.derivative_kernels,
+            derivative_kernel_calls: self.derivative_kernel_calls + other.derivative_kernel_calls,
+            backward_pass: self.backward_pass + other.backward_pass,
+            forward_pass: self.forward_pass + other.forward_pass,
+            total: self.total + other.total,
+        }
+    }
+}
+
+impl std::iter::Sum for Timings {
+    fn sum<I: Iterator<Item = Timings>>(iter: I) -> Timings {
+        iter.fold(Timings::default(), |sum, t| sum + t)
     }
 }
 
