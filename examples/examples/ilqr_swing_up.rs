@@ -97,7 +97,7 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings], run
     for (i, (iteration, time)) in solution.iterations.iter().zip(timings).enumerate() {
         let step = iteration
             .step
-            .map_or_else(|| "rejected".to_owned(), |a| format!("{a:.4}"));
+            .map_or_else(|| "no step".to_owned(), |a| format!("{a:.4}"));
         println!(
             "{:>5}  {:>10.4}  {step:>10}  {:>8.1e}  {:>10.3e}  {:>8.3}",
             i + 1,

@@ -46,7 +46,7 @@ pub struct Linearisation<const NX: usize, const NU: usize> {
 /// The forward dynamics is the thesis's (6.2), q̈ = M⁻¹ (u − C q̇ − g), from the robot's
 /// generated `forward_dynamics`; its Jacobian, the generated
 /// `forward_dynamics_derivatives`, gives each stage's
-/// A_s = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]] and B_s = [[0], [M⁻¹]], and the chain rule through the
+/// `A_s = [[0, I], [∂q̈/∂q, ∂q̈/∂q̇]]` and `B_s = [[0], [M⁻¹]]`, and the chain rule through the
 /// stages is exact for this scheme (see [`Rk4::linearise`]).
 #[derive(Clone, Debug)]
 pub struct Rk4<R, const N: usize> {

@@ -109,8 +109,9 @@ pub struct Timings {
 pub struct Iteration {
     /// The cost after the iteration.
     pub cost: f64,
-    /// The step α taken; `None` when the iteration was rejected (the backward pass met a
-    /// Q_uu that is not positive definite, or no step reduced the cost enough).
+    /// The step α taken; `None` when the iteration took none: rejected (the backward pass met
+    /// a Q_uu that is not positive definite, or no step reduced the cost enough) or converged
+    /// ([`Stop::StepConverged`]).
     pub step: Option<f64>,
     /// The regularisation μ the iteration's backward pass used.
     pub regularisation: f64,
