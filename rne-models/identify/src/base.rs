@@ -9,7 +9,7 @@ use nalgebra::DMatrix;
 use rne_reference::Reference;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
 
-use crate::names::{combination, readable_names, ParameterName};
+use crate::names::{combination, readable_names, short_value, ParameterName};
 use crate::random::Random;
 use crate::IdentifyError;
 
@@ -55,8 +55,16 @@ impl BaseSet {
         let (standard_names, bodies) = readable_names(&names).ok_or_else(|| {
             IdentifyError::Model(format!("unexpected parameter names: {names:?}"))
         })?;
+        let mut parameters = BaseParameters::from_stacked(&w);
+        // Coefficients are products of lengths (and of coupling multipliers): the short
+        // decimal or fraction each stands for is taken as exact.
+        for k in parameters.k.iter_mut().flatten() {
+            if let Some((exact, _)) = short_value(*k) {
+                *k = exact;
+            }
+        }
         Ok(BaseSet {
-            parameters: BaseParameters::from_stacked(&w),
+            parameters,
             standard_names,
             standard_values: reference.standard_parameters(),
             bodies,

@@ -4,10 +4,13 @@
 //! and Dombre, *Modeling, Identification and Control of Robots*, 2002, section 12.4).
 //!
 //! The rows of W and y come in samples of `joints` rows (row `s·joints + j` is joint j at
-//! sample s). An ordinary least-squares pass gives the residual ρ; each joint's error is
-//! taken as white noise of standard deviation σ_j with σ_j² = ‖ρ_j‖² / (r_j − b/N) (r_j rows
-//! of joint j, b parameters, N joints: each joint's share of the degrees of freedom). The
-//! rows of joint j are divided by σ_j and the system solved again. With W̃, ỹ the weighted
+//! sample s). Each joint's equation error is taken as white noise of standard deviation σ_j,
+//! estimated from that joint's own equations W_j θ = y_j by ordinary least squares (minimum
+//! norm where W_j, which sees only the parameters that act on joint j, is rank deficient):
+//! σ_j² = ‖y_j − W_j θ̂_j‖² / (r_j − c_j), with r_j rows and c_j the numeric rank of W_j. (A
+//! single pass over the whole system would charge the small joints of a wrist with the errors
+//! that the large joints' noise puts into shared parameters.) The rows of joint j are divided
+//! by σ_j and the whole system solved. With W̃, ỹ the weighted
 //! system, the estimate's covariance is C = σ̃² (W̃ᵀ W̃)⁻¹ with σ̃² = ‖ỹ − W̃ θ‖² / (r − b),
 //! and the standard deviation of θ_i is √C_ii. Every solve is by nalgebra's SVD: with
 //! W̃ = U Σ Vᵀ, θ = V Σ⁻¹ Uᵀ ỹ and (W̃ᵀ W̃)⁻¹ = V Σ⁻² Vᵀ.
@@ -28,7 +31,7 @@ pub struct Estimate {
     pub deviations: Vec<f64>,
     /// σ_max / σ_min of the unweighted stacked base regressor W.
     pub condition: f64,
-    /// σ_j of each joint's equation error after the ordinary pass (the weights are 1/σ_j).
+    /// σ_j of each joint's equation error, from its own equations (the weights are 1/σ_j).
     pub joint_deviations: Vec<f64>,
     /// Whether the rows were weighted.
     pub weighted: bool,
@@ -62,14 +65,8 @@ pub fn estimate(
             condition: if rows <= columns { f64::INFINITY } else { condition },
         });
     }
-    let (ordinary, _) = solve(w, y);
-    let residual = y - w * &ordinary;
     let joint_deviations: Vec<f64> = (0..joints)
-        .map(|j| {
-            let r_j = (j..rows).step_by(joints).count() as f64;
-            let sum: f64 = (j..rows).step_by(joints).map(|r| residual[r].powi(2)).sum();
-            (sum / (r_j - columns as f64 / joints as f64).max(1.0)).sqrt()
-        })
+        .map(|j| joint_deviation(w, y, j, joints))
         .collect();
     let largest = joint_deviations.iter().copied().fold(0.0, f64::max);
     // Exact data leave only rounding errors to weigh by: then every joint counts alike.
@@ -99,6 +96,21 @@ pub fn estimate(
         joint_deviations,
         weighted,
     })
+}
+
+/// σ_j of joint `j`'s equations (rows j, j + joints, …) by ordinary least squares on them
+/// alone.
+fn joint_deviation(w: &DMatrix<f64>, y: &DVector<f64>, j: usize, joints: usize) -> f64 {
+    let rows: Vec<usize> = (j..w.nrows()).step_by(joints).collect();
+    let (w_j, y_j) = (w.select_rows(&rows), y.select_rows(&rows));
+    let svd = w_j.clone().svd(true, true);
+    let tolerance = 1e-12 * svd.singular_values.max();
+    let rank = svd.rank(tolerance);
+    let residual = match svd.solve(&y_j, tolerance) {
+        Ok(theta) => (y_j - w_j * theta).norm_squared(),
+        Err(_) => y_j.norm_squared(),
+    };
+    (residual / (rows.len().saturating_sub(rank)).max(1) as f64).sqrt()
 }
 
 /// σ_max / σ_min of `w` (infinite for a rank-deficient or empty `w`).

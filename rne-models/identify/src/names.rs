@@ -107,31 +107,42 @@ pub fn readable_names(names: &[String]) -> Option<(Vec<ParameterName>, Vec<Strin
 /// Relative distance below which a coefficient is printed as a short decimal or a fraction.
 const EXACT: f64 = 1e-10;
 
-/// `x` in the shortest exact form: a decimal of at most 12 significant digits (`0.09`, `-0.3`,
-/// `2.5e-7`) or a fraction with a denominator up to 64 (`1/3`) within a relative 1e-10 of `x`
-/// (a computed coefficient carries rounding errors far below that), the decimal preferred when
-/// it has at most 6 digits; otherwise all 17 significant digits.
+/// The short number `x` stands for: a decimal of at most 6 significant digits or a fraction
+/// with a denominator up to 64, within a relative 1e-10 of `x` (a computed coefficient
+/// carries rounding errors far below that; an irrational coefficient falls that close to such
+/// a number with a probability of about 1e-4). `None` if there is none.
+pub fn short_value(x: f64) -> Option<(f64, String)> {
+    if x == 0.0 || !x.is_finite() {
+        return None;
+    }
+    let close = |y: f64| (y - x).abs() <= EXACT * x.abs();
+    let decimal = (1..=6).find_map(|digits| {
+        let y: f64 = format!("{:.*e}", digits - 1, x).parse().ok()?;
+        close(y).then(|| (y, plain(y)))
+    });
+    decimal.or_else(|| {
+        (2..=64u32).find_map(|q| {
+            let p = (x * f64::from(q)).round();
+            let y = p / f64::from(q);
+            (close(y) && p.abs() < 1e9).then(|| (y, format!("{p}/{q}")))
+        })
+    })
+}
+
+/// `x` in the shortest exact form: [`short_value`]'s text if there is one, else a decimal of
+/// at most 12 significant digits within a relative 1e-10, else all 17 digits.
 pub fn exact_number(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    let close = |y: f64| (y - x).abs() <= EXACT * x.abs();
-    let decimal = (1..=12).find_map(|digits| {
-        let text = format!("{:.*e}", digits - 1, x);
-        let y: f64 = text.parse().ok()?;
-        close(y).then(|| (digits, plain(y)))
-    });
-    if let Some((digits, text)) = &decimal {
-        if *digits <= 6 {
-            return text.clone();
-        }
+    if let Some((_, text)) = short_value(x) {
+        return text;
     }
-    let fraction = (2..=64u32).find_map(|q| {
-        let p = (x * f64::from(q)).round();
-        (close(p / f64::from(q)) && p.abs() < 1e9).then(|| format!("{p}/{q}"))
-    });
-    fraction
-        .or(decimal.map(|(_, text)| text))
+    (7..=12)
+        .find_map(|digits| {
+            let y: f64 = format!("{:.*e}", digits - 1, x).parse().ok()?;
+            ((y - x).abs() <= EXACT * x.abs()).then(|| plain(y))
+        })
         .unwrap_or_else(|| format!("{x:.16e}"))
 }
 
@@ -146,7 +157,8 @@ fn plain(y: f64) -> String {
 }
 
 /// `π[first] + Σ k π[d]` printed with the names given: `I1zz + 0.09·m2 - 0.3·m2·cx2`; terms
-/// with a zero coefficient are left out, a unit coefficient is not written.
+/// with a zero coefficient are left out, a unit coefficient (to the precision of
+/// [`exact_number`]) is not written.
 pub fn combination(terms: &[(usize, f64)], names: &[String]) -> String {
     let mut out = String::new();
     for (k, &(index, coefficient)) in terms.iter().filter(|t| t.1 != 0.0).enumerate() {
@@ -162,8 +174,9 @@ pub fn combination(terms: &[(usize, f64)], names: &[String]) -> String {
                 let _ = write!(out, " {sign} ");
             }
         }
-        if size != 1.0 {
-            let _ = write!(out, "{}·", exact_number(size));
+        let text = exact_number(size);
+        if text != "1" {
+            let _ = write!(out, "{text}·");
         }
         out.push_str(&names[index]);
     }
