@@ -103,7 +103,11 @@ impl BaseSet {
 
     /// Base parameter `b` printed as a combination of standard ones, `I1zz + 0.09·m2`.
     pub fn combination(&self, b: usize) -> String {
-        let names: Vec<String> = self.standard_names.iter().map(ParameterName::text).collect();
+        let names: Vec<String> = self
+            .standard_names
+            .iter()
+            .map(ParameterName::text)
+            .collect();
         combination(&self.terms(b), &names)
     }
 

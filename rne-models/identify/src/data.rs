@@ -65,14 +65,13 @@ impl Measurements {
 
     /// Parses CSV `text` (from `file`, for messages) of data for `joints` joints.
     pub fn parse(text: &str, file: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
-        let error = |line: usize, column: Option<(usize, String)>, message: String| {
-            IdentifyError::Data {
+        let error =
+            |line: usize, column: Option<(usize, String)>, message: String| IdentifyError::Data {
                 file: file.to_path_buf(),
                 line,
                 column,
                 message,
-            }
-        };
+            };
         let mut lines = text
             .lines()
             .enumerate()
@@ -126,11 +125,7 @@ impl Measurements {
                 return Err(error(
                     line,
                     None,
-                    format!(
-                        "{} fields, the header has {}",
-                        fields.len(),
-                        names.len()
-                    ),
+                    format!("{} fields, the header has {}", fields.len(), names.len()),
                 ));
             }
             let mut sample = Sample {
@@ -156,7 +151,11 @@ impl Measurements {
             samples.push(sample);
         }
         if samples.is_empty() {
-            return Err(error(header_line, None, "no samples after the header".into()));
+            return Err(error(
+                header_line,
+                None,
+                "no samples after the header".into(),
+            ));
         }
         Ok(Measurements { joints, samples })
     }
@@ -236,10 +235,14 @@ mod tests {
     /// Columns in any order, comments and blank lines, and a CSV round trip.
     #[test]
     fn reads_columns_by_name_and_round_trips() {
-        let text = "# measured\ntau2,q1,q2,qd1,qd2,qdd1,qdd2,tau1,t\n\n4,1,2,0.5,0.25,-1,-2,3,0.01\n";
+        let text =
+            "# measured\ntau2,q1,q2,qd1,qd2,qdd1,qdd2,tau1,t\n\n4,1,2,0.5,0.25,-1,-2,3,0.01\n";
         let m = parse(text).expect("valid");
         let s = &m.samples[0];
-        assert_eq!((s.q.clone(), s.tau.clone(), s.t), (vec![1.0, 2.0], vec![3.0, 4.0], Some(0.01)));
+        assert_eq!(
+            (s.q.clone(), s.tau.clone(), s.t),
+            (vec![1.0, 2.0], vec![3.0, 4.0], Some(0.01))
+        );
         assert_eq!(parse(&m.to_csv()).expect("round trip"), m);
     }
 
@@ -248,13 +251,34 @@ mod tests {
     fn bad_data_names_file_line_and_column() {
         let header = "q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
         let cases = [
-            (format!("{header}\n1,2,3,4,5,6,7,x\n"), "data.csv:2: column 8 (`tau2`): `x` is not a number"),
-            (format!("{header}\n1,2,3,4,5,6,7,inf\n"), "data.csv:2: column 8 (`tau2`): `inf` is not finite"),
-            (format!("{header}\n1,2,3\n"), "data.csv:2: 3 fields, the header has 8"),
-            (format!("{header},tau3\n"), "data.csv:1: column 9 (`tau3`): unknown column"),
-            (format!("{header},q1\n"), "data.csv:1: column 9 (`q1`): duplicate column"),
-            ("q1,q2\n1,2\n".to_owned(), "data.csv:1: missing columns qd1, qdd1, tau1, qd2"),
-            (format!("{header}\n"), "data.csv:1: no samples after the header"),
+            (
+                format!("{header}\n1,2,3,4,5,6,7,x\n"),
+                "data.csv:2: column 8 (`tau2`): `x` is not a number",
+            ),
+            (
+                format!("{header}\n1,2,3,4,5,6,7,inf\n"),
+                "data.csv:2: column 8 (`tau2`): `inf` is not finite",
+            ),
+            (
+                format!("{header}\n1,2,3\n"),
+                "data.csv:2: 3 fields, the header has 8",
+            ),
+            (
+                format!("{header},tau3\n"),
+                "data.csv:1: column 9 (`tau3`): unknown column",
+            ),
+            (
+                format!("{header},q1\n"),
+                "data.csv:1: column 9 (`q1`): duplicate column",
+            ),
+            (
+                "q1,q2\n1,2\n".to_owned(),
+                "data.csv:1: missing columns qd1, qdd1, tau1, qd2",
+            ),
+            (
+                format!("{header}\n"),
+                "data.csv:1: no samples after the header",
+            ),
             (String::new(), "data.csv:1: no header"),
         ];
         for (text, message) in cases {

@@ -296,7 +296,11 @@ mod tests {
             let f = decode(&random.vector(14, 2.0), &design);
             for (i, [p, v, a]) in f.bounds().into_iter().enumerate() {
                 let room = design.limits.position[i] - f.offsets[i].abs();
-                let used = [p / room, v / design.limits.velocity[i], a / design.limits.acceleration[i]];
+                let used = [
+                    p / room,
+                    v / design.limits.velocity[i],
+                    a / design.limits.acceleration[i],
+                ];
                 let most = used.iter().copied().fold(0.0, f64::max);
                 assert!((most - 1.0).abs() < 1e-12, "joint {i}: {used:?}");
             }

@@ -1,5 +1,6 @@
-//! The figure of measured against predicted torques: one panel per joint over time, drawn with
-//! plotters as SVG (PNG for a `.png` path).
+//! The figure of measured against predicted torques: one panel per joint over time, the
+//! measurement as a wide translucent band and the prediction as a thin line inside it, drawn
+//! with plotters as SVG (PNG for a `.png` path).
 //!
 //! plotters measures text to lay out a chart even for SVG, and no system font is assumed: Hack
 //! Regular from the `epaint_default_fonts` crate is registered as its `sans-serif` family.
@@ -42,9 +43,21 @@ pub fn torque_figure(
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if png {
-        draw(BitMapBackend::new(path, size).into_drawing_area(), title, data, predicted, columns)
+        draw(
+            BitMapBackend::new(path, size).into_drawing_area(),
+            title,
+            data,
+            predicted,
+            columns,
+        )
     } else {
-        draw(SVGBackend::new(path, size).into_drawing_area(), title, data, predicted, columns)
+        draw(
+            SVGBackend::new(path, size).into_drawing_area(),
+            title,
+            data,
+            predicted,
+            columns,
+        )
     }
     .map_err(failed)
 }
@@ -58,9 +71,7 @@ fn draw<DB: DrawingBackend>(
 ) -> Result<(), String> {
     let e = |error: DrawingAreaErrorKind<DB::ErrorType>| error.to_string();
     root.fill(&WHITE).map_err(e)?;
-    let root = root
-        .titled(title, ("sans-serif", 24))
-        .map_err(e)?;
+    let root = root.titled(title, ("sans-serif", 24)).map_err(e)?;
     let rows = data.joints.div_ceil(columns);
     let panels = root.split_evenly((rows, columns));
     let time: Vec<f64> = data
@@ -111,15 +122,25 @@ fn draw<DB: DrawingBackend>(
             .draw()
             .map_err(e)?;
         chart
-            .draw_series(LineSeries::new(measured, MEASURED.mix(0.6).stroke_width(1)))
+            .draw_series(LineSeries::new(
+                measured,
+                MEASURED.mix(0.45).stroke_width(6),
+            ))
             .map_err(e)?
             .label("measured")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], MEASURED.stroke_width(2)));
+            .legend(|(x, y)| {
+                PathElement::new(
+                    vec![(x, y), (x + 20, y)],
+                    MEASURED.mix(0.45).stroke_width(6),
+                )
+            });
         chart
-            .draw_series(LineSeries::new(model, PREDICTED.stroke_width(2)))
+            .draw_series(LineSeries::new(model, PREDICTED.stroke_width(1)))
             .map_err(e)?
             .label("identified model")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PREDICTED.stroke_width(2)));
+            .legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], PREDICTED.stroke_width(1))
+            });
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)

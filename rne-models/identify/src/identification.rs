@@ -88,7 +88,11 @@ pub fn fit(predicted: &[Vec<f64>], data: &Measurements) -> Fit {
         }
     }
     Fit {
-        joints: error.iter().zip(&size).map(|(e, s)| (e / s).sqrt()).collect(),
+        joints: error
+            .iter()
+            .zip(&size)
+            .map(|(e, s)| (e / s).sqrt())
+            .collect(),
         overall: (error.iter().sum::<f64>() / size.iter().sum::<f64>()).sqrt(),
     }
 }

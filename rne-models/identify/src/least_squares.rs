@@ -62,7 +62,11 @@ pub fn estimate(
         return Err(IdentifyError::NotExcited {
             rows,
             columns,
-            condition: if rows <= columns { f64::INFINITY } else { condition },
+            condition: if rows <= columns {
+                f64::INFINITY
+            } else {
+                condition
+            },
         });
     }
     let joint_deviations: Vec<f64> = (0..joints)
@@ -184,7 +188,10 @@ mod tests {
         let weighted = estimate(&w, &y, 2, true).expect("well posed");
         let ordinary = estimate(&w, &y, 2, false).expect("well posed");
         let s = &weighted.joint_deviations;
-        assert!((s[0] / 0.01 - 1.0).abs() < 0.1 && (s[1] / 0.1 - 1.0).abs() < 0.1, "{s:?}");
+        assert!(
+            (s[0] / 0.01 - 1.0).abs() < 0.1 && (s[1] / 0.1 - 1.0).abs() < 0.1,
+            "{s:?}"
+        );
         for (a, b) in weighted.deviations.iter().zip(&ordinary.deviations) {
             assert!(a < b, "weighted {a} vs ordinary {b}");
         }
@@ -193,11 +200,17 @@ mod tests {
             .collect();
         for i in 0..3 {
             let mean = runs.iter().map(|e| e.values[i]).sum::<f64>() / runs.len() as f64;
-            let spread = (runs.iter().map(|e| (e.values[i] - mean).powi(2)).sum::<f64>()
+            let spread = (runs
+                .iter()
+                .map(|e| (e.values[i] - mean).powi(2))
+                .sum::<f64>()
                 / (runs.len() - 1) as f64)
                 .sqrt();
             let predicted = runs[0].deviations[i];
-            assert!((spread / predicted - 1.0).abs() < 0.15, "θ{i}: {spread} vs {predicted}");
+            assert!(
+                (spread / predicted - 1.0).abs() < 0.15,
+                "θ{i}: {spread} vs {predicted}"
+            );
         }
     }
 
@@ -209,6 +222,9 @@ mod tests {
         let first = w.column(0).into_owned();
         w.column_mut(2).copy_from(&(first * 2.0));
         let error = estimate(&w, &y, 2, true).expect_err("columns 1 and 3 are parallel");
-        assert!(matches!(error, IdentifyError::NotExcited { columns: 3, .. }), "{error}");
+        assert!(
+            matches!(error, IdentifyError::NotExcited { columns: 3, .. }),
+            "{error}"
+        );
     }
 }

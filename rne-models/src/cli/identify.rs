@@ -119,7 +119,9 @@ pub fn run(args: &IdentifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
             link.armature = Some(0.0);
         }
     }
-    let mut reference = Reference::try_new(&numeric).map_err(failed)?.with_friction(true);
+    let mut reference = Reference::try_new(&numeric)
+        .map_err(failed)?
+        .with_friction(true);
     if reference.nq() != reference.nv() {
         return Err(CliError::Argument(format!(
             "{}: rne identify needs a fixed-base robot",
@@ -273,9 +275,10 @@ fn estimate(
                 (&data, &own, path)
             }
         };
-        let file = label
-            .file_name()
-            .map_or_else(|| label.display().to_string(), |f| f.to_string_lossy().into_owned());
+        let file = label.file_name().map_or_else(
+            || label.display().to_string(),
+            |f| f.to_string_lossy().into_owned(),
+        );
         let title = format!("{name}: measured torques ({file}) and the identified model's");
         torque_figure(figure, &title, shown, predicted).map_err(failed)?;
     }
@@ -359,7 +362,7 @@ fn write_text(
     )?;
     writeln!(
         out,
-        "# joint equation error σ_j after ordinary least squares: {}",
+        "# equation error σ_j of each joint, from its own equations (weights 1/σ_j): {}",
         estimate
             .joint_deviations
             .iter()

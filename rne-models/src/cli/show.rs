@@ -239,13 +239,23 @@ fn base_parameters(
     let lines: Vec<(String, String)> = (0..base.len())
         .map(|b| {
             if latex {
-                (format!("b_{{{}}} &= {}", b + 1, base.combination_latex(b)), " \\\\ %".to_owned())
+                (
+                    format!("b_{{{}}} &= {}", b + 1, base.combination_latex(b)),
+                    " \\\\ %".to_owned(),
+                )
             } else {
-                (format!("b{} = {}", b + 1, base.combination(b)), "  #".to_owned())
+                (
+                    format!("b{} = {}", b + 1, base.combination(b)),
+                    "  #".to_owned(),
+                )
             }
         })
         .collect();
-    let width = lines.iter().map(|(l, _)| l.chars().count()).max().unwrap_or(0);
+    let width = lines
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0);
     for ((line, comment), value) in lines.iter().zip(&values) {
         let pad = width - line.chars().count();
         writeln!(out, "{line}{:pad$}{comment} = {}", "", significant(*value))?;
