@@ -71,8 +71,8 @@ fn irb140_base_parameters_are_recovered_from_a_noisy_excitation() {
     assert!(condition < 200.0, "condition number {condition}");
     let estimate = identify(&mut reference, &base, &data, true).expect("identified");
     let truth = base.model_values();
-    for b in 0..base.len() {
-        let (value, sigma, expected) = (estimate.values[b], estimate.deviations[b], truth[b]);
+    for (b, &expected) in truth.iter().enumerate() {
+        let (value, sigma) = (estimate.values[b], estimate.deviations[b]);
         let error = (value - expected).abs();
         assert!(
             error <= 0.02 * expected.abs() || error <= 3.0 * sigma,

@@ -23,6 +23,9 @@ use serde_json::Value;
 /// regressor at that state.
 const TOLERANCE: f64 = 1e-12;
 
+/// A regressor implementation: Y(q, v, a).
+type Engine<'a> = &'a mut dyn FnMut(&[f64], &[f64], &[f64]) -> DMatrix<f64>;
+
 /// One state of a fixture and Pinocchio's regressor there.
 struct Expected {
     q: Vec<f64>,
@@ -97,10 +100,9 @@ fn check_against_pinocchio(robot: &str, expected: &str) {
         .expect("built-in robot");
     assert_eq!(model.joint_names(), joints, "{robot}: joint order");
     let mut reference = Reference::new(&model.to_numeric());
-    let engines: [(&str, &mut dyn FnMut(&[f64], &[f64], &[f64]) -> DMatrix<f64>); 1] = [(
-        "reference",
-        &mut |q, v, a| reference.regressor(q, v, a).expect("state sizes"),
-    )];
+    let engines: [(&str, Engine); 1] = [("reference", &mut |q, v, a| {
+        reference.regressor(q, v, a).expect("state sizes")
+    })];
     for (engine, regressor) in engines {
         let error = worst_relative_error(&states, regressor);
         assert!(
