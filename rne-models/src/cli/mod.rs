@@ -5,6 +5,7 @@ mod check;
 mod emit;
 mod eval;
 mod eval_kernels;
+mod identify;
 mod list;
 mod model;
 mod options;
@@ -46,6 +47,9 @@ pub enum Command {
     Stats(stats::StatsArgs),
     /// Evaluate the dynamics at one state.
     Eval(eval::EvalArgs),
+    /// Base parameters by weighted least squares from measured q, q̇, q̈, τ (CSV), or an
+    /// optimised excitation trajectory with simulated torques (--excite).
+    Identify(identify::IdentifyArgs),
     /// Generate every built-in robot's kernels and check them against the numeric reference.
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
@@ -67,6 +71,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Emit(args) => emit::run(&args, out),
         Command::Stats(args) => stats::run(&args, out),
         Command::Eval(args) => eval::run(&args, out),
+        Command::Identify(args) => identify::run(&args, out),
         Command::Verify(args) => verify::run(&args, out),
         Command::Simulate(args) => simulate::run(&args, out),
         Command::Stress(args) => stress::run(&args, out),

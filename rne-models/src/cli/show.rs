@@ -6,6 +6,10 @@ use clap::{Args, ValueEnum};
 use rne_symbolic::canonical::{Polynomial, PrintFormat, Printer};
 use rne_symbolic::{Id, SymbolicDynamics};
 
+use rne_identify::BaseSet;
+use rne_reference::Reference;
+use rne_symbolic::RobotModel;
+
 use super::model::ModelOptions;
 use super::CliError;
 use crate::builtin::RobotSource;
@@ -33,7 +37,12 @@ pub enum Part {
     /// The derivatives ∂τ/∂q and ∂τ/∂q̇ of the joint torques (∂τ/∂q̈ is M), entry by entry: the
     /// derivatives of (4.45)–(4.47) for the planar elbow. Not part of `all`.
     Dtau,
-    /// Everything but the reactions and the derivatives.
+    /// The base parameters: each identifiable combination of the standard parameters (per
+    /// body m, m·c and the inertia about the body origin; friction and armature), with exact
+    /// coefficients and the model's value; found by Gautier's numerical method on the numeric
+    /// reference's regressor. Not part of `all`.
+    BaseParameters,
+    /// Everything but the reactions, the derivatives and the base parameters.
     All,
 }
 
@@ -71,6 +80,9 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);
     let n = dynamics.dof();
+    if args.what == Part::BaseParameters {
+        return base_parameters(&source, &model, args.format, out);
+    }
     let want = |p: Part| {
         args.what == p || (args.what == Part::All && !matches!(p, Part::Reactions | Part::Dtau))
     };
@@ -218,4 +230,74 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Prints each base parameter as a combination of standard ones, with its value.
+fn base_parameters(
+    source: &RobotSource,
+    model: &RobotModel,
+    format: Format,
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
+    let failed = |e: &dyn std::fmt::Display| CliError::Argument(e.to_string());
+    let mut reference = Reference::try_new(&model.to_numeric())
+        .map_err(|e| failed(&e))?
+        .with_friction(true);
+    let base = BaseSet::find(&mut reference).map_err(|e| failed(&e))?;
+    let values = base.model_values();
+    let latex = format == Format::Latex;
+    let comment = if latex { "%" } else { "#" };
+    writeln!(
+        out,
+        "{comment} {}: {} base parameters of {} standard ones (the numeric rank of the regressor stacked over random states; Gautier 1991)",
+        source.display_name(),
+        base.len(),
+        base.standard_len()
+    )?;
+    let bodies: Vec<String> = base
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(k, b)| format!("{} = {b}", k + 1))
+        .collect();
+    writeln!(
+        out,
+        "{comment} bodies: {}; m·c and I about each body frame's origin, in its axes",
+        bodies.join(", ")
+    )?;
+    let lines: Vec<(String, String)> = (0..base.len())
+        .map(|b| {
+            if latex {
+                (
+                    format!("b_{{{}}} &= {}", b + 1, base.combination_latex(b)),
+                    " \\\\ %".to_owned(),
+                )
+            } else {
+                (
+                    format!("b{} = {}", b + 1, base.combination(b)),
+                    "  #".to_owned(),
+                )
+            }
+        })
+        .collect();
+    let width = lines
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0);
+    for ((line, comment), value) in lines.iter().zip(&values) {
+        let pad = width - line.chars().count();
+        writeln!(out, "{line}{:pad$}{comment} = {}", "", significant(*value))?;
+    }
+    Ok(())
+}
+
+/// `x` to 7 significant digits, in the shortest form that shows them.
+fn significant(x: f64) -> String {
+    let rounded: f64 = format!("{x:.6e}").parse().unwrap_or(x);
+    if rounded == 0.0 || (1e-4..1e7).contains(&rounded.abs()) {
+        format!("{rounded}")
+    } else {
+        format!("{rounded:e}")
+    }
 }

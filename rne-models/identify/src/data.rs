@@ -1,0 +1,289 @@
+//! Measured joint trajectories: q, q̇, q̈ and τ per sample, read from and written to CSV.
+//!
+//! The first line names the columns: `q1 … qN`, `qd1 … qdN`, `qdd1 … qddN`, `tau1 … tauN`
+//! for the N joints in the model's joint order (`rne check MODEL` lists it), in any order, and
+//! optionally `t` (time, s), which identification ignores. Every other line is one sample of
+//! numbers separated by commas. Blank lines and lines starting with `#` are skipped. Errors
+//! name the file, the line and the column.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::IdentifyError;
+
+/// One sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// Time, s, when the data have it.
+    pub t: Option<f64>,
+    /// Joint positions.
+    pub q: Vec<f64>,
+    /// Joint rates.
+    pub qd: Vec<f64>,
+    /// Joint accelerations.
+    pub qdd: Vec<f64>,
+    /// Joint torques (forces for prismatic joints).
+    pub tau: Vec<f64>,
+}
+
+/// A joint trajectory of `joints` joints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measurements {
+    /// Number of joints.
+    pub joints: usize,
+    /// The samples in order.
+    pub samples: Vec<Sample>,
+}
+
+/// The four signals of a sample, in column-name order.
+const SIGNALS: [&str; 4] = ["q", "qd", "qdd", "tau"];
+
+/// Where column `name` goes: `Some(None)` for time, `Some(Some((signal, joint)))` for a
+/// signal of a joint, `None` if it is not a column of N-joint data.
+fn column_of(name: &str, joints: usize) -> Option<Option<(usize, usize)>> {
+    if name == "t" {
+        return Some(None);
+    }
+    // Longest prefix first: `qdd3` is not `qd` of joint `d3`.
+    [2, 3, 1, 0].into_iter().find_map(|s| {
+        let joint: usize = name.strip_prefix(SIGNALS[s])?.parse().ok()?;
+        (1..=joints)
+            .contains(&joint)
+            .then_some(Some((s, joint - 1)))
+    })
+}
+
+impl Measurements {
+    /// Reads the CSV file `path` of data for `joints` joints.
+    pub fn read(path: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
+        let text = std::fs::read_to_string(path).map_err(|source| IdentifyError::Io {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        Measurements::parse(&text, path, joints)
+    }
+
+    /// Parses CSV `text` (from `file`, for messages) of data for `joints` joints.
+    pub fn parse(text: &str, file: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
+        let error =
+            |line: usize, column: Option<(usize, String)>, message: String| IdentifyError::Data {
+                file: file.to_path_buf(),
+                line,
+                column,
+                message,
+            };
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(k, l)| (k + 1, l.trim()))
+            .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+        let expected = expected_header(joints);
+        let (header_line, header) = lines.next().ok_or_else(|| {
+            error(
+                1,
+                None,
+                format!("no header; expected the columns {expected}"),
+            )
+        })?;
+        let names: Vec<&str> = header.split(',').map(str::trim).collect();
+        let mut slots = Vec::with_capacity(names.len());
+        let mut seen = vec![[false; 4]; joints];
+        for (k, name) in names.iter().enumerate() {
+            let column = Some((k + 1, (*name).to_owned()));
+            let slot = column_of(name, joints).ok_or_else(|| {
+                error(
+                    header_line,
+                    column.clone(),
+                    format!("unknown column for a {joints}-joint model; expected {expected}"),
+                )
+            })?;
+            if let Some((s, j)) = slot {
+                if std::mem::replace(&mut seen[j][s], true) {
+                    return Err(error(header_line, column, "duplicate column".into()));
+                }
+            } else if slots.contains(&None) {
+                return Err(error(header_line, column, "duplicate column".into()));
+            }
+            slots.push(slot);
+        }
+        let missing: Vec<String> = (0..joints)
+            .flat_map(|j| (0..4).map(move |s| (j, s)))
+            .filter(|&(j, s)| !seen[j][s])
+            .map(|(j, s)| format!("{}{}", SIGNALS[s], j + 1))
+            .collect();
+        if !missing.is_empty() {
+            return Err(error(
+                header_line,
+                None,
+                format!("missing columns {}", missing.join(", ")),
+            ));
+        }
+        let mut samples = Vec::new();
+        for (line, text) in lines {
+            let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+            if fields.len() != names.len() {
+                return Err(error(
+                    line,
+                    None,
+                    format!("{} fields, the header has {}", fields.len(), names.len()),
+                ));
+            }
+            let mut sample = Sample {
+                t: None,
+                q: vec![0.0; joints],
+                qd: vec![0.0; joints],
+                qdd: vec![0.0; joints],
+                tau: vec![0.0; joints],
+            };
+            for (k, (field, slot)) in fields.iter().zip(&slots).enumerate() {
+                let column = || Some((k + 1, names[k].to_owned()));
+                let value: f64 = field
+                    .parse()
+                    .map_err(|_| error(line, column(), format!("`{field}` is not a number")))?;
+                if !value.is_finite() {
+                    return Err(error(line, column(), format!("`{field}` is not finite")));
+                }
+                match *slot {
+                    None => sample.t = Some(value),
+                    Some((s, j)) => sample.signal_mut(s)[j] = value,
+                }
+            }
+            samples.push(sample);
+        }
+        if samples.is_empty() {
+            return Err(error(
+                header_line,
+                None,
+                "no samples after the header".into(),
+            ));
+        }
+        Ok(Measurements { joints, samples })
+    }
+
+    /// The CSV text: a header `t, q1…, qd1…, qdd1…, tau1…` (no `t` if the first sample has no
+    /// time), then one line per sample with every number in Rust's shortest round-trip form.
+    pub fn to_csv(&self) -> String {
+        let timed = self.samples.first().is_some_and(|s| s.t.is_some());
+        let mut header: Vec<String> = Vec::new();
+        if timed {
+            header.push("t".into());
+        }
+        for signal in SIGNALS {
+            header.extend((1..=self.joints).map(|j| format!("{signal}{j}")));
+        }
+        let mut out = header.join(",");
+        out.push('\n');
+        for sample in &self.samples {
+            let mut fields: Vec<f64> = Vec::new();
+            if timed {
+                fields.push(sample.t.unwrap_or(f64::NAN));
+            }
+            for s in 0..4 {
+                fields.extend(sample.signal(s));
+            }
+            let line: Vec<String> = fields.iter().map(f64::to_string).collect();
+            let _ = writeln!(out, "{}", line.join(","));
+        }
+        out
+    }
+
+    /// Writes [`Measurements::to_csv`] to `path`, creating its directory.
+    pub fn write(&self, path: &Path) -> Result<(), IdentifyError> {
+        let io = |source| IdentifyError::Io {
+            file: path.to_path_buf(),
+            source,
+        };
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(io)?;
+        }
+        std::fs::write(path, self.to_csv()).map_err(io)
+    }
+}
+
+impl Sample {
+    fn signal(&self, s: usize) -> &[f64] {
+        [&self.q, &self.qd, &self.qdd, &self.tau][s]
+    }
+
+    fn signal_mut(&mut self, s: usize) -> &mut [f64] {
+        match s {
+            0 => &mut self.q,
+            1 => &mut self.qd,
+            2 => &mut self.qdd,
+            _ => &mut self.tau,
+        }
+    }
+}
+
+/// `q1..qN, qd1..qdN, qdd1..qddN, tau1..tauN (and optionally t)`.
+fn expected_header(joints: usize) -> String {
+    let list: Vec<String> = SIGNALS
+        .iter()
+        .map(|s| format!("{s}1..{s}{joints}"))
+        .collect();
+    format!("{} (and optionally t)", list.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Measurements, IdentifyError> {
+        Measurements::parse(text, Path::new("data.csv"), 2)
+    }
+
+    /// Columns in any order, comments and blank lines, and a CSV round trip.
+    #[test]
+    fn reads_columns_by_name_and_round_trips() {
+        let text =
+            "# measured\ntau2,q1,q2,qd1,qd2,qdd1,qdd2,tau1,t\n\n4,1,2,0.5,0.25,-1,-2,3,0.01\n";
+        let m = parse(text).expect("valid");
+        let s = &m.samples[0];
+        assert_eq!(
+            (s.q.clone(), s.tau.clone(), s.t),
+            (vec![1.0, 2.0], vec![3.0, 4.0], Some(0.01))
+        );
+        assert_eq!(parse(&m.to_csv()).expect("round trip"), m);
+    }
+
+    /// Each kind of bad data is an error that names the file, the line and the column.
+    #[test]
+    fn bad_data_names_file_line_and_column() {
+        let header = "q1,q2,qd1,qd2,qdd1,qdd2,tau1,tau2";
+        let cases = [
+            (
+                format!("{header}\n1,2,3,4,5,6,7,x\n"),
+                "data.csv:2: column 8 (`tau2`): `x` is not a number",
+            ),
+            (
+                format!("{header}\n1,2,3,4,5,6,7,inf\n"),
+                "data.csv:2: column 8 (`tau2`): `inf` is not finite",
+            ),
+            (
+                format!("{header}\n1,2,3\n"),
+                "data.csv:2: 3 fields, the header has 8",
+            ),
+            (
+                format!("{header},tau3\n"),
+                "data.csv:1: column 9 (`tau3`): unknown column",
+            ),
+            (
+                format!("{header},q1\n"),
+                "data.csv:1: column 9 (`q1`): duplicate column",
+            ),
+            (
+                "q1,q2\n1,2\n".to_owned(),
+                "data.csv:1: missing columns qd1, qdd1, tau1, qd2",
+            ),
+            (
+                format!("{header}\n"),
+                "data.csv:1: no samples after the header",
+            ),
+            (String::new(), "data.csv:1: no header"),
+        ];
+        for (text, message) in cases {
+            let error = parse(&text).expect_err(message).to_string();
+            assert!(error.starts_with(message), "{error}\nexpected: {message}");
+        }
+    }
+}

@@ -1,0 +1,241 @@
+//! Base parameters (`rne show MODEL --what base-parameters`, `rne identify`): their number is
+//! the numeric rank of the stacked regressor for every built-in robot and for random robots,
+//! Y_b π_b reproduces the torques, the planar elbow's are the thesis's grouping, and the
+//! PUMA 560's count is the published one.
+
+use nalgebra::DMatrix;
+use proptest::prelude::*;
+use rne_identify::BaseSet;
+use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
+use rne_reference::Reference;
+use rne_symbolic::model::NumericFriction;
+use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::NumericModel;
+
+/// Seeded states, distinct from the ones `BaseSet::find` uses.
+fn states(nv: usize, count: usize, seed: u64) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    let mut x = seed;
+    let mut next = move || {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    (0..count)
+        .map(|_| {
+            let q = (0..nv).map(|_| 3.0 * next()).collect();
+            let v = (0..nv).map(|_| 2.0 * next()).collect();
+            let a = (0..nv).map(|_| 4.0 * next()).collect();
+            (q, v, a)
+        })
+        .collect()
+}
+
+/// The regressor stacked over `count` states.
+fn stacked(reference: &mut Reference, count: usize, seed: u64) -> DMatrix<f64> {
+    let (nv, p) = (reference.nv(), reference.parameter_count());
+    let mut w = DMatrix::zeros(count * nv, p);
+    for (s, (q, v, a)) in states(nv, count, seed).iter().enumerate() {
+        let y = reference.regressor(q, v, a).expect("state sizes");
+        w.view_mut((s * nv, 0), (nv, p)).copy_from(&y);
+    }
+    w
+}
+
+/// The numeric rank of `w` by SVD, columns scaled to unit norm (zero columns dropped) so that
+/// the units of the parameters do not matter; the gap between the last kept singular value
+/// and the first dropped one must be wide, or the rank would not be well defined.
+fn numeric_rank(w: &DMatrix<f64>) -> usize {
+    let columns: Vec<usize> = (0..w.ncols())
+        .filter(|&c| w.column(c).norm() > 1e-12 * w.amax())
+        .collect();
+    let mut scaled = w.select_columns(&columns);
+    for mut column in scaled.column_iter_mut() {
+        let norm = column.norm();
+        column /= norm;
+    }
+    let mut s: Vec<f64> = scaled.singular_values().iter().copied().collect();
+    s.sort_by(|a, b| b.total_cmp(a));
+    let rank = s.iter().filter(|&&x| x > 1e-8 * s[0]).count();
+    if let (Some(&kept), Some(&dropped)) = (s.get(rank - 1), s.get(rank)) {
+        assert!(
+            kept > 1e-6 * s[0] && dropped < 1e-11 * s[0],
+            "no clear rank gap: {kept:e} / {dropped:e} of {:e}",
+            s[0]
+        );
+    }
+    rank
+}
+
+/// The base parameters' count equals the rank, and Y_b π_b = τ at fresh states.
+fn check(model: &NumericModel, name: &str) -> usize {
+    let mut reference = Reference::new(model).with_friction(true);
+    let base = BaseSet::find(&mut reference).expect("base parameters");
+    let w = stacked(&mut reference, 60, 0xfeed);
+    assert_eq!(
+        base.len(),
+        numeric_rank(&w),
+        "{name}: base parameters vs rank"
+    );
+    let pi_b = nalgebra::DVector::from_vec(base.model_values());
+    for (q, v, a) in states(reference.nv(), 50, 0xbeef) {
+        let tau = reference.inverse_dynamics(&q, &v, &a).expect("sizes");
+        let predicted = base
+            .base_regressor(&mut reference, &q, &v, &a)
+            .expect("sizes")
+            * &pi_b;
+        let error = (&predicted - &tau).amax() / tau.amax().max(1e-300);
+        assert!(error < 1e-12, "{name}: Y_b π_b vs τ, relative {error:e}");
+    }
+    base.len()
+}
+
+fn builtin(name: &str) -> NumericModel {
+    RobotSource::resolve(name)
+        .load(&LoadOptions::default())
+        .expect("built-in robot")
+        .to_numeric()
+}
+
+#[test]
+fn every_builtin_robot_has_as_many_base_parameters_as_the_regressor_has_rank() {
+    for robot in BUILTIN_ROBOTS {
+        check(&builtin(robot.name), robot.name);
+    }
+}
+
+/// With friction (f_v, f_c, offset) and armature on every joint of the IRB 140: still the
+/// rank, and the joint parameters add 3 + 1 each except the armatures of joints 1 and 2.
+/// Link 1 turns about the vertical axis 1 only, so its inertia about that axis and the rotor
+/// of joint 1 both add ½ x q̇1² to the kinetic energy and nothing to the potential; link 2's
+/// angular velocity along axis 2 is q̇2 alone (axis 1 is perpendicular to it), so its inertia
+/// about axis 2 and the rotor of joint 2 both add ½ x q̇2². Each pair is one base parameter.
+#[test]
+fn friction_and_armature_columns_keep_count_and_rank_equal() {
+    let plain = check(&builtin("irb140"), "irb140");
+    let mut model = builtin("irb140");
+    for link in model.links.iter_mut().filter(|l| l.joint.is_some()) {
+        link.friction = Some(NumericFriction {
+            viscous: 0.5,
+            coulomb: 1.0,
+            offset: -0.1,
+        });
+        link.armature = Some(0.02);
+    }
+    let with_joints = check(&model, "irb140 with friction and armature");
+    assert_eq!(with_joints, plain + 6 * 4 - 2);
+}
+
+/// PUMA 560, the 60 standard inertial parameters (10 per link; no motor inertia, no
+/// friction): 36 base parameters, as Gautier ("Numerical calculation of the base inertial
+/// parameters of robots", J. Robotic Systems 8(4), 1991) finds for this robot. The same count
+/// follows from Gautier and Khalil's regrouping rules ("Direct calculation of minimum set of
+/// inertial parameters of serial robots", IEEE Trans. Robotics and Automation 6(3), 1990):
+/// each revolute link j regroups YY_j, MZ_j and M_j onto its parent (60 − 6·3 = 42), and of
+/// link 1, turning about the vertical, only ZZR_1 remains (42 − 6 = 36).
+#[test]
+fn puma560_has_the_published_36_base_parameters() {
+    assert_eq!(check(&builtin("puma560"), "puma560"), 36);
+}
+
+/// The planar elbow (thesis chapter 4, frames at the link ends, so each body's standard
+/// parameters are about its joint axis): the base parameters are the groups its M (4.45)
+/// and g (4.47) show, m1 lc1 + m2 l1, I1 + m1 lc1² + m2 l1², m2 lc2 and I2 + m2 lc2², with the
+/// first moments off the link axis (zero for the thesis's links) beside them; the
+/// coefficients print as the exact l1 = 0.3 and l1² = 0.09 of table 6.1.
+#[test]
+fn the_planar_elbows_base_parameters_are_the_thesiss_groups() {
+    let mut reference = Reference::new(&builtin("planar-elbow"));
+    let base = BaseSet::find(&mut reference).expect("base parameters");
+    let printed: Vec<String> = (0..base.len()).map(|b| base.combination(b)).collect();
+    assert_eq!(
+        printed,
+        [
+            "m1·cx1 + 0.3·m2",
+            "m1·cy1",
+            "I1zz + 0.09·m2",
+            "m2·cx2",
+            "m2·cy2",
+            "I2zz"
+        ]
+    );
+    // Table 6.1: m = 15 kg, l = 0.3 m, steel boxes of width w = sqrt(m / (rho l)).
+    let (m, l, lc) = (15.0, 0.3, 0.15);
+    let w2 = m / (7850.0 * l);
+    let inertia = m * (l * l + w2) / 12.0;
+    let thesis = [
+        m * lc + m * l,
+        0.0,
+        inertia + m * lc * lc + m * l * l,
+        m * lc,
+        0.0,
+        inertia + m * lc * lc,
+    ];
+    for (b, (value, expected)) in base.model_values().iter().zip(thesis).enumerate() {
+        assert!(
+            (value - expected).abs() < 1e-12 * expected.abs().max(1.0),
+            "b{}: {value} vs the thesis's {expected}",
+            b + 1
+        );
+    }
+}
+
+/// One random link in standard DH with a random inertia.
+#[derive(Clone, Debug)]
+struct RandomLink {
+    prismatic: bool,
+    dh: [f64; 4],
+    mass: f64,
+    com: [f64; 3],
+    moments: [f64; 3],
+}
+
+fn link() -> impl Strategy<Value = RandomLink> {
+    (
+        prop::bool::weighted(0.3),
+        prop::array::uniform4(-1.5..1.5f64),
+        0.5..10.0f64,
+        prop::array::uniform3(-0.2..0.2f64),
+        prop::array::uniform3(0.01..0.5f64),
+    )
+        .prop_map(|(prismatic, dh, mass, com, raw)| RandomLink {
+            prismatic,
+            dh,
+            mass,
+            com,
+            // (x + y, y + z, z + x) of positive x, y, z obey the triangle inequality.
+            moments: [raw[0] + raw[1], raw[1] + raw[2], raw[2] + raw[0]],
+        })
+}
+
+fn spec(links: &[RandomLink], gravity: [f64; 3]) -> String {
+    let mut text = format!(
+        "name = \"random\"\ngravity = [{}, {}, {}]\n",
+        gravity[0], gravity[1], gravity[2]
+    );
+    for (i, l) in links.iter().enumerate() {
+        let [a, alpha, d, theta] = l.dh;
+        text += &format!(
+            "[[link]]\nname = \"l{i}\"\njoint = \"{}\"\ndh = {{ a = {a}, alpha = {alpha}, d = {d}, theta = {theta} }}\nmass = {}\ncom = [{}, {}, {}]\ninertia = {{ xx = {}, yy = {}, zz = {} }}\n",
+            if l.prismatic { "prismatic" } else { "revolute" },
+            l.mass, l.com[0], l.com[1], l.com[2], l.moments[0], l.moments[1], l.moments[2]
+        );
+    }
+    text
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// Random serial robots of 1–5 revolute or prismatic joints in random DH geometry:
+    /// as many base parameters as the stacked regressor's numeric rank, and Y_b π_b = τ.
+    #[test]
+    fn random_robots_have_as_many_base_parameters_as_the_regressor_has_rank(
+        links in prop::collection::vec(link(), 1..=5),
+        gravity in prop::array::uniform3(-10.0..10.0f64),
+    ) {
+        let text = spec(&links, gravity);
+        let model = parse_str(&text, "random.toml", &LoadOptions::default()).expect("valid spec");
+        check(&model.to_numeric(), &text);
+    }
+}
