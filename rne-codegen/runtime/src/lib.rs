@@ -18,9 +18,10 @@
 // Index loops over small fixed ranges mirror the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-#[cfg(test)]
+#[cfg(any(test, feature = "threads"))]
 extern crate std;
 
+pub mod batch;
 #[cfg(feature = "nalgebra")]
 #[path = "nalgebra.rs"]
 pub mod convert;
@@ -29,11 +30,15 @@ mod dynamics;
 mod eft;
 mod float;
 mod kernel;
+pub mod lanes;
 mod real;
 pub mod trig;
 
 pub use double_double::{DoubleDouble, MAX_DIGITS};
 pub use dynamics::Dynamics;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
-pub use real::Real;
+pub use lanes::Lanes;
+#[cfg(feature = "simd")]
+pub use lanes::{F32x8, F64x4};
+pub use real::{OrderedReal, Real};
 pub use trig::{sin_cos, sin_cos_array};
