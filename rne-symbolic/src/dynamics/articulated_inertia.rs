@@ -169,10 +169,10 @@ impl ArticulatedInertia {
 
     /// The inertia in the parent's coordinates, `Xᵀ I X` for the placement `p`: rotated by
     /// the joint rotation, then by the fixed one, then moved to the parent's origin.
-    pub fn to_parent(&self, g: &mut ExprGraph, p: &LinkPlacement) -> ArticulatedInertia {
+    pub fn to_parent(self, g: &mut ExprGraph, p: &LinkPlacement) -> ArticulatedInertia {
         let turned = match &p.joint {
             Some(joint) => self.rotated(g, joint),
-            None => *self,
+            None => self,
         };
         turned.rotated(g, &p.fixed).translated(g, p.attachment)
     }
