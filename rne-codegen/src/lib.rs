@@ -46,6 +46,12 @@
 //! on nothing but the runtime and the macro, so generated modules compile in `no_std`
 //! crates.
 //!
+//! # Many states per call
+//! With the feature `simd`, [`F64x4`] and [`F32x8`] implement [`Real`]: a `scalar: generic`
+//! kernel called with them computes 4 or 8 states at once, each lane bit for bit the scalar
+//! kernel at its state. [`batch::evaluate`] runs a kernel over a slice of states, filling the
+//! lanes; with the feature `threads`, [`batch::evaluate_threaded`] splits them between threads.
+//!
 //! # Build scripts
 //! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module
 //! to `OUT_DIR`:
@@ -63,9 +69,11 @@
 
 pub use rne_codegen_macros::derive_dynamics;
 pub use rne_runtime::{
-    sin_cos, sin_cos_array, DoubleDouble, Dynamics, Identification, Input, Kernel, Kinematics,
-    Real, Shape, UnknownKernel,
+    batch, lanes, sin_cos, sin_cos_array, DoubleDouble, Dynamics, Identification, Input, Kernel,
+    Kinematics, Lanes, OrderedReal, Real, Shape, UnknownKernel,
 };
+#[cfg(feature = "simd")]
+pub use rne_runtime::{F32x8, F64x4};
 
 #[cfg(feature = "nalgebra")]
 pub use rne_runtime::convert;

@@ -52,7 +52,7 @@ use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAss
 
 use crate::eft::{fast_two_sum, two_prod, two_sum};
 use crate::float;
-use crate::real::Real;
+use crate::real::{OrderedReal, Real};
 
 /// A real number `hi + lo` held as two `f64` with `|lo| ≤ ulp(hi)/2`: about 32 significant
 /// decimal digits (see the module documentation for the error bounds).
@@ -528,9 +528,6 @@ impl Real for DoubleDouble {
     fn from_f64(x: f64) -> DoubleDouble {
         DoubleDouble::from_f64(x)
     }
-    fn to_f64(self) -> f64 {
-        DoubleDouble::to_f64(self)
-    }
     fn sin_cos(self) -> (DoubleDouble, DoubleDouble) {
         DoubleDouble::sin_cos(self)
     }
@@ -539,6 +536,15 @@ impl Real for DoubleDouble {
     }
     fn abs(self) -> DoubleDouble {
         DoubleDouble::abs(self)
+    }
+    fn sign(self) -> DoubleDouble {
+        crate::real::sign_of(self)
+    }
+}
+
+impl OrderedReal for DoubleDouble {
+    fn to_f64(self) -> f64 {
+        DoubleDouble::to_f64(self)
     }
 }
 

@@ -19,9 +19,10 @@
 // Index loops over small fixed ranges mirror the formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-#[cfg(test)]
+#[cfg(any(test, feature = "threads"))]
 extern crate std;
 
+pub mod batch;
 #[cfg(feature = "nalgebra")]
 #[path = "nalgebra.rs"]
 pub mod convert;
@@ -32,6 +33,7 @@ mod float;
 mod identification;
 mod kernel;
 mod kinematics;
+pub mod lanes;
 mod real;
 pub mod trig;
 
@@ -40,5 +42,8 @@ pub use dynamics::Dynamics;
 pub use identification::Identification;
 pub use kernel::{Input, Kernel, Shape, UnknownKernel};
 pub use kinematics::Kinematics;
-pub use real::Real;
+pub use lanes::Lanes;
+#[cfg(feature = "simd")]
+pub use lanes::{F32x8, F64x4};
+pub use real::{OrderedReal, Real};
 pub use trig::{sin_cos, sin_cos_array};

@@ -1,16 +1,20 @@
 //! The small real-number trait that expressions are evaluated in and generated kernels are
-//! generic over.
+//! generic over, and [`OrderedReal`] for the scalars among them that are one ordered number.
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
-/// A real scalar: what the generic (`scalar: generic`) kernels and the evaluation of
-/// expression graphs need. Implemented for `f32`, `f64` and
-/// [`DoubleDouble`](crate::DoubleDouble).
+/// A real scalar, or several evaluated together: what the generic (`scalar: generic`) kernels
+/// and the evaluation of expression graphs need. Implemented for `f32`, `f64`,
+/// [`DoubleDouble`](crate::DoubleDouble) and, with the feature `simd`, the lane types
+/// `F64x4` and `F32x8`, whose every operation acts lane by lane.
+///
+/// Lanes cannot be ordered, so `Real` has no comparison: what kernels need of one
+/// ([`Real::abs`], [`Real::sign`]) is a method here, and code that compares values asks for
+/// [`OrderedReal`].
 pub trait Real:
     Copy
     + Debug
-    + PartialOrd
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
@@ -20,14 +24,17 @@ pub trait Real:
     + SubAssign
     + MulAssign
 {
-    /// The value nearest to `x`.
+    /// The value nearest to `x` (in every lane).
     fn from_f64(x: f64) -> Self;
-    /// The `f64` nearest to `self`.
-    fn to_f64(self) -> f64;
     /// `(sin self, cos self)`.
     fn sin_cos(self) -> (Self, Self);
     /// Square root.
     fn sqrt(self) -> Self;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// The sign: 1 for positive values, −1 for negative ones, the value itself for ±0 and
+    /// NaN (so sign(0) = 0, as Coulomb friction wants of a joint at rest).
+    fn sign(self) -> Self;
     /// `(sin xᵢ, cos xᵢ)` of every element (bit for bit [`Real::sin_cos`] of each); the
     /// kernels call it once for all joint angles, which lets `f64` use vector instructions.
     fn sin_cos_array<const N: usize>(x: &[Self; N]) -> ([Self; N], [Self; N]) {
@@ -50,24 +57,24 @@ pub trait Real:
     fn one() -> Self {
         Self::from_f64(1.0)
     }
-    /// −1, 0 or 1 as `self` is negative, zero or positive (zero keeps its sign, NaN stays
-    /// NaN): the Coulomb friction law's sign(q̇), with no friction at rest.
-    fn sign(self) -> Self {
-        if self > Self::zero() {
-            Self::one()
-        } else if self < Self::zero() {
-            -Self::one()
-        } else {
-            self
-        }
-    }
-    /// Absolute value.
-    fn abs(self) -> Self {
-        if self < Self::zero() {
-            -self
-        } else {
-            self
-        }
+}
+
+/// A [`Real`] that is one number, not lanes: ordered, and convertible to `f64`. Implemented
+/// for `f32`, `f64` and [`DoubleDouble`](crate::DoubleDouble).
+pub trait OrderedReal: Real + PartialOrd {
+    /// The `f64` nearest to `self`.
+    fn to_f64(self) -> f64;
+}
+
+/// [`Real::sign`] of one ordered number.
+#[inline]
+pub(crate) fn sign_of<T: Real + PartialOrd>(x: T) -> T {
+    if x > T::zero() {
+        T::one()
+    } else if x < T::zero() {
+        -T::one()
+    } else {
+        x
     }
 }
 
@@ -75,10 +82,6 @@ impl Real for f64 {
     #[inline]
     fn from_f64(x: f64) -> f64 {
         x
-    }
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self
     }
     /// [`crate::trig::sin_cos`]: within 1 ulp on the joint-angle ranges of robots, branch-free
     /// there, and inlined into the kernels.
@@ -94,16 +97,28 @@ impl Real for f64 {
     fn sqrt(self) -> f64 {
         crate::float::sqrt(self)
     }
+    /// The sign bit cleared.
+    #[inline]
+    fn abs(self) -> f64 {
+        f64::from_bits(self.to_bits() & !(1 << 63))
+    }
+    #[inline]
+    fn sign(self) -> f64 {
+        sign_of(self)
+    }
+}
+
+impl OrderedReal for f64 {
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
 }
 
 impl Real for f32 {
     #[inline]
     fn from_f64(x: f64) -> f32 {
         x as f32
-    }
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
     }
     /// Through the `f64` [`crate::trig::sin_cos`], rounded once to `f32`.
     #[inline]
@@ -123,11 +138,56 @@ impl Real for f32 {
     fn sqrt(self) -> f32 {
         crate::float::sqrt(f64::from(self)) as f32
     }
+    /// The sign bit cleared.
+    #[inline]
+    fn abs(self) -> f32 {
+        f32::from_bits(self.to_bits() & !(1 << 31))
+    }
+    #[inline]
+    fn sign(self) -> f32 {
+        sign_of(self)
+    }
+}
+
+impl OrderedReal for f32 {
+    #[inline]
+    fn to_f64(self) -> f64 {
+        f64::from(self)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::Real;
+    use crate::DoubleDouble;
+
+    #[test]
+    fn signs_are_one_minus_one_or_the_zero_itself() {
+        fn check<T: Real + PartialOrd>(from: impl Fn(f64) -> T) {
+            for (x, expected) in [(2.5, 1.0), (1e-30, 1.0), (-0.1, -1.0), (-7e20, -1.0)] {
+                assert!(from(x).sign() == from(expected), "sign({x})");
+            }
+            assert!(from(0.0).sign() == from(0.0));
+            assert!(
+                from(f64::NAN).sign() != from(f64::NAN).sign(),
+                "NaN stays NaN"
+            );
+        }
+        check(|x| x);
+        check(|x| x as f32);
+        check(DoubleDouble::from_f64);
+        assert_eq!((-0.0f64).sign().to_bits(), (-0.0f64).to_bits());
+    }
+
+    #[test]
+    fn absolute_values_clear_the_sign() {
+        for x in [-3.5, 3.5, -0.0, 0.0, f64::NEG_INFINITY, -1e-310] {
+            assert_eq!(Real::abs(x).to_bits(), x.abs().to_bits(), "|{x}|");
+            let single = x as f32;
+            assert_eq!(Real::abs(single).to_bits(), single.abs().to_bits(), "|{x}|");
+        }
+        assert_eq!(Real::abs(DoubleDouble::from_f64(-2.0)).hi(), 2.0);
+    }
 
     #[test]
     fn f32_square_roots_are_correctly_rounded() {

@@ -19,15 +19,15 @@ mod large;
 
 /// π/2 split into parts of 33 significant bits (the last with its tail), as in fdlibm's
 /// `__ieee754_rem_pio2`.
-const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
-const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
-const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
-const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
+pub(crate) const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
+pub(crate) const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+pub(crate) const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
+pub(crate) const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
 /// 1.5 · 2⁵²: adding and subtracting it rounds to the nearest integer.
-const ROUND: f64 = 6_755_399_441_055_744.0;
+pub(crate) const ROUND: f64 = 6_755_399_441_055_744.0;
 
 /// Taylor-like minimax coefficients of sin on [−π/4, π/4] (fdlibm `__kernel_sin`).
-const S: [f64; 6] = [
+pub(crate) const S: [f64; 6] = [
     -1.666_666_666_666_663_243_48e-01,
     8.333_333_333_322_489_461_24e-03,
     -1.984_126_982_985_794_931_34e-04,
@@ -37,7 +37,7 @@ const S: [f64; 6] = [
 ];
 
 /// Minimax coefficients of cos on [−π/4, π/4] (fdlibm `__kernel_cos`).
-const C: [f64; 6] = [
+pub(crate) const C: [f64; 6] = [
     4.166_666_666_666_660_190_37e-02,
     -1.388_888_888_887_410_957_49e-03,
     2.480_158_728_947_672_941_78e-05,
@@ -46,7 +46,7 @@ const C: [f64; 6] = [
     -1.135_964_755_778_819_482_65e-11,
 ];
 
-/// The fast path for one argument: `(sin x, cos x)` and whether the reduction applies
+/// The fast path for one argument (mirrored lane by lane by the `simd` lanes): `(sin x, cos x)` and whether the reduction applies
 /// (|x| < 2²⁰·π/2 and finite). Branch-free — every step is arithmetic or a bit operation —
 /// so that a loop over several arguments vectorises.
 #[inline(always)]

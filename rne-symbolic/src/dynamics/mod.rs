@@ -2,6 +2,8 @@
 //! forward dynamics, each built on demand into the model's expression graph (3.1).
 
 mod aba;
+mod aba_frames;
+mod articulated_inertia;
 pub mod base_parameters;
 mod christoffel;
 mod crba;

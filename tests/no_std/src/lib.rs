@@ -6,7 +6,7 @@
 #![no_std]
 #![deny(missing_docs)]
 
-use rne_codegen::{Dynamics, Real};
+use rne_codegen::{Dynamics, OrderedReal, Real};
 
 rne_codegen::derive_dynamics! {
     /// The planar elbow in `f64`.
@@ -65,6 +65,8 @@ pub fn pd_with_gravity_compensation<const NQ: usize, const NV: usize, D>(
 ) -> Option<[D::Scalar; NV]>
 where
     D: Dynamics<NQ, NV>,
+    // Clamping compares: a scalar, not lanes.
+    D::Scalar: OrderedReal,
 {
     let g = robot.gravity_torques(q)?;
     let mut tau = g;

@@ -1,0 +1,85 @@
+//! [`F32x8`]: eight `f32` lanes.
+
+use wide::f32x8;
+
+use super::ops::{lane_arithmetic, lane_sign};
+use super::F64x4;
+use crate::real::Real;
+
+/// Eight `f32` evaluated together (feature `simd`): a generic kernel called with `F32x8`
+/// computes eight states per call.
+///
+/// Every operation gives in each lane the bits the `f32` [`Real`] operation gives:
+/// `+ − × ÷` and `sqrt` are IEEE-754 in every lane (the scalar's `sqrt` through `f64` is
+/// correctly rounded too), and [`Real::sin_cos`] is, like the scalar's, the `f64`
+/// [`sin_cos`](crate::sin_cos) of each lane (two [`F64x4`]) rounded once to `f32`.
+#[derive(Clone, Copy, Default)]
+#[repr(transparent)]
+pub struct F32x8(f32x8);
+
+impl F32x8 {
+    /// The number of lanes.
+    pub const LANES: usize = 8;
+
+    /// The lanes `lanes`.
+    #[inline(always)]
+    pub const fn new(lanes: [f32; 8]) -> F32x8 {
+        F32x8(f32x8::new(lanes))
+    }
+
+    /// `x` in every lane.
+    #[inline(always)]
+    pub fn splat(x: f32) -> F32x8 {
+        F32x8(f32x8::splat(x))
+    }
+
+    /// The lanes as an array.
+    #[inline(always)]
+    pub fn to_array(self) -> [f32; 8] {
+        self.0.to_array()
+    }
+
+    /// Lanes `4 half .. 4 half + 4` widened to `f64`.
+    #[inline(always)]
+    fn widen(self, half: usize) -> F64x4 {
+        let a = self.to_array();
+        F64x4::new(core::array::from_fn(|i| f64::from(a[4 * half + i])))
+    }
+
+    /// Two [`F64x4`] rounded to eight `f32`.
+    #[inline(always)]
+    fn narrow(low: F64x4, high: F64x4) -> F32x8 {
+        let (low, high) = (low.to_array(), high.to_array());
+        F32x8::new(core::array::from_fn(|i| {
+            if i < 4 {
+                low[i] as f32
+            } else {
+                high[i - 4] as f32
+            }
+        }))
+    }
+}
+
+lane_arithmetic!(F32x8, f32x8, f32, 8);
+
+impl Real for F32x8 {
+    /// `x` rounded to `f32`, in every lane.
+    #[inline(always)]
+    fn from_f64(x: f64) -> F32x8 {
+        F32x8::splat(x as f32)
+    }
+    #[inline]
+    fn sin_cos(self) -> (F32x8, F32x8) {
+        let (sin_low, cos_low) = self.widen(0).sin_cos();
+        let (sin_high, cos_high) = self.widen(1).sin_cos();
+        (
+            F32x8::narrow(sin_low, sin_high),
+            F32x8::narrow(cos_low, cos_high),
+        )
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F32x8 {
+        F32x8(self.0.sqrt())
+    }
+    lane_sign!();
+}

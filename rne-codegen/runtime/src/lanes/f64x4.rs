@@ -1,0 +1,112 @@
+//! [`F64x4`]: four `f64` lanes.
+
+use bytemuck::cast;
+use wide::{f64x4, u64x4, CmpLt};
+
+use super::ops::{lane_arithmetic, lane_sign};
+use crate::real::Real;
+use crate::trig::{C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
+
+/// Four `f64` evaluated together (feature `simd`): a generic kernel called with `F64x4`
+/// computes four states per call.
+///
+/// Every operation gives in each lane the bits the `f64` operation gives: `+ − × ÷` and
+/// `sqrt` are IEEE-754 in every lane, negation flips the sign bit, and [`Real::sin_cos`] is
+/// the runtime's scalar [`sin_cos`](crate::sin_cos) lane by lane (the same reduction and
+/// polynomials in the same order, checked bit for bit in the tests), so lane `i` of a kernel
+/// equals the `f64` kernel at lane `i`'s state.
+#[derive(Clone, Copy, Default)]
+#[repr(transparent)]
+pub struct F64x4(f64x4);
+
+impl F64x4 {
+    /// The number of lanes.
+    pub const LANES: usize = 4;
+
+    /// The lanes `lanes`.
+    #[inline(always)]
+    pub const fn new(lanes: [f64; 4]) -> F64x4 {
+        F64x4(f64x4::new(lanes))
+    }
+
+    /// `x` in every lane.
+    #[inline(always)]
+    pub fn splat(x: f64) -> F64x4 {
+        F64x4(f64x4::splat(x))
+    }
+
+    /// The lanes as an array.
+    #[inline(always)]
+    pub fn to_array(self) -> [f64; 4] {
+        self.0.to_array()
+    }
+
+    /// `(sin, cos)` of every lane when each one's argument is within the fast path's range
+    /// (|x| < 2²⁰·π/2, finite): the scalar `trig::reduced`, lane by lane.
+    #[inline(always)]
+    fn reduced(self) -> Option<(F64x4, F64x4)> {
+        let x = self.0;
+        let splat = f64x4::splat;
+        let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
+        let k = shifted - splat(ROUND);
+        if !k.abs().cmp_lt(splat(1_048_576.0)).all() {
+            return None;
+        }
+        let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
+        let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
+        let z = r * r;
+        let poly = |c: &[f64; 6]| {
+            c[..5]
+                .iter()
+                .rev()
+                .fold(splat(c[5]), |acc, &ci| splat(ci) + z * acc)
+        };
+        let sin = r + r * z * poly(&S);
+        let cos = splat(1.0) - (splat(0.5) * z - z * (z * poly(&C)));
+        // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
+        // cosine (the scalar's bit operations).
+        let swap = (quadrant & u64x4::splat(1)).cmp_eq(u64x4::splat(1));
+        let (sin, cos) = (cast::<f64x4, u64x4>(sin), cast::<f64x4, u64x4>(cos));
+        let s = swap.blend(cos, sin) ^ ((quadrant & u64x4::splat(2)) << 62);
+        let c = swap.blend(sin, cos) ^ (((quadrant + u64x4::splat(1)) & u64x4::splat(2)) << 62);
+        Some((F64x4(cast(s)), F64x4(cast(c))))
+    }
+}
+
+lane_arithmetic!(F64x4, f64x4, f64, 4);
+
+impl Real for F64x4 {
+    #[inline(always)]
+    fn from_f64(x: f64) -> F64x4 {
+        F64x4::splat(x)
+    }
+    /// The scalar [`sin_cos`](crate::sin_cos) in every lane, bit for bit: four at once when
+    /// every argument is in its fast path's range, else lane by lane.
+    #[inline]
+    fn sin_cos(self) -> (F64x4, F64x4) {
+        self.reduced().unwrap_or_else(|| {
+            let pairs = self.to_array().map(crate::trig::sin_cos);
+            (
+                F64x4::new(pairs.map(|p| p.0)),
+                F64x4::new(pairs.map(|p| p.1)),
+            )
+        })
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F64x4 {
+        F64x4(self.0.sqrt())
+    }
+    lane_sign!();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::F64x4;
+
+    #[test]
+    fn four_joint_angles_take_the_vector_path_and_huge_ones_do_not() {
+        assert!(F64x4::new([0.3, -2.0, 7.5, 1e3]).reduced().is_some());
+        assert!(F64x4::new([0.3, -2.0, 7.5, 2e6]).reduced().is_none());
+        assert!(F64x4::new([0.3, f64::NAN, 7.5, 1.0]).reduced().is_none());
+    }
+}

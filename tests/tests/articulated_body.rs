@@ -1,0 +1,114 @@
+//! The articulated-body forward dynamics on random-axis serial chains: equal to the
+//! factorised (M + LᵀDL) forward dynamics, and linear in cost, within 3× the chain's
+//! inverse-dynamics multiplications (issue 15).
+//!
+//! The 24- and 48-joint counts take a minute in a debug build:
+//! `cargo test -p rne-tests --test articulated_body -- --ignored --nocapture`.
+
+mod common;
+
+use rand::Rng;
+use rne_codegen_core::{distribute_constants, kernel_program, Kernel, Program};
+use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::{OpCount, RobotModel, Symbol, SymbolicDynamics};
+
+/// A serial chain of `joints` revolute joints with random unit axes and random origins
+/// (offsets up to 0.2 m, roll-pitch-yaw up to π), seeded.
+fn random_axis_chain(joints: usize, seed: u64) -> RobotModel {
+    let mut rng = common::rng(seed);
+    let mut text = format!("name = \"random-axis-{joints}\"\n");
+    for k in 0..joints {
+        let parent = if k == 0 {
+            String::new()
+        } else {
+            format!("parent = \"l{}\"\n", k - 1)
+        };
+        let axis = loop {
+            let a: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            if norm > 0.2 {
+                break a.map(|x| x / norm);
+            }
+        };
+        let xyz: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.2..0.2));
+        let rpy: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+        let com: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.1..0.1));
+        let mass = rng.gen_range(0.5..3.0);
+        text.push_str(&format!(
+            "[[link]]\nname = \"l{k}\"\n{parent}joint = \"revolute\"\n\
+             origin = {{ xyz = {xyz:?}, rpy = {rpy:?} }}\naxis = {axis:?}\n\
+             mass = {mass}\ncom = {com:?}\n\
+             inertia = {{ xx = 0.01, yy = 0.012, zz = 0.009, xy = 0.001, xz = -0.0005 }}\n"
+        ));
+    }
+    parse_str(&text, "random-axis.toml", &LoadOptions::default()).expect("a valid chain")
+}
+
+/// The optimised program's count of some outputs of a kernel's graph (what `rne stats`
+/// reports for a kernel).
+fn program_count(d: &mut SymbolicDynamics, outputs: &[rne_symbolic::Id]) -> OpCount {
+    let outputs = distribute_constants(&mut d.model.graph, outputs);
+    Program::lower(&d.model.graph, &outputs).op_count()
+}
+
+/// Multiplications of inverse dynamics, forward dynamics by M + LᵀDL and by the ABA.
+fn counts(model: &RobotModel) -> (OpCount, OpCount, OpCount) {
+    let d = SymbolicDynamics::new(model);
+    let id = kernel_program(&d, Kernel::InverseDynamics).op_count();
+    let ldlt = kernel_program(&d, Kernel::ForwardDynamics).op_count();
+    let mut aba = d.clone();
+    let outputs = aba
+        .forward_dynamics_articulated()
+        .expect("a fixed-base chain");
+    (id, ldlt, program_count(&mut aba, &outputs))
+}
+
+#[test]
+fn articulated_body_accelerations_equal_the_factorised_ones_on_random_axis_chains() {
+    let model = random_axis_chain(7, 5);
+    let mut d = SymbolicDynamics::new(&model);
+    let factorised = d.forward_dynamics();
+    let articulated = d.forward_dynamics_articulated().expect("a chain");
+    let mut rng = common::rng(6);
+    for _ in 0..50 {
+        let (q, qd, tau) = common::state(&mut rng, 7);
+        let values = |ids: &[rne_symbolic::Id]| {
+            d.model.graph.eval::<f64>(ids, |s| match s {
+                Symbol::Position(k) => q[k as usize],
+                Symbol::Velocity(k) => qd[k as usize],
+                Symbol::Force(k) => tau[k as usize],
+                _ => f64::NAN,
+            })
+        };
+        let (a, b) = (values(&factorised), values(&articulated));
+        assert!(common::rel_err(&b, &a) < 1e-11, "ABA {b:?}, M + LᵀDL {a:?}");
+    }
+}
+
+#[test]
+fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_a_12_joint_chain() {
+    let (id, ldlt, aba) = counts(&random_axis_chain(12, 12));
+    println!("12 joints: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
+    assert!(
+        aba.mul <= 3 * id.mul,
+        "ABA {} against ID {} multiplications",
+        aba.mul,
+        id.mul
+    );
+    assert!(aba.mul < ldlt.mul);
+}
+
+#[test]
+#[ignore = "about a minute in a debug build; prints the counts of docs/performance.md"]
+fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_long_chains() {
+    for joints in [24, 48] {
+        let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64));
+        println!("{joints} joints: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
+        assert!(
+            aba.mul <= 3 * id.mul,
+            "{joints} joints: ABA {} against ID {}",
+            aba.mul,
+            id.mul
+        );
+    }
+}
