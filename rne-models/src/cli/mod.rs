@@ -17,7 +17,7 @@ use std::io::Write;
 
 use clap::{Parser, Subcommand};
 
-pub use model::ModelOptions;
+pub use model::{MimicOption, ModelOptions};
 pub use options::{parse_list, parse_locks, CliError};
 
 /// Exact, fast robot dynamics from a robot description.

@@ -14,6 +14,9 @@ pub enum CliError {
     /// A state vector has the wrong length.
     #[error(transparent)]
     Dimension(#[from] crate::kernels::DimensionError),
+    /// The robot read cannot be used as the model options ask (a mimic loop, nothing moves).
+    #[error("{0}")]
+    Model(String),
     /// A malformed argument.
     #[error("{0}")]
     Argument(String),

@@ -67,7 +67,7 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);
-    let n = dynamics.dof();
+    let n = dynamics.layout().nv();
     let want = |p: Part| args.what == p || (args.what == Part::All && p != Part::Reactions);
     let mut sections: Vec<(&str, Vec<(String, Id)>)> = Vec::new();
     let latex = args.format == Format::Latex;

@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use clap::Args;
-use rne_codegen::{generate, Scene};
+use rne_codegen::generate;
 
 use super::model::ModelOptions;
 use super::CliError;
@@ -26,7 +26,7 @@ pub struct StatsArgs {
 pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
-    let module = generate(&model, &Scene::default(), &source.display_name())?;
+    let module = generate(&model, &args.options.scene(), &source.display_name())?;
     if args.json {
         let kernels: Vec<serde_json::Value> = module
             .kernels

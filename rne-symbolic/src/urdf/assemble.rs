@@ -137,10 +137,10 @@ fn input_link(
         .filter(|_| kind != JointKind::Fixed)
         .and_then(|j| j.mimic.as_ref())
         .map(|m| Mimic {
-        leader: m.joint.clone(),
-        multiplier: g.constant(m.multiplier),
-        offset: g.constant(m.offset),
-    });
+            leader: m.joint.clone(),
+            multiplier: g.constant(m.multiplier),
+            offset: g.constant(m.offset),
+        });
     let friction = joint.and_then(|j| j.dynamics).map(|d| Friction {
         viscous: g.constant(d.damping),
         coulomb: g.constant(d.friction),
