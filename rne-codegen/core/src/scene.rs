@@ -56,6 +56,9 @@ pub struct Scene {
     /// Whether mimic followers follow their leaders (the default, URDF semantics) or are
     /// joints of their own.
     pub mimic: MimicMode,
+    /// Strict validation (`validation: strict`): every warning about the robot file is an
+    /// error (DESIGN.md §2).
+    pub strict: bool,
 }
 
 /// How mimic joints are generated (the macro's `mimic:` setting).
@@ -83,14 +86,15 @@ impl Default for Scene {
             crate_path: DEFAULT_CRATE_PATH.to_owned(),
             base: None,
             mimic: MimicMode::Constrained,
+            strict: false,
         }
     }
 }
 
 impl Scene {
     /// The model as this scene sees it: the base set, mimic followers constrained (unless
-    /// free), gravity overridden, joints locked. Gravity must be finite, and each joint locked
-    /// once at a finite position.
+    /// free), gravity overridden, joints locked. Something must move (a joint or a floating
+    /// base), gravity must be finite, and each joint locked once at a finite position.
     pub fn apply(&self, model: &RobotModel) -> Result<RobotModel, CodegenError> {
         let mut model = model.clone();
         if let Some(base) = self.base {
@@ -99,6 +103,7 @@ impl Scene {
         if self.mimic == MimicMode::Constrained {
             model.constrain_mimic_joints()?;
         }
+        model.check_moves()?;
         if let Some(gravity) = self.gravity {
             if !gravity.iter().all(|g| g.is_finite()) {
                 return Err(CodegenError::Gravity(gravity));

@@ -24,7 +24,7 @@ pub struct CheckedModule {
     pub output_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 10] = [
+const KEYS: [&str; 11] = [
     "robot",
     "outputs",
     "gravity",
@@ -34,6 +34,7 @@ const KEYS: [&str; 10] = [
     "mimic",
     "parameters",
     "scalar",
+    "validation",
     "crate",
 ];
 
@@ -180,6 +181,17 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
                 ),
             },
+            ("validation", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "strict" => scene.strict = true,
+                "warn" => scene.strict = false,
+                other => errors.push(
+                    mode.span(),
+                    format!(
+                        "unknown validation `{other}`; expected `warn` (warnings in the module's \
+                         docs) or `strict` (warnings are errors)"
+                    ),
+                ),
+            },
             ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
             (key, value) => errors.push(value_span(value), expected_shape(key)),
         }
@@ -224,6 +236,7 @@ fn expected_shape(key: &str) -> String {
         "base" => "expected `fixed` or `floating`".into(),
         "mimic" => "expected `constrained` or `free`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
+        "validation" => "expected `warn` or `strict`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }
