@@ -2,6 +2,7 @@
 
 mod bench;
 mod check;
+mod corpus;
 mod emit;
 mod eval;
 mod list;
@@ -49,6 +50,9 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
     Simulate(simulate::SimulateArgs),
+    /// Every URDF of a directory against Pinocchio's values (tools/corpus/pinocchio_values.py):
+    /// ID, M, g, bias and FD on a fixed and a floating base; the table of docs/robots.md.
+    Corpus(corpus::CorpusArgs),
     /// Numerical stability report: extreme masses, lengths, angles, speeds, ill-conditioning,
     /// chaotic runs, large robots and non-finite inputs.
     Stress(stress::StressArgs),
@@ -68,6 +72,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Eval(args) => eval::run(&args, out),
         Command::Verify(args) => verify::run(&args, out),
         Command::Simulate(args) => simulate::run(&args, out),
+        Command::Corpus(args) => corpus::run(&args, out),
         Command::Stress(args) => stress::run(&args, out),
         Command::Bench(args) => bench::run(&args, out),
     }
