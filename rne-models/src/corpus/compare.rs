@@ -140,7 +140,7 @@ pub fn check_robot(dir: &Path, values: &RobotValues) -> RobotReport {
         })
     });
     let case = |base: Base, pinocchio: &BaseValues| match (&read, &pinocchio.error) {
-        (_, Some(error)) => CaseReport::PinocchioRefuses(error.clone()),
+        (_, Some(error)) => CaseReport::PinocchioRefuses(relative(error)),
         (Err(error), None) => CaseReport::RneRefuses(relative(error)),
         (Ok(model), None) => case_report(model, base, pinocchio),
     };

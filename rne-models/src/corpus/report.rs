@@ -44,7 +44,12 @@ pub fn markdown_table(values: &PinocchioValues, reports: &[RobotReport], toleran
         let mut notes = Vec::new();
         let fixed = case_cells(&report.fixed, tolerance, "fixed", &mut notes);
         let floating = case_cells(&report.floating, tolerance, "floating", &mut notes);
-        notes.dedup();
+        let mut seen = Vec::new();
+        notes.retain(|n| {
+            let new = !seen.contains(n);
+            seen.push(n.clone());
+            new
+        });
         let _ = writeln!(
             out,
             "| `{}` | {dof} | {loads} | {warnings} | {} | {} | {} | {} | {} | {} |",
