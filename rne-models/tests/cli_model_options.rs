@@ -24,8 +24,8 @@ fn scratch(name: &str, text: &str) -> String {
 }
 
 /// The built-in Panda with its second finger a `<mimic>` of the first, as franka_description
-/// publishes it.
-fn panda_with_mimic_fingers() -> String {
+/// publishes it, in a file of its own for each test (tests run in parallel).
+fn panda_with_mimic_fingers(test: &str) -> String {
     let text =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/panda.urdf")).unwrap();
     let joint = r#"<joint name="panda_finger_joint2" type="prismatic">"#;
@@ -34,7 +34,7 @@ fn panda_with_mimic_fingers() -> String {
         joint,
         &format!(r#"{joint}<mimic joint="panda_finger_joint1"/>"#),
     );
-    scratch("panda_mimic.urdf", &text)
+    scratch(&format!("panda_mimic_{test}.urdf"), &text)
 }
 
 fn flat(value: &serde_json::Value) -> Vec<f64> {
@@ -54,7 +54,7 @@ fn assert_close(a: &[f64], b: &[f64], what: &str) {
 
 #[test]
 fn panda_fingers_are_8_variables_constrained_9_free_and_6_more_floating() {
-    let path = panda_with_mimic_fingers();
+    let path = panda_with_mimic_fingers("check");
     let constrained = json(&["check", &path, "--json"]);
     assert_eq!(constrained["dof"], 8);
     assert_eq!(
@@ -78,7 +78,7 @@ fn panda_fingers_are_8_variables_constrained_9_free_and_6_more_floating() {
 
 #[test]
 fn emit_and_stats_follow_the_mimic_option() {
-    let path = panda_with_mimic_fingers();
+    let path = panda_with_mimic_fingers("emit");
     let outputs = ["--outputs", "gravity_torques"];
     let constrained = rne(&[&["emit", &path][..], &outputs].concat()).unwrap();
     assert!(constrained.contains("pub const NDOF: usize = 8;"));
@@ -98,7 +98,7 @@ fn emit_and_stats_follow_the_mimic_option() {
 /// fixed-base: the expression graph stands in for them).
 #[test]
 fn eval_on_a_floating_base_takes_nq_positions_and_engines_agree() {
-    let path = panda_with_mimic_fingers();
+    let path = panda_with_mimic_fingers("eval");
     let q = "0.1,-0.2,0.3,0.1,0.2,-0.3,0.927361849549570,0.1,-0.4,0.2,-1.8,0.3,1.5,0.6,0.02";
     let v = "0.3,-0.1,0.2,0.5,-0.4,0.1,1,-0.5,0.3,0.2,-0.7,0.4,0.1,0.05";
     let tau = "1,2,3,0.5,-0.5,0.2,1,-2,3,-4,1,0.5,0.2,1";
