@@ -35,7 +35,10 @@
 //! turns joints into constants, `velocities: zero` makes a static scene (q̇ = 0: no Coriolis
 //! or centrifugal terms), `parameters: runtime` reads the model parameters from a `Params`
 //! struct at run time, `scalar: f32 | generic` changes the scalar type (generic functions
-//! take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits), and
+//! take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits), `base: floating` puts a
+//! free-flyer under the robot, `mimic: free` makes mimic followers joints of their own,
+//! `validation: strict` makes every warning about the robot file a compile error (by default
+//! the warnings are listed in the module's documentation), and
 //! `crate: ::my_reexport::rne_codegen` says where the generated code finds this crate when
 //! it is renamed or re-exported.
 //!

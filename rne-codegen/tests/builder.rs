@@ -156,3 +156,31 @@ fn builder_refuses_a_crate_path_that_is_not_a_path() {
         "{error}"
     );
 }
+
+/// A robot file with a warning: the Builder generates and reports it (printed as
+/// `cargo:warning=` by `write`); `strict(true)` refuses the file naming the same place.
+#[test]
+fn builder_reports_warnings_and_strict_validation_makes_them_errors() {
+    let path = std::env::temp_dir().join(format!("rne-builder-warn-{}.toml", std::process::id()));
+    std::fs::write(
+        &path,
+        "name = \"t\"\n[[link]]\nname = \"upper\"\njoint = \"revolute\"\n\
+         origin = { xyz = [0, 0, 0] }\naxis = [0, 0, 1]\nmass = 2\n\
+         inertia = { xx = 0.01, yy = 0.01, zz = 0.05 }\n",
+    )
+    .unwrap();
+    let (module, warnings) = Builder::new(&path).generate_with_warnings().unwrap();
+    assert_eq!(module.ndof, 1);
+    assert_eq!(warnings.len(), 1);
+    let warning = warnings[0].to_string();
+    assert!(
+        warning.contains("link 'upper'") && warning.contains("triangle inequality"),
+        "{warning}"
+    );
+    let error = Builder::new(&path).strict(true).generate().unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        format!("{warning} (an error under strict validation)")
+    );
+    std::fs::remove_file(&path).unwrap();
+}

@@ -26,8 +26,13 @@ struct State<'a> {
 impl Interpreted {
     /// Builds every kernel of `model` (numeric or symbolic parameters).
     pub fn new(model: &RobotModel) -> Interpreted {
+        Interpreted::with_kernels(model, &Kernel::DYNAMICS)
+    }
+
+    /// Builds only `kernels`; evaluating another one panics.
+    pub fn with_kernels(model: &RobotModel, kernels: &[Kernel]) -> Interpreted {
         let dynamics = SymbolicDynamics::new(model);
-        let programs = Kernel::DYNAMICS
+        let programs = kernels
             .iter()
             .map(|&k| (k, kernel_program(&dynamics, k)))
             .collect();
@@ -36,6 +41,7 @@ impl Interpreted {
 
     /// Evaluates one kernel in any scalar type (e.g. `DoubleDouble` for a ≈32-digit value of
     /// the same model): `q`, `qd`, `qdd`, `tau` as the kernel needs them (others may be empty).
+    /// Panics when the kernel was not built.
     pub fn eval_in<T: Real>(
         &self,
         kernel: Kernel,
@@ -48,7 +54,7 @@ impl Interpreted {
             .programs
             .iter()
             .find(|(k, _)| *k == kernel)
-            .expect("every kernel is built")
+            .expect("the kernel was built")
             .1;
         let model = &self.dynamics.model;
         program.eval(|s| match s {
@@ -61,7 +67,12 @@ impl Interpreted {
     }
 
     fn check(&self, argument: &'static str, values: &[f64]) -> Result<(), DimensionError> {
-        let expected = self.dynamics.dof();
+        let layout = self.dynamics.layout();
+        let expected = if argument == "q" {
+            layout.nq()
+        } else {
+            layout.nv()
+        };
         if values.len() == expected {
             Ok(())
         } else {
@@ -78,7 +89,7 @@ impl Interpreted {
     }
 
     fn matrix(&self, flat: Vec<f64>) -> Vec<Vec<f64>> {
-        flat.chunks(self.dynamics.dof().max(1))
+        flat.chunks(self.dynamics.layout().nv().max(1))
             .map(<[f64]>::to_vec)
             .collect()
     }

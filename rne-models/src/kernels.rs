@@ -3,13 +3,13 @@
 
 /// A state array had the wrong length.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("`{argument}` has {got} values; the robot has {expected} joints")]
+#[error("`{argument}` has {got} values; the robot needs {expected}")]
 pub struct DimensionError {
     /// The argument.
     pub argument: &'static str,
     /// Its length.
     pub got: usize,
-    /// The number of joints.
+    /// The length the robot needs (NQ for `q`, NV for the others).
     pub expected: usize,
 }
 

@@ -6,6 +6,7 @@ pub mod accuracy;
 pub mod bench;
 pub mod builtin;
 pub mod cli;
+pub mod corpus;
 pub mod generated;
 pub mod interpreted;
 pub mod kernels;

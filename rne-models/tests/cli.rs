@@ -119,7 +119,7 @@ fn bad_input_is_a_clear_error() {
     let cases: [(&[&str], &str); 12] = [
         (
             &["eval", "planar-elbow", "--q", "1,2,3"],
-            "`q` has 3 values; the robot has 2 joints",
+            "`q` has 3 values; the robot needs 2",
         ),
         (
             &["eval", "planar-elbow", "--q", "1,x"],
@@ -265,7 +265,8 @@ fn check_reports_the_robot_and_its_warnings() {
     for expected in [
         "model: published",
         "base: fixed",
-        "degrees of freedom: 2",
+        "degrees of freedom: 1",
+        "state: NQ = 1, NV = 1",
         "total mass: 2.1 kg",
         "links (4):",
         "  base_link <- world: fixed, mass 0",
@@ -280,8 +281,12 @@ fn check_reports_the_robot_and_its_warnings() {
     }
     let json: serde_json::Value =
         serde_json::from_str(&rne(&["check", &path, "--json"]).unwrap()).unwrap();
-    assert_eq!(json["joints"], serde_json::json!(["8", "FL-finger"]));
-    assert_eq!(json["dof"], 2);
+    assert_eq!(
+        json["joints"],
+        serde_json::json!(["8"]),
+        "the follower has no variable"
+    );
+    assert_eq!(json["dof"], 1);
     assert_eq!(json["mimic"], serde_json::json!(["FL-finger"]));
     assert_eq!(json["warnings"].as_array().unwrap().len(), 1);
 }

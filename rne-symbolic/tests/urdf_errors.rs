@@ -125,17 +125,19 @@ fn mimic_of_a_fixed_joint() {
     );
 }
 
+/// Not an error: a fixed joint has no coordinate, so its `<mimic>` is ignored, as urdfdom and
+/// Pinocchio ignore it (Talos's reduced models carry such elements on their grippers).
 #[test]
-fn mimic_on_a_fixed_joint() {
-    check(
-        broken(
-            r#"<child link="tool"/>"#,
-            r#"<child link="tool"/><mimic joint="elbow"/>"#,
-        ),
-        SpecErrorKind::Kinematics,
-        "robots/arm.urdf:29: joint 'tool_joint', field 'mimic.joint': a fixed joint cannot mimic \
-         another joint: it has no coordinate",
+fn mimic_on_a_fixed_joint_is_ignored() {
+    let text = VALID.replace(
+        r#"<child link="tool"/>"#,
+        r#"<child link="tool"/><mimic joint="elbow"/>"#,
     );
+    let model = spec::parse_robot(&text, FILE, RobotFormat::Urdf, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(model.links.iter().all(|l| l.mimic.is_none()));
+    assert_eq!(model.joint_names(), ["shoulder", "elbow"]);
+    assert!(model.warnings.is_empty());
 }
 
 #[test]
@@ -331,14 +333,22 @@ fn no_links() {
     );
 }
 
+/// A URDF in which no joint moves reads; with a fixed base nothing moves (an error once the base
+/// is known), with a floating base it is a 6-DOF rigid body.
 #[test]
-fn nothing_moves() {
+fn nothing_moves_on_a_fixed_base() {
     let text = VALID.replace(r#"type="revolute""#, r#"type="fixed""#);
-    check(
-        read(&text).unwrap_err(),
-        SpecErrorKind::Tree,
-        "robots/arm.urdf: the URDF has no revolute, continuous or prismatic joint: nothing moves",
+    let mut model = spec::parse_robot(&text, FILE, RobotFormat::Urdf, &LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(model.dof(), 0);
+    assert_eq!(
+        model.check_moves().unwrap_err().to_string(),
+        "`arm` has no revolute, continuous or prismatic joint and a fixed base: nothing moves \
+         (with a floating base it is a 6-DOF rigid body)"
     );
+    model.set_base(rne_symbolic::model::Base::Floating);
+    assert_eq!(model.check_moves(), Ok(()));
+    assert_eq!(model.state_layout().nv(), 6);
 }
 
 #[test]

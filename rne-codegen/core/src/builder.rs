@@ -4,10 +4,11 @@ use std::path::{Path, PathBuf};
 
 use crate::error::CodegenError;
 use crate::kernel::Kernel;
-use crate::load::generate_from_path;
-use crate::module::GeneratedModule;
+use crate::load::read_robot;
+use crate::module::{generate, GeneratedModule};
 use crate::scene::{ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene};
 use rne_symbolic::model::Base;
+use rne_symbolic::spec::SpecWarning;
 
 /// Environment variable naming a directory where [`Builder::write`] also puts a copy of the
 /// generated source, outside `target/`, for people to read.
@@ -117,6 +118,13 @@ impl Builder {
         self
     }
 
+    /// Strict validation (the macro's `validation: strict`): every warning about the robot
+    /// file is an error.
+    pub fn strict(mut self, strict: bool) -> Builder {
+        self.scene.strict = strict;
+        self
+    }
+
     /// The scene as configured.
     pub fn scene(&self) -> &Scene {
         &self.scene
@@ -124,17 +132,33 @@ impl Builder {
 
     /// Generates the module without writing it.
     pub fn generate(&self) -> Result<GeneratedModule, CodegenError> {
-        generate_from_path(&self.robot, &self.scene)
+        Ok(self.generate_with_warnings()?.0)
+    }
+
+    /// Generates the module without writing it, with the warnings of reading the robot file
+    /// (DESIGN.md §2; none under strict validation, where they are errors).
+    pub fn generate_with_warnings(
+        &self,
+    ) -> Result<(GeneratedModule, Vec<SpecWarning>), CodegenError> {
+        let origin = self.robot.display().to_string();
+        let model = read_robot(&self.robot, &origin, &self.scene)?;
+        let module = generate(&model, &self.scene, &origin)?;
+        Ok((module, model.warnings))
     }
 
     /// Generates the module into `$OUT_DIR/file_name`, prints `cargo:rerun-if-changed` for
-    /// the robot file, and copies the source to `$RNE_KEEP_GENERATED/file_name` when that
-    /// variable is set. Returns the path written.
+    /// the robot file and a `cargo:warning=` line for each warning about it, and copies the
+    /// source to `$RNE_KEEP_GENERATED/file_name` when that variable is set. Returns the path
+    /// written.
     pub fn write(&self, file_name: &str) -> Result<PathBuf, CodegenError> {
         println!("cargo:rerun-if-changed={}", self.robot.display());
         println!("cargo:rerun-if-env-changed={KEEP_GENERATED_ENV}");
         let out_dir = std::env::var_os("OUT_DIR").ok_or(CodegenError::MissingEnv("OUT_DIR"))?;
-        let source = self.generate()?.to_pretty_string();
+        let (module, warnings) = self.generate_with_warnings()?;
+        for warning in &warnings {
+            println!("{}", cargo_warning(warning));
+        }
+        let source = module.to_pretty_string();
         let path = PathBuf::from(out_dir).join(file_name);
         write_file(&path, &source)?;
         if let Some(dir) = std::env::var_os(KEEP_GENERATED_ENV) {
@@ -142,6 +166,13 @@ impl Builder {
         }
         Ok(path)
     }
+}
+
+/// The build-script directive that shows `warning` in cargo's output: one line, as cargo reads
+/// directives line by line.
+fn cargo_warning(warning: &SpecWarning) -> String {
+    let text = warning.to_string().replace(['\r', '\n'], " ");
+    format!("cargo:warning={text}")
 }
 
 fn write_file(path: &Path, contents: &str) -> Result<(), CodegenError> {
@@ -159,4 +190,30 @@ fn write_file(path: &Path, contents: &str) -> Result<(), CodegenError> {
         path: path.to_path_buf(),
         source,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+
+    #[test]
+    fn a_warning_becomes_one_cargo_warning_line_naming_file_link_and_field() {
+        let text = "<robot name=\"r\">\n<link name=\"a\"/>\n<joint name=\"j\" type=\"revolute\">\
+                    <parent link=\"a\"/><child link=\"b\"/><axis xyz=\"0 0 1\"/></joint>\n\
+                    <link name=\"b\"><inertial><mass value=\"1\"/>\
+                    <inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.05\"/>\
+                    </inertial></link>\n</robot>";
+        let model = parse_robot(text, "r.urdf", RobotFormat::Urdf, &LoadOptions::default())
+            .expect("a warning, not an error");
+        let [warning] = &model.warnings[..] else {
+            panic!("one warning: {:?}", model.warnings)
+        };
+        let line = cargo_warning(warning);
+        assert!(
+            line.starts_with("cargo:warning=r.urdf:4: link 'b', field 'inertial.inertia': "),
+            "{line}"
+        );
+        assert!(line.contains("triangle inequality") && !line.contains('\n'));
+    }
 }

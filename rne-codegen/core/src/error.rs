@@ -22,6 +22,9 @@ pub enum CodegenError {
     /// Mimic joints that cannot be constrained (a loop, a missing leader).
     #[error(transparent)]
     Mimic(#[from] rne_symbolic::model::MimicError),
+    /// A fixed-base robot without a moving joint.
+    #[error(transparent)]
+    NothingMoves(#[from] rne_symbolic::model::NothingMoves),
     /// A joint is locked twice.
     #[error("joint `{0}` is locked twice")]
     LockedTwice(String),

@@ -11,11 +11,12 @@ use crate::scene::{ParameterMode, Scene};
 
 /// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension), naming it
 /// `origin` in error messages, with parameters kept symbolic when `scene` wants them at run
-/// time.
+/// time and warnings made errors when it asks for strict validation. The model's
+/// [`warnings`](RobotModel::warnings) are what the Builder prints and the macro documents.
 pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel, CodegenError> {
     let options = LoadOptions {
         symbolic_parameters: scene.parameters == ParameterMode::Runtime,
-        ..LoadOptions::default()
+        strict: scene.strict,
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
     let text = std::fs::read_to_string(path).map_err(|source| CodegenError::Read {

@@ -64,6 +64,9 @@ pub struct Scene {
     pub friction: bool,
     /// How `forward_dynamics` solves for q̈ (the `forward_dynamics:` setting).
     pub forward_dynamics: ForwardDynamicsMethod,
+    /// Strict validation (`validation: strict`): every warning about the robot file is an
+    /// error (DESIGN.md §2).
+    pub strict: bool,
 }
 
 /// The algorithm of the `forward_dynamics` kernel.
@@ -107,14 +110,15 @@ impl Default for Scene {
             frames: None,
             friction: false,
             forward_dynamics: ForwardDynamicsMethod::Auto,
+            strict: false,
         }
     }
 }
 
 impl Scene {
     /// The model as this scene sees it: the base set, mimic followers constrained (unless
-    /// free), gravity overridden, joints locked. Gravity must be finite, and each joint locked
-    /// once at a finite position.
+    /// free), gravity overridden, joints locked. Something must move (a joint or a floating
+    /// base), gravity must be finite, and each joint locked once at a finite position.
     pub fn apply(&self, model: &RobotModel) -> Result<RobotModel, CodegenError> {
         let mut model = model.clone();
         if let Some(base) = self.base {
@@ -123,6 +127,7 @@ impl Scene {
         if self.mimic == MimicMode::Constrained {
             model.constrain_mimic_joints()?;
         }
+        model.check_moves()?;
         if let Some(gravity) = self.gravity {
             if !gravity.iter().all(|g| g.is_finite()) {
                 return Err(CodegenError::Gravity(gravity));

@@ -3,7 +3,9 @@
 //! ```text
 //! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],
 //!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, parameters: constant|runtime,
-//!                         scalar: f64|f32|generic, crate: ::path::to::rne_codegen }
+//!                         scalar: f64|f32|generic, base: fixed|floating,
+//!                         mimic: constrained|free, validation: warn|strict,
+//!                         crate: ::path::to::rne_codegen }
 //! ```
 //! Parsing only checks the shape of each setting; meaning is checked in `check.rs`.
 

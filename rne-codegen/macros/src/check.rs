@@ -28,7 +28,7 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 13] = [
+const KEYS: [&str; 14] = [
     "robot",
     "outputs",
     "gravity",
@@ -41,6 +41,7 @@ const KEYS: [&str; 13] = [
     "forward_dynamics",
     "parameters",
     "scalar",
+    "validation",
     "crate",
 ];
 
@@ -230,6 +231,17 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
                 ),
             },
+            ("validation", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "strict" => scene.strict = true,
+                "warn" => scene.strict = false,
+                other => errors.push(
+                    mode.span(),
+                    format!(
+                        "unknown validation `{other}`; expected `warn` (warnings in the module's \
+                         docs) or `strict` (warnings are errors)"
+                    ),
+                ),
+            },
             ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
             (key, value) => errors.push(value_span(value), expected_shape(key)),
         }
@@ -278,6 +290,7 @@ fn expected_shape(key: &str) -> String {
         "forward_dynamics" => "expected `auto`, `aba` or `ldlt`".into(),
         "frames" => "expected a list of link names: `frames: [tool0, \"camera-link\"]`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
+        "validation" => "expected `warn` or `strict`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }

@@ -1,10 +1,12 @@
-//! Expansion: read the robot, generate its module, and make cargo rebuild when the robot
-//! file changes (an `include_bytes!` of it).
+//! Expansion: read the robot, generate its module, list the warnings about the robot file in
+//! the module's documentation (DESIGN.md §2; under `validation: strict` they are errors), and
+//! make cargo rebuild when the robot file changes (an `include_bytes!` of it).
 
 use std::path::PathBuf;
 
 use quote::quote;
 use rne_codegen_core::{generate, read_robot, CodegenError, Kernel};
+use rne_symbolic::spec::SpecWarning;
 
 use crate::check::CheckedModule;
 
@@ -21,7 +23,10 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
         (None, fallback) => fallback.unwrap_or_else(|| PathBuf::from(&origin)),
     };
     let generated = read_robot(&path, &origin, &module.scene)
-        .and_then(|model| generate(&model, &module.scene, &origin))
+        .and_then(|model| {
+            let generated = generate(&model, &module.scene, &origin)?;
+            Ok((generated, model.warnings))
+        })
         .map_err(|e| match &e {
             CodegenError::Lock(rne_symbolic::model::LockError::UnknownJoint { name, .. }) => {
                 let span = module
@@ -61,16 +66,62 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
             }
             _ => syn::Error::new(module.robot.span(), e.to_string()),
         })?;
+    let (generated, warnings) = generated;
     let CheckedModule {
         attrs, vis, name, ..
     } = module;
+    let warnings = warning_docs(&warnings);
     let items = generated.items;
     let tracked = path.to_string_lossy().into_owned();
     Ok(quote! {
         #(#attrs)*
+        #(#warnings)*
         #vis mod #name {
             const _: &[u8] = include_bytes!(#tracked);
             #items
         }
     })
+}
+
+/// A `# Warnings` section of doc attributes, one item per warning; nothing without warnings.
+fn warning_docs(warnings: &[SpecWarning]) -> Vec<proc_macro2::TokenStream> {
+    if warnings.is_empty() {
+        return Vec::new();
+    }
+    let heading = [
+        String::new(),
+        "# Warnings".to_owned(),
+        String::new(),
+        "Read from the robot file and accepted (`validation: strict` makes them errors):"
+            .to_owned(),
+        String::new(),
+    ];
+    heading
+        .into_iter()
+        .chain(warnings.iter().map(|w| format!("- {w}")))
+        .map(|line| quote!(#[doc = #line]))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rne_symbolic::spec::{parse_str, LoadOptions};
+
+    #[test]
+    fn each_warning_is_an_item_of_a_warnings_section_of_the_module_docs() {
+        let text = "name = \"t\"\n[[link]]\nname = \"upper\"\njoint = \"revolute\"\n\
+                    origin = { xyz = [0, 0, 0] }\naxis = [0, 0, 1]\nmass = 2\n\
+                    inertia = { xx = 0.01, yy = 0.01, zz = 0.05 }\n";
+        let model = parse_str(text, "specs/t.toml", &LoadOptions::default()).expect("warns");
+        assert_eq!(model.warnings.len(), 1);
+        let docs: Vec<String> = warning_docs(&model.warnings)
+            .iter()
+            .map(ToString::to_string)
+            .collect();
+        assert!(docs.iter().any(|d| d.contains("# Warnings")), "{docs:?}");
+        let item = format!("- {}", model.warnings[0]);
+        assert!(docs.last().is_some_and(|d| d.contains(&item)), "{docs:?}");
+        assert!(warning_docs(&[]).is_empty(), "no section without warnings");
+    }
 }

@@ -1,5 +1,6 @@
-//! `rne check MODEL`: reads and validates a robot and reports what was read — joints, links,
-//! degrees of freedom, total mass, base, mimic joints, friction — and the warnings. Exit status
+//! `rne check MODEL`: reads and validates a robot and reports what was read — links as the
+//! file names them, joint variables and degrees of freedom under the model options, total
+//! mass, base, mimic joints, friction — and the warnings. Exit status
 //! 0 with warnings (non-zero with `--strict`), non-zero on an error.
 
 use std::io::Write;
@@ -38,8 +39,10 @@ struct LinkReport {
 /// Reads the robot and prints the report.
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = args.options.load(&source, false)?;
-    let links = link_reports(&model);
+    let read = args.options.read(&source, false)?;
+    let links = link_reports(&read);
+    let model = args.options.apply(&source, read)?;
+    let layout = model.state_layout();
     let total_mass: f64 = links.iter().map(|l| l.mass).sum();
     let base = match model.base {
         rne_symbolic::model::Base::Fixed => "fixed",
@@ -51,6 +54,8 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
             "model": source.display_name(),
             "name": model.name,
             "dof": model.dof(),
+            "nq": layout.nq(),
+            "nv": layout.nv(),
             "joints": model.joint_names(),
             "links": links.iter().map(|l| serde_json::json!({
                 "name": l.name, "parent": l.parent, "kind": l.kind, "joint": l.joint,
@@ -67,6 +72,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "model: {} ({})", model.name, source.display_name())?;
     writeln!(out, "base: {base}")?;
     writeln!(out, "degrees of freedom: {}", model.dof())?;
+    writeln!(out, "state: NQ = {}, NV = {}", layout.nq(), layout.nv())?;
     writeln!(out, "total mass: {total_mass} kg")?;
     writeln!(out, "links ({}):", links.len())?;
     for l in &links {

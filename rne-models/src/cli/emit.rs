@@ -40,6 +40,7 @@ pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
         args.lock.as_deref(),
     )?;
     scene.zero_velocities = args.at_rest;
+    scene.mimic = args.options.mimic_mode();
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
     let module = generate(&model, &scene, &source.display_name())?;

@@ -1,5 +1,7 @@
 //! `rne eval MODEL --q ..`: the dynamics at one state, from the generated kernels (built-in
-//! robots), the expression graph (other files) or the independent numeric reference.
+//! robots as their files describe them), the expression graph (other files, other bases or
+//! mimic modes) or the independent numeric reference. With a floating base `--q` has NQ
+//! entries and the others NV (DESIGN §4).
 
 use std::io::Write;
 
@@ -61,16 +63,16 @@ pub struct EvalArgs {
     /// Model options.
     #[command(flatten)]
     pub options: ModelOptions,
-    /// Joint positions, comma-separated.
+    /// Configuration q, comma-separated (NQ values: a floating base's 7 first).
     #[arg(long, allow_hyphen_values = true)]
     pub q: String,
-    /// Joint velocities (default zero).
+    /// Velocity v (NV values; default zero).
     #[arg(long, allow_hyphen_values = true)]
     pub qd: Option<String>,
-    /// Joint accelerations (default zero).
+    /// Acceleration (NV values; default zero).
     #[arg(long, allow_hyphen_values = true)]
     pub qdd: Option<String>,
-    /// Joint torques for forward dynamics (default zero).
+    /// Generalised forces for forward dynamics (NV values; default zero).
     #[arg(long, allow_hyphen_values = true)]
     pub tau: Option<String>,
     /// What to compute, comma-separated.
@@ -88,14 +90,11 @@ pub struct EvalArgs {
 pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
-    let n = rne_codegen::Scene::default()
-        .apply(&model)?
-        .state_layout()
-        .nv();
+    let nv = model.state_layout().nv();
     let q = parse_list("q", &args.q)?;
     let state = |name: &str, text: &Option<String>| match text {
         Some(text) => parse_list(name, text),
-        None => Ok(vec![0.0; n]),
+        None => Ok(vec![0.0; nv]),
     };
     let (qd, qdd, tau) = (
         state("qd", &args.qd)?,
@@ -120,8 +119,8 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Engine::Symbolic => {
             let interpreted;
             let kernels: &dyn Kernels = match &source {
-                RobotSource::Builtin(robot) => robot.kernels,
-                RobotSource::File(_) => {
+                RobotSource::Builtin(robot) if args.options.keeps_the_file_model() => robot.kernels,
+                _ => {
                     interpreted = Interpreted::new(&model);
                     &interpreted
                 }
@@ -243,8 +242,8 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
             continue;
         }
         results.extend(match args.engine {
-            Engine::Symbolic => eval_kernels::symbolic(&model, group, &at)?,
-            Engine::Numeric => eval_kernels::numeric(&model, group, &at)?,
+            Engine::Symbolic => eval_kernels::symbolic(&model, &args.options.scene(), group, &at)?,
+            Engine::Numeric => eval_kernels::numeric(&model, &args.options.scene(), group, &at)?,
         });
     }
     if let Some(e) = &singular {

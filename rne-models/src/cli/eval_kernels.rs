@@ -65,14 +65,15 @@ fn matrix_rows(m: &DMatrix<f64>) -> Value {
         .collect::<Vec<_>>())
 }
 
-/// The entries of `group` at `state` from the generator's programs for `model` as the default
-/// scene sees it (mimic followers constrained).
+/// The entries of `group` at `state` from the generator's programs for `model` as `scene` sees
+/// it (the model options' scene: the base and mimic mode already applied are kept).
 pub fn symbolic(
     model: &RobotModel,
+    scene: &Scene,
     group: Group,
     state: &State,
 ) -> Result<Vec<(&'static str, Value)>, CliError> {
-    let model = Scene::default().apply(model)?;
+    let model = scene.apply(model)?;
     let dynamics = SymbolicDynamics::new(&model);
     let setup = KernelSetup::new(&dynamics, group.kernels());
     let layout = dynamics.layout();
@@ -159,10 +160,11 @@ pub fn symbolic(
 /// parameters chosen as the generator chooses them).
 pub fn numeric(
     model: &RobotModel,
+    scene: &Scene,
     group: Group,
     state: &State,
 ) -> Result<Vec<(&'static str, Value)>, CliError> {
-    let model = Scene::default().apply(model)?;
+    let model = scene.apply(model)?;
     let mut reference = Reference::try_new(&model.to_numeric())?;
     let (q, qd, qdd, tau) = (state.q, state.qd, state.qdd, state.tau);
     Ok(match group {

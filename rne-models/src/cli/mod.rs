@@ -2,6 +2,7 @@
 
 mod bench;
 mod check;
+mod corpus;
 mod emit;
 mod eval;
 mod eval_kernels;
@@ -19,7 +20,7 @@ use std::io::Write;
 
 use clap::{Parser, Subcommand};
 
-pub use model::ModelOptions;
+pub use model::{MimicOption, ModelOptions};
 pub use options::{parse_list, parse_locks, CliError};
 
 /// Exact, fast robot dynamics from a robot description.
@@ -54,6 +55,9 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
     Simulate(simulate::SimulateArgs),
+    /// Every URDF of a directory against Pinocchio's values (tools/corpus/pinocchio_values.py):
+    /// ID, M, g, bias and FD on a fixed and a floating base; the table of docs/robots.md.
+    Corpus(corpus::CorpusArgs),
     /// Numerical stability report: extreme masses, lengths, angles, speeds, ill-conditioning,
     /// chaotic runs, large robots and non-finite inputs.
     Stress(stress::StressArgs),
@@ -74,6 +78,7 @@ pub fn run(cli: Cli, out: &mut dyn Write) -> Result<(), CliError> {
         Command::Identify(args) => identify::run(&args, out),
         Command::Verify(args) => verify::run(&args, out),
         Command::Simulate(args) => simulate::run(&args, out),
+        Command::Corpus(args) => corpus::run(&args, out),
         Command::Stress(args) => stress::run(&args, out),
         Command::Bench(args) => bench::run(&args, out),
     }

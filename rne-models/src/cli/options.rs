@@ -17,6 +17,9 @@ pub enum CliError {
     /// The numeric reference refused the model or the state.
     #[error(transparent)]
     Reference(#[from] rne_reference::ReferenceError),
+    /// The robot read cannot be used as the model options ask (a mimic loop, nothing moves).
+    #[error("{0}")]
+    Model(String),
     /// A malformed argument.
     #[error("{0}")]
     Argument(String),

@@ -79,7 +79,7 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);
-    let n = dynamics.dof();
+    let n = dynamics.layout().nv();
     if args.what == Part::BaseParameters {
         return base_parameters(&source, &model, args.format, out);
     }

@@ -28,7 +28,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args.options.load(&source, false)?;
     let scene = Scene {
         outputs: Kernel::ALL.to_vec(),
-        ..Scene::default()
+        ..args.options.scene()
     };
     let module = generate(&model, &scene, &source.display_name())?;
     if args.json {

@@ -55,7 +55,31 @@ impl StateLayout {
     }
 }
 
+/// A model with a fixed base and no joint variable: nothing in it can move. On a floating base
+/// the same model is a 6-DOF rigid body (a quadrotor, a box).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "`{robot}` has no revolute, continuous or prismatic joint and a fixed base: nothing moves \
+     (with a floating base it is a 6-DOF rigid body)"
+)]
+pub struct NothingMoves {
+    /// The robot's name.
+    pub robot: String,
+}
+
 impl RobotModel {
+    /// Whether something moves: a floating base or at least one joint variable. Checked once
+    /// the base is decided (a robot file, then the scene or the command line, may set it).
+    pub fn check_moves(&self) -> Result<(), NothingMoves> {
+        if self.is_floating() || self.dof() > 0 {
+            Ok(())
+        } else {
+            Err(NothingMoves {
+                robot: self.name.clone(),
+            })
+        }
+    }
+
     /// Whether the root is a free-flyer.
     pub fn is_floating(&self) -> bool {
         self.links
@@ -200,6 +224,23 @@ inertia = {{ xx = 0.01, yy = 0.01, zz = 0.01 }}
         model.set_base(Base::Fixed);
         assert_eq!(model.links[0].kind, JointKind::Fixed);
         assert_eq!(model.state_layout().nv(), 1);
+    }
+
+    #[test]
+    fn a_body_without_joints_moves_only_on_a_floating_base() {
+        let text = "name = \"brick\"\n[[link]]\nname = \"body\"\njoint = \"fixed\"\n\
+                    origin = { xyz = [0, 0, 0] }\nmass = 1.0\n\
+                    inertia = { xx = 0.1, yy = 0.2, zz = 0.3 }\n";
+        let mut model = parse_str(text, "brick.toml", &LoadOptions::default()).expect("valid");
+        assert_eq!(
+            model.check_moves().unwrap_err().to_string(),
+            "`brick` has no revolute, continuous or prismatic joint and a fixed base: nothing \
+             moves (with a floating base it is a 6-DOF rigid body)"
+        );
+        model.set_base(Base::Floating);
+        assert_eq!(model.check_moves(), Ok(()));
+        let layout = model.state_layout();
+        assert_eq!((layout.nq(), layout.nv()), (7, 6));
     }
 
     #[test]

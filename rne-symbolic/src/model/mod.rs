@@ -28,7 +28,7 @@ mod merge;
 mod mimic;
 mod numeric;
 
-pub use base::{StateLayout, FREE_FLYER_NQ, FREE_FLYER_NV};
+pub use base::{NothingMoves, StateLayout, FREE_FLYER_NQ, FREE_FLYER_NV};
 pub use frames::Frame;
 pub use geometry::{
     as_coordinate_axis, axis_angle_rotation, elementary_rotation, rotation_about, rpy_rotation,

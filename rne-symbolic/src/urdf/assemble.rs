@@ -131,11 +131,16 @@ fn input_link(
     })?;
     let child = &robot.links[link.link];
     let (mass, com, inertia) = in_link_frame(g, child);
-    let mimic = joint.and_then(|j| j.mimic.as_ref()).map(|m| Mimic {
-        leader: m.joint.clone(),
-        multiplier: g.constant(m.multiplier),
-        offset: g.constant(m.offset),
-    });
+    // A fixed joint has no coordinate: its `<mimic>` says nothing about the motion and is
+    // ignored, as Pinocchio and urdfdom do (Talos's grippers carry such elements).
+    let mimic = joint
+        .filter(|_| kind != JointKind::Fixed)
+        .and_then(|j| j.mimic.as_ref())
+        .map(|m| Mimic {
+            leader: m.joint.clone(),
+            multiplier: g.constant(m.multiplier),
+            offset: g.constant(m.offset),
+        });
     let friction = joint.and_then(|j| j.dynamics).map(|d| Friction {
         viscous: g.constant(d.damping),
         coulomb: g.constant(d.friction),

@@ -14,7 +14,8 @@
 //! - the joint's `<origin xyz rpy>`: `t_i = xyz`, `E_i = Rz(yaw) Ry(pitch) Rx(roll)`;
 //! - the joint's `<axis xyz>` (default `1 0 0`): `u_i = axis / ‖axis‖`, in the child's frame;
 //! - `<mimic joint multiplier offset>` (defaults 1 and 0): [`Link::mimic`](crate::Link::mimic),
-//!   the follower keeping its own variable until the model's mimic joints are constrained;
+//!   the follower keeping its own variable until the model's mimic joints are constrained; on a
+//!   fixed joint, which has no coordinate, it is ignored (as urdfdom and Pinocchio do);
 //! - `<dynamics damping friction>` (defaults 0): [`Link::friction`](crate::Link::friction) with
 //!   viscous = damping, Coulomb = friction, offset 0; no `<dynamics>`, no friction;
 //! - the child's `<inertial>`: mass `<mass>`, COM `<origin xyz>`, and `<inertia>` turned into
@@ -53,10 +54,13 @@
 //! - `Urdf` for malformed XML, a missing element or attribute the dynamics reads, a malformed
 //!   number, an unknown joint type, and floating, planar and spherical joints;
 //! - `Tree` for a joint naming a missing link, a link with two parents (a closed loop), cycles,
-//!   several roots, duplicate names, a URDF in which nothing moves, and mimic joints whose
-//!   leader is missing or that follow each other in a loop;
-//! - `Kinematics` for a zero axis and a mimic on a fixed joint; `Physics` for non-finite or
-//!   physically impossible numbers.
+//!   several roots, duplicate names, and mimic joints whose leader is missing or that follow
+//!   each other in a loop;
+//! - `Kinematics` for a zero axis; `Physics` for non-finite or physically impossible numbers.
+//!
+//! A URDF in which no joint moves reads as a model without joint variables: on a floating
+//! base it is a 6-DOF rigid body, on a fixed base nothing moves, which
+//! [`RobotModel::check_moves`](crate::RobotModel::check_moves) reports once the base is known.
 //!
 //! # Not read
 //!

@@ -4,7 +4,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::elements::{JointType, UrdfRobot};
+use super::elements::UrdfRobot;
 use crate::spec::{SpecError, SpecErrorKind};
 
 /// The links of a URDF in model order.
@@ -52,15 +52,6 @@ pub(crate) fn build(robot: &UrdfRobot) -> Result<Tree, SpecError> {
     let (links, reached) = edges.depth_first(root);
     if let Some(unreached) = reached.iter().position(|&r| !r) {
         return Err(edges.cycle_error(robot, unreached));
-    }
-    if robot
-        .joints
-        .iter()
-        .all(|j| j.joint_type == JointType::Fixed)
-    {
-        return Err(tree_error(
-            "the URDF has no revolute, continuous or prismatic joint: nothing moves",
-        ));
     }
     Ok(Tree { links })
 }

@@ -1,0 +1,8 @@
+rne_codegen::derive_dynamics! {
+    mod arm {
+        robot: "specs/triangle.toml",
+        validation: strict,
+    }
+}
+
+fn main() {}
