@@ -14,9 +14,11 @@
 //! their moving parent.
 
 use nalgebra::DMatrix;
+use rne_codegen_core::{build_kernel, Kernel, Scene};
 use rne_models::builtin::RobotSource;
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{Symbol, SymbolicDynamics};
 use serde_json::Value;
 
 /// Largest entry-wise difference allowed, relative to the largest entry of Pinocchio's
@@ -90,9 +92,9 @@ fn worst_relative_error(
         .fold(0.0, f64::max)
 }
 
-/// Every regressor rne computes for `robot` agrees with Pinocchio's to `TOLERANCE`. The
-/// engines are listed here; the generated `regressor` kernel joins the list when the built-in
-/// modules carry it.
+/// Every regressor rne computes for `robot` agrees with Pinocchio's to `TOLERANCE`: the
+/// reference's and the generator's `regressor` kernel (its program, which the emitted function
+/// computes bit for bit: `control_kernels.rs`).
 fn check_against_pinocchio(robot: &str, expected: &str) {
     let (joints, states) = fixture(expected);
     let model = RobotSource::resolve(robot)
@@ -100,9 +102,23 @@ fn check_against_pinocchio(robot: &str, expected: &str) {
         .expect("built-in robot");
     assert_eq!(model.joint_names(), joints, "{robot}: joint order");
     let mut reference = Reference::new(&model.to_numeric());
-    let engines: [(&str, Engine); 1] = [("reference", &mut |q, v, a| {
-        reference.regressor(q, v, a).expect("state sizes")
-    })];
+    let dynamics = SymbolicDynamics::new(&Scene::default().apply(&model).expect("scene"));
+    let program = build_kernel(&dynamics, Kernel::Regressor).program;
+    let np = dynamics.parameter_names().len();
+    let engines: [(&str, Engine); 2] = [
+        ("reference", &mut |q, v, a| {
+            reference.regressor(q, v, a).expect("state sizes")
+        }),
+        ("generated", &mut |q, v, a| {
+            let y = program.eval(|s| match s {
+                Symbol::Position(k) => q[k as usize],
+                Symbol::Velocity(k) => v[k as usize],
+                Symbol::Acceleration(k) => a[k as usize],
+                other => panic!("the regressor reads {other:?}"),
+            });
+            DMatrix::from_row_slice(v.len(), np, &y)
+        }),
+    ];
     for (engine, regressor) in engines {
         let error = worst_relative_error(&states, regressor);
         assert!(
