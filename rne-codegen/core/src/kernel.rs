@@ -21,13 +21,15 @@ pub struct KernelSetup {
 }
 
 impl KernelSetup {
-    /// Every frame, and the base parameters when `kernels` has an identification kernel.
+    /// Every frame, and the base parameters when `kernels` has a kernel built from them
+    /// (`base_regressor`, `base_parameters`; a module with any identification kernel has
+    /// `base_parameters`, [`crate::Scene::kernels`]).
     pub fn new(dynamics: &SymbolicDynamics, kernels: &[Kernel]) -> KernelSetup {
         KernelSetup {
             frames: (0..dynamics.frames().len()).collect(),
             base_parameters: kernels
                 .iter()
-                .any(|k| k.is_identification())
+                .any(|k| matches!(k, Kernel::BaseRegressor | Kernel::BaseParameters))
                 .then(|| dynamics.base_parameters()),
             articulated: false,
         }

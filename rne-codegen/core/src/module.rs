@@ -159,9 +159,14 @@ pub fn generate(
         frames: scene.frame_indices(dynamics.frames())?,
         ..KernelSetup::new(&dynamics, &outputs)
     };
-    let forward_dynamics_choice = (outputs.contains(&Kernel::ForwardDynamics)
-        && articulated_applies(&dynamics))
-    .then(|| choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics));
+    let (forward_dynamics_choice, mut chosen_forward_dynamics) =
+        if outputs.contains(&Kernel::ForwardDynamics) && articulated_applies(&dynamics) {
+            let (choice, built) =
+                choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics);
+            (Some(choice), Some(built))
+        } else {
+            (None, None)
+        };
     setup.articulated = forward_dynamics_choice
         .as_ref()
         .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
@@ -179,7 +184,11 @@ pub fn generate(
     };
     for &kernel in &outputs {
         let kernel_start = Instant::now();
-        let built = build_kernel_with(&dynamics, kernel, &setup);
+        let prebuilt = match kernel {
+            Kernel::ForwardDynamics => chosen_forward_dynamics.take(),
+            _ => None,
+        };
+        let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
         let program = built.program;
         let ctx = EmitContext {
             symbols: built.dynamics.model.graph.symbols(),
@@ -263,28 +272,35 @@ pub fn generate(
 }
 
 /// Builds `forward_dynamics` both ways and keeps the one `method` asks for, or with `Auto` the
-/// one of lower cost ([`OpCount::cost`]).
+/// one of lower cost ([`OpCount::cost`]): the choice, and the kernel built the chosen way (so
+/// that the module does not build it a third time).
 fn choose_forward_dynamics(
     dynamics: &SymbolicDynamics,
     setup: &KernelSetup,
     method: ForwardDynamicsMethod,
-) -> ForwardDynamicsChoice {
-    let ops = |articulated: bool| {
+) -> (ForwardDynamicsChoice, BuiltKernel) {
+    let build = |articulated: bool| {
         let setup = KernelSetup {
             articulated,
             ..setup.clone()
         };
         build_kernel_with(dynamics, Kernel::ForwardDynamics, &setup)
-            .program
-            .op_count()
     };
-    let (aba, ldlt) = (ops(true), ops(false));
+    let (aba_kernel, ldlt_kernel) = (build(true), build(false));
+    let (aba, ldlt) = (
+        aba_kernel.program.op_count(),
+        ldlt_kernel.program.op_count(),
+    );
     let chosen = match method {
         ForwardDynamicsMethod::Auto if aba.cost() < ldlt.cost() => ForwardDynamicsMethod::Aba,
         ForwardDynamicsMethod::Auto => ForwardDynamicsMethod::Ldlt,
         forced => forced,
     };
-    ForwardDynamicsChoice { aba, ldlt, chosen }
+    let built = match chosen {
+        ForwardDynamicsMethod::Aba => aba_kernel,
+        _ => ldlt_kernel,
+    };
+    (ForwardDynamicsChoice { aba, ldlt, chosen }, built)
 }
 
 /// `pub const SIZE: usize = n; pub const NAMES: [&str; SIZE] = [..];`.
