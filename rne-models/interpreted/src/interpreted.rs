@@ -1,216 +1,189 @@
-//! The dynamics evaluated from the optimised straight-line programs, without compiling them:
-//! what `rne eval --engine symbolic` uses for robots that are not built in, and the baseline
-//! that shows what compiling the code buys. The programs are exactly what `derive_dynamics!`
-//! emits, evaluated operation by operation in the same order, so in `f64` the results are
-//! bit-for-bit those of the generated functions.
+//! A robot's kernels as the optimised straight-line programs `derive_dynamics!` emits,
+//! evaluated at run time without compiling them: what `rne eval` uses for robots that are not
+//! built in, what user scenarios simulate for them, the baseline that shows what compiling the
+//! code buys, and the subject of the stress measurements.
+//!
+//! - [`Interpreted::eval`] evaluates a kernel's program operation by operation in the emitted
+//!   order with the same `Real::sin_cos`, in any scalar. The generated Rust performs the same
+//!   operations in the same order (no re-association, no fused multiply–add), so in `f64` the
+//!   result is bit for bit what the compiled kernel returns.
+//! - [`Interpreted::exact`] evaluates the kernel's expression graph *before* code
+//!   optimisation (the model as the spec defines it, with its `f64` constants) in
+//!   [`DoubleDouble`]: the value of the `f64` model to about 10⁻³¹ relative.
+//! - [`Interpreted::dependencies`] lists the inputs each output of a program reads.
+//!
+//! Each kernel is built in a graph of its own ([`build_kernel`]), exactly as code generation
+//! builds it, so the values do not depend on which other kernels are built.
 
-use rne_codegen::{kernel_program, Kernel, Program, Real};
+use std::sync::OnceLock;
+
+use rne_codegen::{build_kernel, BuiltKernel, DoubleDouble, Kernel, Program, Real};
+use rne_codegen_core::Operand;
+use rne_symbolic::expr::Evaluator;
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
-use crate::kernels::{DimensionError, Kernels};
+use crate::state::StateRef;
 
-/// Every kernel of a robot as a straight-line program.
-pub struct Interpreted {
-    dynamics: SymbolicDynamics,
-    programs: Vec<(Kernel, Program)>,
+/// One kernel: its graph, its emitted program and, once asked for, the evaluation order of
+/// its outputs in the graph.
+struct Prepared {
+    kernel: Kernel,
+    built: BuiltKernel,
+    exact: OnceLock<Evaluator>,
 }
 
-/// The values of the joint symbols at one state.
-struct State<'a> {
-    q: &'a [f64],
-    qd: &'a [f64],
-    qdd: &'a [f64],
-    tau: &'a [f64],
+/// Chosen kernels of one robot as straight-line programs (see the module documentation).
+pub struct Interpreted {
+    dynamics: SymbolicDynamics,
+    prepared: Vec<Prepared>,
 }
 
 impl Interpreted {
-    /// Builds every kernel of `model` (numeric or symbolic parameters).
+    /// Builds every kernel of `model` (numeric or symbolic parameters; symbolic ones take
+    /// their spec values when evaluated).
     pub fn new(model: &RobotModel) -> Interpreted {
+        Interpreted::with_kernels(model, &Kernel::ALL)
+    }
+
+    /// Builds `kernels` of `model` only.
+    pub fn with_kernels(model: &RobotModel, kernels: &[Kernel]) -> Interpreted {
         let dynamics = SymbolicDynamics::new(model);
-        let programs = Kernel::ALL
+        let prepared = kernels
             .iter()
-            .map(|&k| (k, kernel_program(&dynamics, k)))
-            .collect();
-        Interpreted { dynamics, programs }
-    }
-
-    /// Evaluates one kernel in any scalar type (e.g. `DoubleDouble` for a ≈32-digit value of
-    /// the same model): `q`, `qd`, `qdd`, `tau` as the kernel needs them (others may be empty).
-    pub fn eval_in<T: Real>(
-        &self,
-        kernel: Kernel,
-        q: &[T],
-        qd: &[T],
-        qdd: &[T],
-        tau: &[T],
-    ) -> Vec<T> {
-        let program = &self
-            .programs
-            .iter()
-            .find(|(k, _)| *k == kernel)
-            .expect("every kernel is built")
-            .1;
-        let model = &self.dynamics.model;
-        program.eval(|s| match s {
-            Symbol::Position(k) => q[k as usize],
-            Symbol::Velocity(k) => qd[k as usize],
-            Symbol::Acceleration(k) => qdd[k as usize],
-            Symbol::Force(k) => tau[k as usize],
-            Symbol::Parameter(_) => T::from_f64(model.parameter_value(s).unwrap_or(f64::NAN)),
-        })
-    }
-
-    fn check(&self, argument: &'static str, values: &[f64]) -> Result<(), DimensionError> {
-        let expected = self.dynamics.dof();
-        if values.len() == expected {
-            Ok(())
-        } else {
-            Err(DimensionError {
-                argument,
-                got: values.len(),
-                expected,
+            .map(|&kernel| Prepared {
+                kernel,
+                built: build_kernel(&dynamics, kernel),
+                exact: OnceLock::new(),
             })
-        }
+            .collect();
+        Interpreted { dynamics, prepared }
     }
 
-    fn eval(&self, kernel: Kernel, state: &State) -> Vec<f64> {
-        self.eval_in(kernel, state.q, state.qd, state.qdd, state.tau)
-    }
-
-    fn matrix(&self, flat: Vec<f64>) -> Vec<Vec<f64>> {
-        flat.chunks(self.dynamics.dof().max(1))
-            .map(<[f64]>::to_vec)
-            .collect()
-    }
-}
-
-impl Kernels for Interpreted {
-    fn dof(&self) -> usize {
+    /// Number of joint variables.
+    pub fn dof(&self) -> usize {
         self.dynamics.dof()
     }
 
-    fn joints(&self) -> Vec<String> {
+    /// Joint variable names, in state order.
+    pub fn joints(&self) -> Vec<String> {
         self.dynamics.model.joint_names()
     }
 
-    fn inverse_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        qdd: &[f64],
-    ) -> Result<Vec<f64>, DimensionError> {
-        self.check("q", q)?;
-        self.check("qd", qd)?;
-        self.check("qdd", qdd)?;
-        Ok(self.eval(
-            Kernel::InverseDynamics,
-            &State {
-                q,
-                qd,
-                qdd,
-                tau: &[],
-            },
-        ))
+    /// The kernels built, in the order asked for.
+    pub fn kernels(&self) -> Vec<Kernel> {
+        self.prepared.iter().map(|p| p.kernel).collect()
     }
 
-    fn mass_matrix(&self, q: &[f64]) -> Result<Vec<Vec<f64>>, DimensionError> {
-        self.check("q", q)?;
-        Ok(self.matrix(self.eval(
-            Kernel::MassMatrix,
-            &State {
-                q,
-                qd: &[],
-                qdd: &[],
-                tau: &[],
-            },
-        )))
+    /// Whether `kernel` was built.
+    pub fn has(&self, kernel: Kernel) -> bool {
+        self.prepared(kernel).is_some()
     }
 
-    fn coriolis_matrix(&self, q: &[f64], qd: &[f64]) -> Result<Vec<Vec<f64>>, DimensionError> {
-        self.check("q", q)?;
-        self.check("qd", qd)?;
-        Ok(self.matrix(self.eval(
-            Kernel::CoriolisMatrix,
-            &State {
-                q,
-                qd,
-                qdd: &[],
-                tau: &[],
-            },
-        )))
+    fn prepared(&self, kernel: Kernel) -> Option<&Prepared> {
+        self.prepared.iter().find(|p| p.kernel == kernel)
     }
 
-    fn gravity_torques(&self, q: &[f64]) -> Result<Vec<f64>, DimensionError> {
-        self.check("q", q)?;
-        Ok(self.eval(
-            Kernel::GravityTorques,
-            &State {
-                q,
-                qd: &[],
-                qdd: &[],
-                tau: &[],
-            },
-        ))
+    /// The program of `kernel`, if built.
+    pub fn program(&self, kernel: Kernel) -> Option<&Program> {
+        self.prepared(kernel).map(|p| &p.built.program)
     }
 
-    fn bias_torques(&self, q: &[f64], qd: &[f64]) -> Result<Vec<f64>, DimensionError> {
-        self.check("q", q)?;
-        self.check("qd", qd)?;
-        Ok(self.eval(
-            Kernel::BiasTorques,
-            &State {
-                q,
-                qd,
-                qdd: &[],
-                tau: &[],
-            },
-        ))
+    /// The value of `symbol` at `state` in the scalar `T`: NaN for an entry the state does not
+    /// hold; parameters kept symbolic take their spec values.
+    fn input<T: Real>(&self, state: StateRef<'_, T>, symbol: Symbol) -> T {
+        let pick = |values: &[T], k: u16| values.get(usize::from(k)).copied();
+        match symbol {
+            Symbol::Position(k) => pick(state.q, k),
+            Symbol::Velocity(k) => pick(state.qd, k),
+            Symbol::Acceleration(k) => pick(state.qdd, k),
+            Symbol::Force(k) => pick(state.tau, k),
+            Symbol::Parameter(_) => self
+                .dynamics
+                .model
+                .parameter_value(symbol)
+                .map(T::from_f64),
+        }
+        .unwrap_or_else(|| T::from_f64(f64::NAN))
     }
 
-    fn forward_dynamics(
-        &self,
-        q: &[f64],
-        qd: &[f64],
-        tau: &[f64],
-    ) -> Result<Vec<f64>, DimensionError> {
-        self.check("q", q)?;
-        self.check("qd", qd)?;
-        self.check("tau", tau)?;
-        Ok(self.eval(
-            Kernel::ForwardDynamics,
-            &State {
-                q,
-                qd,
-                qdd: &[],
-                tau,
-            },
-        ))
+    /// `kernel` at `state` (matrices row-major) in the scalar `T`: its program evaluated in
+    /// emitted order, e.g. in `f64` what the generated kernel returns, or in [`DoubleDouble`]
+    /// the same program to ≈ 32 digits. `None` if the kernel was not built.
+    pub fn eval<T: Real>(&self, kernel: Kernel, state: StateRef<'_, T>) -> Option<Vec<T>> {
+        let program = self.program(kernel)?;
+        Some(program.eval(|s| self.input(state, s)))
     }
 
-    fn kinetic_energy(&self, q: &[f64], qd: &[f64]) -> Result<f64, DimensionError> {
-        self.check("q", q)?;
-        self.check("qd", qd)?;
-        Ok(self.eval(
-            Kernel::KineticEnergy,
-            &State {
-                q,
-                qd,
-                qdd: &[],
-                tau: &[],
-            },
-        )[0])
+    /// The double-double value of `kernel` at the `f64` `state`: the model's graph, before
+    /// optimisation. `None` if the kernel was not built.
+    pub fn exact(&self, kernel: Kernel, state: StateRef<'_>) -> Option<Vec<DoubleDouble>> {
+        let prepared = self.prepared(kernel)?;
+        let graph = &prepared.built.dynamics.model.graph;
+        let evaluator = prepared
+            .exact
+            .get_or_init(|| Evaluator::new(graph, &prepared.built.roots));
+        Some(evaluator.eval(graph, |s| {
+            DoubleDouble::from_f64(self.input(state, s))
+        }))
     }
 
-    fn potential_energy(&self, q: &[f64]) -> Result<f64, DimensionError> {
-        self.check("q", q)?;
-        Ok(self.eval(
-            Kernel::PotentialEnergy,
-            &State {
-                q,
-                qd: &[],
-                qdd: &[],
-                tau: &[],
-            },
-        )[0])
+    /// For each output of `kernel` (matrices row-major), the inputs its emitted program reads:
+    /// the outputs a non-finite input must reach. `None` if the kernel was not built.
+    pub fn dependencies(&self, kernel: Kernel) -> Option<Vec<Vec<Symbol>>> {
+        let program = self.program(kernel)?;
+        // Every input the program reads, numbered; each instruction's inputs, direct or
+        // through earlier instructions, as a bit set over that numbering.
+        let mut inputs: Vec<Symbol> = program
+            .instrs
+            .iter()
+            .flat_map(|i| i.operands())
+            .chain(program.outputs.iter().copied())
+            .filter_map(|o| match o {
+                Operand::Input(s) => Some(s),
+                _ => None,
+            })
+            .collect();
+        inputs.sort_unstable();
+        inputs.dedup();
+        let words = inputs.len().div_ceil(64).max(1);
+        let mut reads: Vec<u64> = Vec::with_capacity(program.instrs.len() * words);
+        let mark = |set: &mut [u64], operand: Operand, reads: &[u64]| match operand {
+            Operand::Temp(t) => {
+                let from = t as usize * words;
+                for (w, r) in set.iter_mut().zip(&reads[from..from + words]) {
+                    *w |= r;
+                }
+            }
+            Operand::Input(s) => {
+                if let Ok(k) = inputs.binary_search(&s) {
+                    set[k / 64] |= 1 << (k % 64);
+                }
+            }
+            Operand::Const(_) => {}
+        };
+        let mut set = vec![0u64; words];
+        for instr in &program.instrs {
+            set.iter_mut().for_each(|w| *w = 0);
+            for operand in instr.operands() {
+                mark(&mut set, operand, &reads);
+            }
+            reads.extend_from_slice(&set);
+        }
+        Some(
+            program
+                .outputs
+                .iter()
+                .map(|&o| {
+                    set.iter_mut().for_each(|w| *w = 0);
+                    mark(&mut set, o, &reads);
+                    inputs
+                        .iter()
+                        .enumerate()
+                        .filter(|(k, _)| set[k / 64] & (1 << (k % 64)) != 0)
+                        .map(|(_, &s)| s)
+                        .collect()
+                })
+                .collect(),
+        )
     }
 }

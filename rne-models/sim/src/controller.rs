@@ -5,7 +5,7 @@
 //! combine through the provided methods, saturation last:
 //!
 //! ```
-//! use rne_models::sim::{Controller, Pd};
+//! use rne_sim::{Controller, Pd};
 //! // The thesis's planar-elbow controller, section 6.2.5: (6.34), (6.35), ±39.4 N·m (6.26).
 //! let pd = Pd::new([22.0, 45.0], [15.0, 8.0], [1.0, 0.5]).saturated([39.4, 39.4]);
 //! let u = pd.torque(0.0, &[0.0, 0.0], &[0.0, 0.0]);
@@ -14,11 +14,13 @@
 //!
 //! Gravity compensation comes in the two forms of section 6.2.5: simulate a model without
 //! gravity (the thesis's way: pass a gravity-free [`Dynamics`], e.g.
-//! [`WithoutGravity`](super::WithoutGravity)), or add g(q) to the input before saturation with
+//! [`WithoutGravity`](crate::WithoutGravity)), or add g(q) to the input before saturation with
 //! [`Controller::with_gravity_compensation`]. The two agree exactly while the motors are not
 //! saturated; under saturation only the second is physical (the motors must supply g too).
 
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
+
+use super::model::vector;
 
 /// An input law u = u(t, q, q̇) for M(q) q̈ + C(q, q̇) q̇ + g(q) = u.
 ///
@@ -47,7 +49,7 @@ pub trait Controller<const N: usize> {
 
     /// Adds the gravity torques g(q) of `model` to this input (before any saturation applied
     /// afterwards): u = u_self + g(q).
-    fn with_gravity_compensation<D: Dynamics<N>>(self, model: D) -> GravityCompensation<D, Self>
+    fn with_gravity_compensation<D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> GravityCompensation<D, Self>
     where
         Self: Sized,
     {
@@ -182,10 +184,10 @@ pub struct GravityCompensation<D, C> {
     pub inner: C,
 }
 
-impl<const N: usize, D: Dynamics<N>, C: Controller<N>> Controller<N> for GravityCompensation<D, C> {
+impl<const N: usize, D: Dynamics<N, N, Scalar = f64>, C: Controller<N>> Controller<N> for GravityCompensation<D, C> {
     fn torque(&self, t: f64, q: &[f64; N], qd: &[f64; N]) -> [f64; N] {
         let u = self.inner.torque(t, q, qd);
-        let g = self.model.gravity_torques(q);
+        let g = vector(self.model.gravity_torques(q));
         std::array::from_fn(|i| u[i] + g[i])
     }
 
@@ -217,7 +219,7 @@ impl<const N: usize, C: Controller<N>> Controller<N> for Saturation<N, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::test_models::PlanarElbow;
+    use crate::test_models::PlanarElbow;
 
     /// The PD law has the sign of (6.62): it pushes towards the set-point and against motion.
     #[test]

@@ -2,7 +2,7 @@
 //! the thesis used at relative tolerance 1e-10 (section 6.1).
 
 use super::controller::Controller;
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::integrator::{derivative, validate_times, Integrator, Stats};
 use super::state::State;
@@ -133,7 +133,7 @@ impl Dopri5 {
         span: f64,
     ) -> f64
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
     {
         let scaled = |v: &State<N>| -> f64 {
@@ -223,7 +223,7 @@ impl<const N: usize> Integrator<N> for Dopri5 {
         mut sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {
@@ -376,8 +376,8 @@ impl<const N: usize> Integrator<N> for Dopri5 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::controller::ZeroInput;
-    use crate::sim::test_models::{observed_order, Oscillator, Pendulum};
+    use crate::controller::ZeroInput;
+    use crate::test_models::{observed_order, Oscillator, Pendulum};
 
     /// Property: with error control switched off (a fixed step far inside the tolerance), the
     /// Dormand–Prince tableau converges at order 5 at a time it steps to, and so does its dense

@@ -2,7 +2,9 @@
 //! canonical coordinates (q, p), p = M(q) q̇, for energy-respecting long runs.
 
 use super::controller::Controller;
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
+
+use super::model::{matrix, vector};
 use super::error::SimError;
 use super::integrator::{substeps, validate_times, Integrator, Stats};
 use super::linalg::{cholesky, cholesky_solve, mat_t_vec, mat_vec};
@@ -157,13 +159,13 @@ impl<const S: usize> Tableau<S> {
 }
 
 /// The velocities q̇ = M(q)⁻¹ p.
-fn velocities<const N: usize, D: Dynamics<N> + ?Sized>(
+fn velocities<const N: usize, D: Dynamics<N, N, Scalar = f64> + ?Sized>(
     model: &D,
     t: f64,
     y: &Canonical<N>,
 ) -> Result<[f64; N], SimError> {
     let l =
-        cholesky(&model.mass_matrix(&y.q)).ok_or(SimError::MassMatrixNotPositiveDefinite { t })?;
+        cholesky(&matrix(model.mass_matrix(&y.q))).ok_or(SimError::MassMatrixNotPositiveDefinite { t })?;
     Ok(cholesky_solve(&l, &y.p))
 }
 
@@ -175,12 +177,12 @@ fn vector_field<const N: usize, D, C>(
     y: &Canonical<N>,
 ) -> Result<Canonical<N>, SimError>
 where
-    D: Dynamics<N> + ?Sized,
+    D: Dynamics<N, N, Scalar = f64> + ?Sized,
     C: Controller<N> + ?Sized,
 {
     let qd = velocities(model, t, y)?;
-    let ctq = mat_t_vec(&model.coriolis_matrix(&y.q, &qd), &qd);
-    let g = model.gravity_torques(&y.q);
+    let ctq = mat_t_vec(&matrix(model.coriolis_matrix(&y.q, &qd)), &qd);
+    let g = vector(model.gravity_torques(&y.q));
     let u = controller.torque(t, &y.q, &qd);
     Ok(Canonical {
         q: qd,
@@ -204,7 +206,7 @@ impl GaussLegendre {
         stats: &mut Stats,
     ) -> Result<Canonical<N>, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
     {
         let scale = Canonical::<N> {
@@ -267,14 +269,14 @@ impl GaussLegendre {
         mut sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {
         let mut stats = Stats::default();
         let mut y = Canonical {
             q: x0.q,
-            p: mat_vec(&model.mass_matrix(&x0.q), &x0.qd),
+            p: mat_vec(&matrix(model.mass_matrix(&x0.q)), &x0.qd),
         };
         // Low-order bits lost when adding increments to y (compensated summation).
         let mut carry = Canonical::<N>::ZERO;
@@ -336,7 +338,7 @@ impl<const N: usize> Integrator<N> for GaussLegendre {
         sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {
@@ -361,8 +363,8 @@ impl<const N: usize> Integrator<N> for GaussLegendre {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::controller::{Damping, ZeroInput};
-    use crate::sim::test_models::{observed_order, Pendulum};
+    use crate::controller::{Damping, ZeroInput};
+    use crate::test_models::{observed_order, Pendulum};
 
     /// The tableaux are the Gauss methods: the symplecticity condition bᵢaᵢⱼ + bⱼaⱼᵢ = bᵢbⱼ
     /// holds, and the row sums are the nodes.

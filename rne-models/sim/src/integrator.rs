@@ -2,9 +2,10 @@
 
 use super::controller::Controller;
 use super::dopri5::Dopri5;
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::gauss_legendre::GaussLegendre;
+use super::model::vector;
 use super::rk4::Rk4;
 use super::state::State;
 
@@ -27,7 +28,9 @@ pub struct Stats {
 ///
 /// `integrate` starts from `x0` at `times[0]`, advances to the last time and calls `sink` once
 /// per entry of `times`, in order, with the state at exactly that time (`x0` itself first).
-/// The step loop does not allocate.
+/// The step loop does not allocate. The model must have the kernels of
+/// [`SIMULATED`](crate::SIMULATED) ([`simulate`](crate::simulate) checks it); a missing one
+/// gives NaN, which stops the run with an error.
 pub trait Integrator<const N: usize> {
     /// Integrates from `times[0]` to the last time, reporting the state at every output time.
     ///
@@ -41,7 +44,7 @@ pub trait Integrator<const N: usize> {
         sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>);
 }
@@ -67,7 +70,7 @@ impl<const N: usize> Integrator<N> for Method {
         sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {
@@ -98,13 +101,13 @@ pub(crate) fn derivative<const N: usize, D, C>(
     x: &State<N>,
 ) -> State<N>
 where
-    D: Dynamics<N> + ?Sized,
+    D: Dynamics<N, N, Scalar = f64> + ?Sized,
     C: Controller<N> + ?Sized,
 {
     let u = controller.torque(t, &x.q, &x.qd);
     State {
         q: x.qd,
-        qd: model.forward_dynamics(&x.q, &x.qd, &u),
+        qd: vector(model.forward_dynamics(&x.q, &x.qd, &u)),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The classical fixed-step Runge–Kutta method of order 4.
 
 use super::controller::Controller;
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::integrator::{derivative, substeps, validate_times, Integrator, Stats};
 use super::state::State;
@@ -30,7 +30,7 @@ impl Rk4 {
 /// One classical Runge–Kutta step of length `h` from `(t, x)`.
 fn step<const N: usize, D, C>(model: &D, controller: &C, t: f64, x: &State<N>, h: f64) -> State<N>
 where
-    D: Dynamics<N> + ?Sized,
+    D: Dynamics<N, N, Scalar = f64> + ?Sized,
     C: Controller<N> + ?Sized,
 {
     let k1 = derivative(model, controller, t, x);
@@ -50,7 +50,7 @@ impl<const N: usize> Integrator<N> for Rk4 {
         mut sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {
@@ -85,8 +85,8 @@ impl<const N: usize> Integrator<N> for Rk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::controller::ZeroInput;
-    use crate::sim::test_models::{observed_order, Pendulum};
+    use crate::controller::ZeroInput;
+    use crate::test_models::{observed_order, Pendulum};
 
     /// Property: the global error at a fixed time falls like h⁴. The pendulum released from
     /// 1 rad reaches −1 rad with zero velocity at exactly half its period, computed in closed

@@ -1,7 +1,9 @@
 //! Running a model under an input with an integrator and recording the result.
 
 use super::controller::Controller;
-use super::dynamics::Dynamics;
+use rne_runtime::Dynamics;
+
+use super::model::{check_kernels, scalar};
 use super::error::SimError;
 use super::integrator::{validate_times, Integrator};
 use super::record::Record;
@@ -13,8 +15,10 @@ use super::state::State;
 /// has a PD term.
 ///
 /// For the thesis's gravity-compensated PD runs (6.33), pass a gravity-free model (a generated
-/// module with zero gravity or [`WithoutGravity`](super::WithoutGravity)); the recorded energies
-/// are then those of that model. The record is allocated once, before integrating.
+/// module with zero gravity or [`WithoutGravity`](crate::WithoutGravity)); the recorded energies
+/// are then those of that model. The record is allocated once, before integrating. A model
+/// without one of the kernels of [`SIMULATED`](crate::SIMULATED) is refused
+/// ([`SimError::MissingKernel`]).
 pub fn simulate<const N: usize, D, C, I>(
     model: &D,
     controller: &C,
@@ -23,16 +27,17 @@ pub fn simulate<const N: usize, D, C, I>(
     times: &[f64],
 ) -> Result<Record<N>, SimError>
 where
-    D: Dynamics<N> + ?Sized,
+    D: Dynamics<N, N, Scalar = f64> + ?Sized,
     C: Controller<N> + ?Sized,
     I: Integrator<N>,
 {
     validate_times(times)?;
+    check_kernels(model)?;
     let has_springs = controller.spring_energy(&x0.q).is_some();
     let mut record = Record::with_capacity(times.len(), has_springs);
     let stats = integrator.integrate(model, controller, x0, times, |t, x| {
-        let kinetic = model.kinetic_energy(&x.q, &x.qd);
-        let potential = model.potential_energy(&x.q);
+        let kinetic = scalar(model.kinetic_energy(&x.q, &x.qd));
+        let potential = scalar(model.potential_energy(&x.q));
         record.t.push(t);
         record.q.push(x.q);
         record.qd.push(x.qd);
@@ -78,9 +83,9 @@ pub fn output_times(t0: f64, t_end: f64, dt: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::controller::{Pd, ZeroInput};
-    use crate::sim::dopri5::Dopri5;
-    use crate::sim::test_models::Pendulum;
+    use crate::controller::{Pd, ZeroInput};
+    use crate::dopri5::Dopri5;
+    use crate::test_models::Pendulum;
 
     /// Property: the small-angle pendulum swings with the closed-form period 2π √(l/g) (to the
     /// amplitude correction θ₀²/16) and its energy −m g l cos θ₀ is conserved; the record holds

@@ -1,7 +1,8 @@
 //! Hand-written models for the simulation tests: a simple pendulum, a linear oscillator and the
 //! thesis's planar elbow from its closed forms (4.45)–(4.47) with the Christoffel C.
 
-use super::dynamics::Dynamics;
+use rne_runtime::{Dynamics, Kernel};
+
 use super::linalg::{dot, mat_vec, solve_spd};
 
 /// A point mass `m` on a massless rod of length `l`; q = 0 hangs straight down.
@@ -31,23 +32,23 @@ impl Pendulum {
     }
 }
 
-impl Dynamics<1> for Pendulum {
-    fn forward_dynamics(&self, q: &[f64; 1], _qd: &[f64; 1], tau: &[f64; 1]) -> [f64; 1] {
+impl Pendulum {
+    pub fn forward_dynamics(&self, q: &[f64; 1], _qd: &[f64; 1], tau: &[f64; 1]) -> [f64; 1] {
         [(tau[0] - self.gravity_torques(q)[0]) / (self.m * self.l * self.l)]
     }
-    fn mass_matrix(&self, _q: &[f64; 1]) -> [[f64; 1]; 1] {
+    pub fn mass_matrix(&self, _q: &[f64; 1]) -> [[f64; 1]; 1] {
         [[self.m * self.l * self.l]]
     }
-    fn coriolis_matrix(&self, _q: &[f64; 1], _qd: &[f64; 1]) -> [[f64; 1]; 1] {
+    pub fn coriolis_matrix(&self, _q: &[f64; 1], _qd: &[f64; 1]) -> [[f64; 1]; 1] {
         [[0.0]]
     }
-    fn gravity_torques(&self, q: &[f64; 1]) -> [f64; 1] {
+    pub fn gravity_torques(&self, q: &[f64; 1]) -> [f64; 1] {
         [self.m * self.g * self.l * q[0].sin()]
     }
-    fn kinetic_energy(&self, _q: &[f64; 1], qd: &[f64; 1]) -> f64 {
+    pub fn kinetic_energy(&self, _q: &[f64; 1], qd: &[f64; 1]) -> f64 {
         0.5 * self.m * self.l * self.l * qd[0] * qd[0]
     }
-    fn potential_energy(&self, q: &[f64; 1]) -> f64 {
+    pub fn potential_energy(&self, q: &[f64; 1]) -> f64 {
         -self.m * self.g * self.l * q[0].cos()
     }
 }
@@ -58,23 +59,23 @@ pub struct Oscillator {
     pub omega: f64,
 }
 
-impl Dynamics<1> for Oscillator {
-    fn forward_dynamics(&self, q: &[f64; 1], _qd: &[f64; 1], tau: &[f64; 1]) -> [f64; 1] {
+impl Oscillator {
+    pub fn forward_dynamics(&self, q: &[f64; 1], _qd: &[f64; 1], tau: &[f64; 1]) -> [f64; 1] {
         [tau[0] - self.omega * self.omega * q[0]]
     }
-    fn mass_matrix(&self, _q: &[f64; 1]) -> [[f64; 1]; 1] {
+    pub fn mass_matrix(&self, _q: &[f64; 1]) -> [[f64; 1]; 1] {
         [[1.0]]
     }
-    fn coriolis_matrix(&self, _q: &[f64; 1], _qd: &[f64; 1]) -> [[f64; 1]; 1] {
+    pub fn coriolis_matrix(&self, _q: &[f64; 1], _qd: &[f64; 1]) -> [[f64; 1]; 1] {
         [[0.0]]
     }
-    fn gravity_torques(&self, q: &[f64; 1]) -> [f64; 1] {
+    pub fn gravity_torques(&self, q: &[f64; 1]) -> [f64; 1] {
         [self.omega * self.omega * q[0]]
     }
-    fn kinetic_energy(&self, _q: &[f64; 1], qd: &[f64; 1]) -> f64 {
+    pub fn kinetic_energy(&self, _q: &[f64; 1], qd: &[f64; 1]) -> f64 {
         0.5 * qd[0] * qd[0]
     }
-    fn potential_energy(&self, q: &[f64; 1]) -> f64 {
+    pub fn potential_energy(&self, q: &[f64; 1]) -> f64 {
         0.5 * self.omega * self.omega * q[0] * q[0]
     }
 }
@@ -114,14 +115,14 @@ impl PlanarElbow {
     }
 }
 
-impl Dynamics<2> for PlanarElbow {
-    fn forward_dynamics(&self, q: &[f64; 2], qd: &[f64; 2], tau: &[f64; 2]) -> [f64; 2] {
+impl PlanarElbow {
+    pub fn forward_dynamics(&self, q: &[f64; 2], qd: &[f64; 2], tau: &[f64; 2]) -> [f64; 2] {
         let cqd = mat_vec(&self.coriolis_matrix(q, qd), qd);
         let g = self.gravity_torques(q);
         let rhs = [tau[0] - cqd[0] - g[0], tau[1] - cqd[1] - g[1]];
         solve_spd(&self.mass_matrix(q), &rhs).expect("M is positive definite")
     }
-    fn mass_matrix(&self, q: &[f64; 2]) -> [[f64; 2]; 2] {
+    pub fn mass_matrix(&self, q: &[f64; 2]) -> [[f64; 2]; 2] {
         let c2 = q[1].cos();
         let (m1, m2, l1, lc1, lc2) = (self.m1, self.m2, self.l1, self.lc1, self.lc2);
         let m11 = 2.0 * m2 * l1 * lc2 * c2
@@ -134,11 +135,11 @@ impl Dynamics<2> for PlanarElbow {
         let m22 = self.i2 + m2 * lc2 * lc2;
         [[m11, m12], [m12, m22]]
     }
-    fn coriolis_matrix(&self, q: &[f64; 2], qd: &[f64; 2]) -> [[f64; 2]; 2] {
+    pub fn coriolis_matrix(&self, q: &[f64; 2], qd: &[f64; 2]) -> [[f64; 2]; 2] {
         let h = self.m2 * self.l1 * self.lc2 * q[1].sin();
         [[-h * qd[1], -h * (qd[0] + qd[1])], [h * qd[0], 0.0]]
     }
-    fn gravity_torques(&self, q: &[f64; 2]) -> [f64; 2] {
+    pub fn gravity_torques(&self, q: &[f64; 2]) -> [f64; 2] {
         let (c1, c12) = (q[0].cos(), (q[0] + q[1]).cos());
         let g = self.g;
         [
@@ -146,14 +147,62 @@ impl Dynamics<2> for PlanarElbow {
             self.m2 * self.lc2 * g * c12,
         ]
     }
-    fn kinetic_energy(&self, q: &[f64; 2], qd: &[f64; 2]) -> f64 {
+    pub fn kinetic_energy(&self, q: &[f64; 2], qd: &[f64; 2]) -> f64 {
         0.5 * dot(qd, &mat_vec(&self.mass_matrix(q), qd))
     }
-    fn potential_energy(&self, q: &[f64; 2]) -> f64 {
+    pub fn potential_energy(&self, q: &[f64; 2]) -> f64 {
         (self.m1 * self.lc1 + self.m2 * self.l1) * self.g * q[0].sin()
             + self.m2 * self.lc2 * self.g * (q[0] + q[1]).sin()
     }
 }
+
+/// Implements the runtime's `Dynamics<N, N>` for a hand-written model by wrapping its
+/// closed-form methods (which keep their array results for the tests) in `Some`.
+macro_rules! closed_form_dynamics {
+    ($model:ident, $n:literal, $name:literal, $joints:expr) => {
+        impl Dynamics<$n, $n> for $model {
+            type Scalar = f64;
+            const NAME: &'static str = $name;
+            const JOINTS: &'static [&'static str] = &$joints;
+            const FLOATING_BASE: bool = false;
+            const KERNELS: &'static [Kernel] = &[
+                Kernel::ForwardDynamics,
+                Kernel::MassMatrix,
+                Kernel::CoriolisMatrix,
+                Kernel::GravityTorques,
+                Kernel::KineticEnergy,
+                Kernel::PotentialEnergy,
+            ];
+            fn forward_dynamics(
+                &self,
+                q: &[f64; $n],
+                qd: &[f64; $n],
+                tau: &[f64; $n],
+            ) -> Option<[f64; $n]> {
+                Some($model::forward_dynamics(self, q, qd, tau))
+            }
+            fn mass_matrix(&self, q: &[f64; $n]) -> Option<[[f64; $n]; $n]> {
+                Some($model::mass_matrix(self, q))
+            }
+            fn coriolis_matrix(&self, q: &[f64; $n], qd: &[f64; $n]) -> Option<[[f64; $n]; $n]> {
+                Some($model::coriolis_matrix(self, q, qd))
+            }
+            fn gravity_torques(&self, q: &[f64; $n]) -> Option<[f64; $n]> {
+                Some($model::gravity_torques(self, q))
+            }
+            fn kinetic_energy(&self, q: &[f64; $n], qd: &[f64; $n]) -> Option<f64> {
+                Some($model::kinetic_energy(self, q, qd))
+            }
+            fn potential_energy(&self, q: &[f64; $n]) -> Option<f64> {
+                Some($model::potential_energy(self, q))
+            }
+        }
+    };
+}
+
+closed_form_dynamics!(Pendulum, 1, "pendulum", ["q"]);
+closed_form_dynamics!(Oscillator, 1, "oscillator", ["q"]);
+closed_form_dynamics!(PlanarElbow, 2, "planar elbow", ["q1", "q2"]);
 
 /// Observed convergence orders log₂(eₖ / eₖ₊₁) of errors at successively halved steps.
 pub fn observed_order(errors: &[f64]) -> Vec<f64> {

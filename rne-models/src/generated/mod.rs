@@ -1,5 +1,10 @@
 //! The built-in robots' kernels, generated at compile time by `derive_dynamics!` from the
-//! spec files in `rne-models/robots/`.
+//! spec files in `rne-models/robots/`: one module per robot with every kernel, the scenes the
+//! thesis's chapter 6 simulates ([`scenes`]), and the variants `rne bench` measures
+//! ([`variants`]).
+
+pub mod scenes;
+pub mod variants;
 
 rne_codegen::derive_dynamics! {
     /// The planar elbow manipulator of the thesis's chapter 4 (table 6.1).
