@@ -1,4 +1,4 @@
-//! Markdown tables of the report, and the number formats used in them.
+//! Markdown tables of the reports.
 
 /// A markdown table with a caption.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -47,27 +47,10 @@ impl Table {
     }
 }
 
-/// A number in scientific notation with two significant digits: `1.2e-16`; `NaN`, `inf`.
-pub fn sci(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x:.1e}")
-    } else {
-        format!("{x}")
-    }
-}
-
-/// An error in ulps: one decimal below 1000, scientific above.
-pub fn ulps(x: f64) -> String {
-    if x.is_finite() && x < 1000.0 {
-        format!("{x:.1}")
-    } else {
-        sci(x)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::format::sci;
 
     /// Tables render as GitHub markdown with right-aligned numbers.
     #[test]
@@ -78,9 +61,6 @@ mod tests {
             t.markdown(),
             "Errors.\n\n| case | max |\n| --- | ---: |\n| a | 1.2e-16 |\n"
         );
-        assert_eq!(ulps(0.51), "0.5");
-        assert_eq!(ulps(2.5e4), "2.5e4");
-        assert_eq!(sci(f64::NAN), "NaN");
         let mut t = Table::new("Norms.", &["|x|"]);
         t.push(vec!["‖x‖".into()]);
         assert!(t.markdown().contains("| \\|x\\| |"));

@@ -3,18 +3,12 @@
 //! A [`Figure`] is a title over panels stacked vertically, each panel a set of curves against
 //! time. It knows nothing about robots: the scenarios build figures from their records.
 //!
-//! Text needs a font even for the SVG backend (plotters measures labels to lay out the chart),
-//! and the PNG backend draws glyphs itself. No system font is assumed: the first render registers
-//! Hack Regular (MIT licence with the Bitstream Vera licence, shipped by the
-//! `epaint_default_fonts` crate of the egui project) as plotters' `sans-serif` family.
-
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+//! [`render`](crate::render) writes it as SVG and PNG.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::error::ScenarioError;
+use crate::render::{draw_legend, Draw, PALETTE, REFERENCE_GREY};
 
 /// Width of a rendered figure in pixels.
 const WIDTH: u32 = 1000;
@@ -26,16 +20,6 @@ const TITLE_HEIGHT: u32 = 44;
 /// `MAX_POINTS / 2` equal-length buckets, which keeps the envelope of the curve (a pixel column
 /// holds several buckets at [`WIDTH`]).
 const MAX_POINTS: usize = 4000;
-
-/// The curve colours, in order (Tableau 10).
-const PALETTE: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
 
 /// How a curve is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -128,65 +112,28 @@ pub struct Figure {
     pub panels: Vec<Panel>,
 }
 
-impl Figure {
-    /// Writes `DIR/FILE.svg` when `svg` is set and `DIR/FILE.png` when `png` is, and returns
-    /// their paths.
-    pub fn render(&self, dir: &Path, svg: bool, png: bool) -> Result<Vec<PathBuf>, ScenarioError> {
-        register_font()?;
-        let size = (
+impl Draw for Figure {
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (
             WIDTH,
             TITLE_HEIGHT + PANEL_HEIGHT * self.panels.len().max(1) as u32,
-        );
-        let mut written = Vec::new();
-        if svg {
-            let path = dir.join(format!("{}.svg", self.file));
-            self.draw(SVGBackend::new(&path, size).into_drawing_area())?;
-            written.push(path);
-        }
-        if png {
-            let path = dir.join(format!("{}.png", self.file));
-            self.draw(BitMapBackend::new(&path, size).into_drawing_area())?;
-            written.push(path);
-        }
-        Ok(written)
+        )
     }
 
-    /// Draws the figure on `root` and presents it (writes the file).
-    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), ScenarioError> {
-        let plot_error = |e: DrawingAreaErrorKind<DB::ErrorType>| ScenarioError::Plot {
-            figure: self.file.clone(),
-            message: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(plot_error)?;
-        let body = root
-            .titled(&self.title, ("sans-serif", 18).into_font())
-            .map_err(plot_error)?;
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let body = root.titled(&self.title, ("sans-serif", 18).into_font())?;
         let areas = body.split_evenly((self.panels.len().max(1), 1));
         for (panel, area) in self.panels.iter().zip(&areas) {
-            draw_panel(panel, area).map_err(plot_error)?;
+            draw_panel(panel, area)?;
         }
-        root.present().map_err(plot_error)
-    }
-}
-
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), ScenarioError> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        )
-        .is_ok()
-    });
-    if ok {
         Ok(())
-    } else {
-        Err(ScenarioError::Plot {
-            figure: String::new(),
-            message: "the embedded font could not be read".into(),
-        })
     }
 }
 
@@ -359,7 +306,7 @@ where
                 colour += 1;
                 c.stroke_width(2)
             }
-            LineStyle::Reference => RGBColor(110, 110, 110).stroke_width(1),
+            LineStyle::Reference => REFERENCE_GREY.stroke_width(1),
         };
         let series = match curve.style {
             LineStyle::Solid => {
@@ -373,13 +320,7 @@ where
             .label(curve.label.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], style));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
+    draw_legend(chart, SeriesLabelPosition::UpperRight)
 }
 
 #[cfg(test)]

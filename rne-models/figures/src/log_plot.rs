@@ -1,31 +1,14 @@
 //! The report's figures: errors on a logarithmic vertical axis against a logarithmic or linear
 //! horizontal one, as scattered points, lines and dashed reference lines (such as ε·cond),
-//! rendered with plotters as SVG and PNG.
-//!
-//! Text needs a font even for the SVG backend (plotters measures labels to lay out the
-//! chart), and no system font is assumed: Hack Regular, shipped by the `epaint_default_fonts`
-//! crate, is registered as plotters' `sans-serif` family before the first figure is drawn.
-
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+//! written as SVG and PNG by [`render`](crate::render).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::error::StressError;
+use crate::render::{draw_legend, Draw, PALETTE, REFERENCE_GREY};
 
 /// Size of a rendered figure in pixels.
 const SIZE: (u32, u32) = (960, 600);
-
-/// Series colours, in order (Tableau 10).
-const PALETTE: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
 
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,19 +72,6 @@ pub struct LogPlot {
 }
 
 impl LogPlot {
-    /// Writes `DIR/FILE.svg` and `DIR/FILE.png` and returns their paths.
-    pub fn render(&self, dir: &Path) -> Result<Vec<PathBuf>, StressError> {
-        register_font().map_err(|message| StressError::Plot {
-            figure: self.file.clone(),
-            message,
-        })?;
-        let svg = dir.join(format!("{}.svg", self.file));
-        self.draw(SVGBackend::new(&svg, SIZE).into_drawing_area())?;
-        let png = dir.join(format!("{}.png", self.file));
-        self.draw(BitMapBackend::new(&png, SIZE).into_drawing_area())?;
-        Ok(vec![svg, png])
-    }
-
     /// The points of each series that the axes can show.
     fn visible(&self) -> Vec<Vec<(f64, f64)>> {
         self.series
@@ -121,16 +91,24 @@ impl LogPlot {
             .collect()
     }
 
-    /// Draws the figure on `root` and presents it (writes the file).
-    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), StressError> {
-        let failed = |e: DrawingAreaErrorKind<DB::ErrorType>| StressError::Plot {
-            figure: self.file.clone(),
-            message: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(failed)?;
+}
+
+impl Draw for LogPlot {
+    fn file(&self) -> &str {
+        &self.file
+    }
+
+    fn size(&self) -> (u32, u32) {
+        SIZE
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         let visible = self.visible();
         let ((x0, x1), (y0, y1)) = bounds(&visible);
-        let mut builder = ChartBuilder::on(&root);
+        let mut builder = ChartBuilder::on(root);
         builder
             .caption(&self.title, ("sans-serif", 22))
             .margin(14)
@@ -144,7 +122,7 @@ impl LogPlot {
                 let (x0, x1) = (x0 / 10f64.powf(0.1), x1 * 10f64.powf(0.1));
                 let mut chart = builder
                     .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-                    .map_err(failed)?;
+                    ?;
                 chart
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
@@ -153,14 +131,14 @@ impl LogPlot {
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
                     .draw()
-                    .map_err(failed)?;
-                draw_series(&mut chart, &self.series, &visible).map_err(failed)?;
+                    ?;
+                draw_series(&mut chart, &self.series, &visible)?;
             }
             Axis::Linear => {
                 let pad = 0.03 * (x1 - x0);
                 let mut chart = builder
                     .build_cartesian_2d((x0 - pad)..(x1 + pad), (y0..y1).log_scale())
-                    .map_err(failed)?;
+                    ?;
                 chart
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
@@ -169,11 +147,11 @@ impl LogPlot {
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
                     .draw()
-                    .map_err(failed)?;
-                draw_series(&mut chart, &self.series, &visible).map_err(failed)?;
+                    ?;
+                draw_series(&mut chart, &self.series, &visible)?;
             }
         }
-        root.present().map_err(failed)
+        Ok(())
     }
 }
 
@@ -210,7 +188,6 @@ where
 {
     let mut colour = 0;
     for (s, points) in series.iter().zip(visible) {
-        let grey = RGBColor(110, 110, 110);
         let c = PALETTE[colour % PALETTE.len()];
         if s.mark != Mark::Reference {
             colour += 1;
@@ -228,39 +205,19 @@ where
                 points.iter().copied(),
                 6,
                 4,
-                grey.stroke_width(1),
+                REFERENCE_GREY.stroke_width(1),
             ))?,
         };
-        let legend_colour = if s.mark == Mark::Reference { grey } else { c };
+        let legend_colour = if s.mark == Mark::Reference {
+            REFERENCE_GREY
+        } else {
+            c
+        };
         drawn.label(s.label.as_str()).legend(move |(x, y)| {
             PathElement::new(vec![(x, y), (x + 22, y)], legend_colour.stroke_width(2))
         });
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
-}
-
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), String> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        )
-        .is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err("the embedded font could not be read".into())
-    }
+    draw_legend(chart, SeriesLabelPosition::UpperLeft)
 }
 
 #[cfg(test)]

@@ -5,20 +5,12 @@
 //! point with an optional horizontal and vertical range drawn as a bar (an interquartile range
 //! of times, or the span from the median to the largest error). Values that a logarithmic axis
 //! cannot show (zero, negative, not finite) are drawn at the panel's floor and the panel's note
-//! says so.
-//!
-//! Text needs a font even for the SVG backend (plotters measures labels to lay out the chart),
-//! and the PNG backend draws glyphs itself. No system font is assumed: Hack Regular (MIT
-//! licence with the Bitstream Vera licence, shipped by the `epaint_default_fonts` crate of the
-//! egui project) is registered as plotters' `sans-serif` family, as the simulation figures do.
-
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+//! says so. [`render`](crate::render) writes a chart as SVG and PNG.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::error::BenchError;
+use crate::render::{draw_legend, Draw, PALETTE};
 
 /// Width of one panel in pixels.
 const PANEL_WIDTH: u32 = 900;
@@ -26,18 +18,6 @@ const PANEL_WIDTH: u32 = 900;
 const HEIGHT: u32 = 620;
 /// Height of the chart title in pixels.
 const TITLE_HEIGHT: u32 = 40;
-
-/// The series colours, in order (Tableau 10).
-pub const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-];
 
 /// The shape of a point.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -72,7 +52,7 @@ pub struct Point {
 pub struct Series {
     /// The legend entry.
     pub label: String,
-    /// Index into [`PALETTE`].
+    /// Index into [`PALETTE`](crate::PALETTE).
     pub colour: usize,
     /// The points.
     pub points: Vec<Point>,
@@ -106,55 +86,26 @@ pub struct Chart {
     pub panels: Vec<Panel>,
 }
 
-impl Chart {
-    /// Writes `DIR/FILE.svg` and `DIR/FILE.png` and returns their paths.
-    pub fn render(&self, dir: &Path) -> Result<Vec<PathBuf>, BenchError> {
-        register_font().map_err(|message| BenchError::Plot {
-            figure: self.file.clone(),
-            message,
-        })?;
-        let size = (PANEL_WIDTH * self.panels.len().max(1) as u32, HEIGHT);
-        let svg = dir.join(format!("{}.svg", self.file));
-        self.draw(SVGBackend::new(&svg, size).into_drawing_area())?;
-        let png = dir.join(format!("{}.png", self.file));
-        self.draw(BitMapBackend::new(&png, size).into_drawing_area())?;
-        Ok(vec![svg, png])
+impl Draw for Chart {
+    fn file(&self) -> &str {
+        &self.file
     }
 
-    /// Draws the chart on `root` and presents it (writes the file).
-    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), BenchError> {
-        let plot_error = |e: DrawingAreaErrorKind<DB::ErrorType>| BenchError::Plot {
-            figure: self.file.clone(),
-            message: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(plot_error)?;
+    fn size(&self) -> (u32, u32) {
+        (PANEL_WIDTH * self.panels.len().max(1) as u32, HEIGHT)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         let (title, body) = root.split_vertically(TITLE_HEIGHT);
-        title
-            .titled(&self.title, ("sans-serif", 22).into_font())
-            .map_err(plot_error)?;
+        title.titled(&self.title, ("sans-serif", 22).into_font())?;
         let areas = body.split_evenly((1, self.panels.len().max(1)));
         for (panel, area) in self.panels.iter().zip(&areas) {
-            draw_panel(panel, area).map_err(plot_error)?;
+            draw_panel(panel, area)?;
         }
-        root.present().map_err(plot_error)
-    }
-}
-
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), String> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        )
-        .is_ok()
-    });
-    if ok {
         Ok(())
-    } else {
-        Err("the embedded font could not be read".into())
     }
 }
 
@@ -283,13 +234,7 @@ fn draw_panel<DB: DrawingBackend>(
             .label(meaning.as_str())
             .legend(move |(x, y)| marker_element((x + 8, y), marker, grey.filled()));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
 /// A marker of pixel size 5 at the backend coordinate `at`.
