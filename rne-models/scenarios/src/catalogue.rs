@@ -14,9 +14,9 @@ use super::measures::{
 };
 use super::outcome::{Finding, Outcome, Table};
 use super::parameters::*;
-use super::plot::{Curve, Figure, Panel};
+use rne_figures::time_series::{Curve, Figure, Panel};
 use super::progress::WithProgress;
-use crate::sim::{output_times, GaussLegendre, Integrator, Record, Rk4, SimError};
+use rne_sim::{output_times, GaussLegendre, Integrator, Record, Rk4, SimError};
 
 /// How to run a scenario.
 #[derive(Clone, Copy, Debug, Default)]

@@ -2,7 +2,8 @@
 
 use std::path::PathBuf;
 
-use crate::sim::SimError;
+use rne_figures::FigureError;
+use rne_sim::SimError;
 
 /// A scenario that failed: an unknown name, a bad scenario file, a failed simulation, or output
 /// that could not be written. Every message names what it is about.
@@ -48,13 +49,17 @@ pub enum ScenarioError {
         #[source]
         source: std::io::Error,
     },
-    /// A figure could not be drawn.
-    #[error("cannot draw figure {figure}: {message}")]
-    Plot {
-        /// The figure's file name.
-        figure: String,
-        /// plotters' error.
-        message: String,
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Figure(#[from] FigureError),
+    /// A scenario file's robot could not be evaluated at run time.
+    #[error("{}: model: {source}", path.display())]
+    Evaluation {
+        /// The scenario file.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: rne_interpreted::Error,
     },
 }
 

@@ -1,20 +1,25 @@
-//! The experiments of the thesis's chapter 6 as typed runs on the generated kernels: each
+//! The experiments of the thesis's chapter 6 as typed runs on the generated `Model`s of
+//! [`rne_models::generated`] (the full arms and the [`scenes`](rne_models::generated::scenes)
+//! of chapter 6): each
 //! function fixes the model and the input of one experiment, the caller the integrator and the
 //! output times.
 
-use super::models::{Irb140Joint3, Irb140Weightless, PlanarElbow, PlanarElbowWeightless};
 use super::parameters::{
     DAMPING_KD, ELBOW_KD, ELBOW_KP, ELBOW_U_MAX, IRB140_KD, IRB140_KP, IRB140_U_MAX,
 };
-use crate::sim::{
-    simulate, ConstantTorque, Controller, Damping, Dynamics, Integrator, Pd, Record, SimError,
-    State, ZeroInput,
+use rne_models::generated::planar_elbow::{self, Model as PlanarElbow};
+use rne_models::generated::scenes::irb140_joint3::Model as Irb140Joint3;
+use rne_models::generated::scenes::irb140_weightless::Model as Irb140Weightless;
+use rne_models::generated::scenes::planar_elbow_weightless::Model as PlanarElbowWeightless;
+use rne_sim::{
+    simulate, ConstantTorque, Controller, Damping, Integrator, Pd, Record, SimError, State,
+    ZeroInput,
 };
 
 /// The open-loop torque of section 6.2.3, τ = g(π, 0): the torque that holds the arm at the
 /// desired q = (π, 0), (6.27)–(6.28), from the generated gravity kernel.
 pub fn upright_torque() -> [f64; 2] {
-    PlanarElbow.gravity_torques(&[std::f64::consts::PI, 0.0])
+    planar_elbow::gravity_torques(&[std::f64::consts::PI, 0.0])
 }
 
 /// Open loop, figures 6.2 and 6.3: the planar elbow driven by the constant τ = g(π, 0) from

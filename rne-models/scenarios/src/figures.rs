@@ -1,8 +1,8 @@
 //! Panels of the thesis's figures built from run records: joint angles, torques, energies,
 //! energy error and the Lyapunov function.
 
-use super::plot::{Curve, Panel};
-use crate::sim::Record;
+use rne_figures::time_series::{Curve, Panel};
+use rne_sim::Record;
 
 /// The joint angles qᵢ(t), with dashed set-points when `q_ref` is given (figures 6.2–6.21).
 pub fn joint_angles<const N: usize>(record: &Record<N>, q_ref: Option<&[f64; N]>) -> Panel {

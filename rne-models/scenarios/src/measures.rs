@@ -2,7 +2,7 @@
 //! whole PD run, convergence to an equilibrium, the separation of two releases, link flips,
 //! the turning points of a swing and the growth of the Lyapunov function.
 
-use crate::sim::Record;
+use rne_sim::Record;
 
 /// The settling time of a set-point run: the largest of the joints' 2 % settling times
 /// ([`Record::settling_time`]: the earliest recorded time after which |qᵢ − q_ref,i| stays
@@ -76,7 +76,7 @@ pub fn largest_lyapunov_increase<const N: usize>(record: &Record<N>) -> Option<f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::Stats;
+    use rne_sim::Stats;
 
     /// A record with q₁(t) given at t = 0, 1, 2, … (only t and q are filled).
     fn record(q1: &[f64]) -> Record<1> {

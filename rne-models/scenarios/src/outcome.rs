@@ -5,8 +5,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::error::ScenarioError;
-use super::plot::Figure;
-use crate::sim::Record;
+use rne_figures::time_series::Figure;
+use rne_figures::{render, Formats};
+use rne_sim::Record;
 
 /// One run as CSV text: `t, q, q̇, u, kinetic, potential, total[, lyapunov]` (the columns of
 /// [`Record::csv_header`]).
@@ -106,12 +107,12 @@ impl Outcome {
                 written.push(path);
             }
         }
-        let (svg, png) = (
-            formats.contains(&Format::Svg),
-            formats.contains(&Format::Png),
-        );
+        let images = Formats {
+            svg: formats.contains(&Format::Svg),
+            png: formats.contains(&Format::Png),
+        };
         for figure in &self.figures {
-            written.extend(figure.render(dir, svg, png)?);
+            written.extend(render(figure, dir, images)?);
         }
         if formats.contains(&Format::Md) {
             let path = dir.join(format!("{}-findings.md", self.scenario));

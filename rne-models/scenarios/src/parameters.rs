@@ -5,7 +5,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use crate::sim::Dopri5;
+use rne_sim::Dopri5;
 
 /// The motor limit of both planar-elbow joints, 20.73 · 1.9 N·m = 39.4 N·m, (6.26).
 pub const ELBOW_U_MAX: [f64; 2] = [39.4, 39.4];

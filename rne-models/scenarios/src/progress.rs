@@ -4,7 +4,8 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::sim::{Controller, Dynamics, Integrator, SimError, State, Stats};
+use rne_runtime::Dynamics;
+use rne_sim::{Controller, Integrator, SimError, State, Stats};
 
 /// Wraps an integrator and advances a progress bar (on standard error, only when it is a
 /// terminal and progress was asked for) at every output time. The integration itself is the
@@ -47,7 +48,7 @@ impl<const N: usize, I: Integrator<N>> Integrator<N> for WithProgress<'_, I> {
         mut sink: F,
     ) -> Result<Stats, SimError>
     where
-        D: Dynamics<N> + ?Sized,
+        D: Dynamics<N, N, Scalar = f64> + ?Sized,
         C: Controller<N> + ?Sized,
         F: FnMut(f64, &State<N>),
     {

@@ -4,7 +4,7 @@ use std::time::{Duration, Instant};
 
 use super::experiments::released;
 use super::parameters::{thesis_solver, RELEASE_END, SAMPLE};
-use crate::sim::{output_times, SimError, Stats};
+use rne_sim::{output_times, SimError, Stats};
 
 /// Wall-clock times of repeated runs.
 #[derive(Clone, Copy, Debug)]

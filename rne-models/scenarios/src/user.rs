@@ -34,16 +34,15 @@ use serde::Deserialize;
 use super::catalogue::{pd_findings, RunOptions};
 use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
-use super::kernel_dynamics::{KernelDynamics, MAX_DOF};
 use super::outcome::{Finding, Outcome, Table};
-use super::plot::Figure;
+use rne_figures::time_series::Figure;
 use super::progress::WithProgress;
-use crate::builtin::RobotSource;
-use crate::interpreted::Interpreted;
-use crate::kernels::Kernels;
-use crate::sim::{
-    output_times, simulate, ConstantTorque, Controller, Damping, Dopri5, Dynamics, GaussLegendre,
-    Method, Pd, Rk4, State, WithoutGravity,
+use rne_interpreted::Interpreted;
+use rne_models::{RobotSource, Visitor};
+use rne_runtime::Dynamics;
+use rne_sim::{
+    output_times, simulate, ConstantTorque, Controller, Damping, Dopri5, GaussLegendre, Method,
+    Pd, Record, Rk4, State, WithoutGravity,
 };
 use rne_symbolic::spec::LoadOptions;
 
@@ -161,7 +160,7 @@ impl UserScenario {
     }
 
     /// Reads the model and runs the scenario: the built-in robots on their generated kernels,
-    /// other spec files on their expression graph.
+    /// other spec files on their optimised programs.
     pub fn run(&self, options: &RunOptions) -> Result<Outcome, ScenarioError> {
         let source = match RobotSource::resolve(&self.file.model) {
             RobotSource::File(file) if file.is_relative() => {
@@ -170,35 +169,38 @@ impl UserScenario {
             }
             source => source,
         };
-        let interpreted;
-        let kernels: &dyn Kernels = match &source {
-            RobotSource::Builtin(robot) => robot.kernels,
-            RobotSource::File(_) => {
-                let model = source.load(&LoadOptions::default()).map_err(|source| {
-                    ScenarioError::Model {
-                        path: self.path.clone(),
-                        source,
-                    }
+        let model =
+            source
+                .load(&LoadOptions::default())
+                .map_err(|source| ScenarioError::Model {
+                    path: self.path.clone(),
+                    source,
                 })?;
+        let run = Run {
+            scenario: self,
+            options,
+            names: model.joint_names(),
+        };
+        match &source {
+            RobotSource::Builtin(robot) => robot.visit(run),
+            RobotSource::File(_) => {
                 model
                     .check_mass_matrix_invertible()
                     .map_err(|e| self.error(format!("model `{}`: {e}", self.file.model)))?;
-                interpreted = Interpreted::new(&model);
-                &interpreted
+                Interpreted::new(&model)
+                    .visit(run)
+                    .map_err(|error| match error {
+                        rne_interpreted::Error::TooManyJoints { dof, max } => self.error(format!(
+                            "model `{}` has {dof} joints; scenario files support 1 to {max}",
+                            self.file.model
+                        )),
+                        source => ScenarioError::Evaluation {
+                            path: self.path.clone(),
+                            source,
+                        },
+                    })?
             }
-        };
-        macro_rules! dispatch {
-            ($($n:literal)*) => {
-                match kernels.dof() {
-                    $($n => self.run_with::<$n>(kernels, options),)*
-                    dof => Err(self.error(format!(
-                        "model `{}` has {dof} joints; scenario files support 1 to {MAX_DOF}",
-                        self.file.model
-                    ))),
-                }
-            };
         }
-        dispatch!(1 2 3 4 5 6 7 8)
     }
 
     fn error(&self, message: String) -> ScenarioError {
@@ -229,27 +231,25 @@ impl UserScenario {
         }
     }
 
-    /// The run for a model with N joints.
-    fn run_with<const N: usize>(
+    /// The run for a model with N joints whose names are `names`.
+    fn run_with<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
         &self,
-        kernels: &dyn Kernels,
+        model: D,
+        names: &[String],
         options: &RunOptions,
     ) -> Result<Outcome, ScenarioError> {
-        let model = KernelDynamics::<N>::new(kernels)
-            .ok_or_else(|| self.error("model dimension mismatch".into()))?;
-        let names = kernels.joints();
         let c = &self.file.controller;
-        let q0 = self.joints::<N>("q0", Some(&self.file.q0), 0.0, &names)?;
-        let qd0 = self.joints::<N>("qd0", self.file.qd0.as_ref(), 0.0, &names)?;
-        let torque = self.joints::<N>("controller.torque", c.torque.as_ref(), 0.0, &names)?;
-        let kp = self.joints::<N>("controller.kp", c.kp.as_ref(), 0.0, &names)?;
-        let kd = self.joints::<N>("controller.kd", c.kd.as_ref(), 0.0, &names)?;
-        let q_ref = self.joints::<N>("controller.q_ref", c.q_ref.as_ref(), 0.0, &names)?;
+        let q0 = self.joints::<N>("q0", Some(&self.file.q0), 0.0, names)?;
+        let qd0 = self.joints::<N>("qd0", self.file.qd0.as_ref(), 0.0, names)?;
+        let torque = self.joints::<N>("controller.torque", c.torque.as_ref(), 0.0, names)?;
+        let kp = self.joints::<N>("controller.kp", c.kp.as_ref(), 0.0, names)?;
+        let kd = self.joints::<N>("controller.kd", c.kd.as_ref(), 0.0, names)?;
+        let q_ref = self.joints::<N>("controller.q_ref", c.q_ref.as_ref(), 0.0, names)?;
         let u_max = self.joints::<N>(
             "controller.saturation",
             c.saturation.as_ref(),
             f64::INFINITY,
-            &names,
+            names,
         )?;
         let feedback = match (&c.kp, &c.kd) {
             (Some(_), _) => Feedback::Pd(Pd::new(kp, kd, q_ref)),
@@ -257,27 +257,17 @@ impl UserScenario {
             (None, None) => Feedback::None,
         };
         let law = ConstantTorque(torque).plus(feedback);
-        let plain = law.saturated(u_max);
-        let compensated = law
-            .with_gravity_compensation(&model as &dyn Dynamics<N>)
-            .saturated(u_max);
-        let weightless = WithoutGravity(model);
-        let (dynamics, controller): (&dyn Dynamics<N>, &dyn Controller<N>) = match c.gravity {
-            GravityMode::None => (&model, &plain),
-            GravityMode::Remove => (&weightless, &plain),
-            GravityMode::Compensate => (&model, &compensated),
-        };
-        let sample = self.file.sample.unwrap_or(0.01);
-        let times = output_times(0.0, self.file.duration, sample);
-        let integrator = WithProgress::new(&self.method, &self.name, options.progress);
-        let record = simulate(
-            dynamics,
-            controller,
-            &integrator,
-            &State::new(q0, qd0),
-            &times,
-        )
-        .map_err(ScenarioError::simulation(&self.name))?;
+        let x0 = State::new(q0, qd0);
+        let record = match c.gravity {
+            GravityMode::None => self.simulate(&model, &law.saturated(u_max), &x0, options),
+            GravityMode::Remove => {
+                self.simulate(&WithoutGravity(&model), &law.saturated(u_max), &x0, options)
+            }
+            GravityMode::Compensate => {
+                let compensated = law.with_gravity_compensation(&model).saturated(u_max);
+                self.simulate(&model, &compensated, &x0, options)
+            }
+        }?;
 
         let mut findings = vec![Finding::new(
             "energy drift max |E − E(0)| of the simulated model",
@@ -306,6 +296,39 @@ impl UserScenario {
             }],
             findings,
         })
+    }
+    /// Simulates `model` under `controller` from `x0` over the scenario's duration.
+    fn simulate<const N: usize, D, C>(
+        &self,
+        model: &D,
+        controller: &C,
+        x0: &State<N>,
+        options: &RunOptions,
+    ) -> Result<Record<N>, ScenarioError>
+    where
+        D: Dynamics<N, N, Scalar = f64>,
+        C: Controller<N>,
+    {
+        let sample = self.file.sample.unwrap_or(0.01);
+        let times = output_times(0.0, self.file.duration, sample);
+        let integrator = WithProgress::new(&self.method, &self.name, options.progress);
+        simulate(model, controller, &integrator, x0, &times)
+            .map_err(ScenarioError::simulation(&self.name))
+    }
+}
+
+/// A scenario's run on the model the visit brings.
+struct Run<'a> {
+    scenario: &'a UserScenario,
+    options: &'a RunOptions,
+    names: Vec<String>,
+}
+
+impl Visitor for Run<'_> {
+    type Output = Result<Outcome, ScenarioError>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
+        self.scenario.run_with::<N, D>(model, &self.names, self.options)
     }
 }
 

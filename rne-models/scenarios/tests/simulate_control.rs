@@ -9,10 +9,10 @@
 
 use std::f64::consts::PI;
 
-use rne_models::sim::scenarios::experiments::{damped, elbow_pd, irb140_pd, open_loop};
-use rne_models::sim::scenarios::measures::{largest_lyapunov_increase, settling_time};
-use rne_models::sim::scenarios::parameters::*;
-use rne_models::sim::{output_times, Record};
+use rne_scenarios::experiments::{damped, elbow_pd, irb140_pd, open_loop};
+use rne_scenarios::measures::{largest_lyapunov_increase, settling_time};
+use rne_scenarios::parameters::*;
+use rne_sim::{output_times, Record};
 
 /// Checks one PD run: steady-state error ≤ 1e-4 rad at the end, settling time within
 /// `window`, saturation never exceeded, and V (6.57) non-increasing between samples up to
@@ -117,10 +117,10 @@ fn open_loop_cannot_hold_the_arm_up() {
 /// its motor saturated, while joints 1 and 2 still settle.
 #[test]
 fn irb140_joint3_motor_cannot_hold_link3_against_gravity() {
-    use rne_models::sim::scenarios::models::Irb140;
-    use rne_models::sim::{simulate, Controller, Dynamics, Pd, State};
+    use rne_models::generated::irb140_3dof::{gravity_torques, Model as Irb140};
+    use rne_sim::{simulate, Controller, Pd, State};
     let q_ref = IRB140_SET_POINTS[0];
-    let weight = Irb140.gravity_torques(&[0.0, 0.0, 0.0])[2].abs();
+    let weight = gravity_torques(&[0.0, 0.0, 0.0])[2].abs();
     assert!(weight > IRB140_U_MAX[2], "{weight}");
     let pd = Pd::new(IRB140_KP, IRB140_KD, q_ref)
         .with_gravity_compensation(Irb140)

@@ -4,14 +4,14 @@
 
 use std::f64::consts::PI;
 
-use rne_models::sim::scenarios::experiments::irb140_pendulum;
-use rne_models::sim::scenarios::experiments::released;
-use rne_models::sim::scenarios::measures::{separation, turning_points};
-use rne_models::sim::scenarios::parameters::{
+use rne_scenarios::experiments::irb140_pendulum;
+use rne_scenarios::experiments::released;
+use rne_scenarios::measures::{separation, turning_points};
+use rne_scenarios::parameters::{
     energy_solver, matlab_ode45, thesis_solver, GAUSS_LEGENDRE_STEP, IRB140_ENERGY_RTOL,
     LONG_RUN_END, PERTURBED_Q1, RELEASE_ENERGY_RTOL, SAMPLE,
 };
-use rne_models::sim::{output_times, GaussLegendre, Rk4};
+use rne_sim::{output_times, GaussLegendre, Rk4};
 
 /// Figure 6.8: the double pendulum released from q = 0 (no input, no friction) keeps its total
 /// energy E = 0 to max |E(t) − E(0)| ≤ 1e-9 J over 20 s with Dormand–Prince at rtol 1e-12
