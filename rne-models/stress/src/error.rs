@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use rne_symbolic::spec::SpecError;
 
-use crate::kernels::DimensionError;
-use crate::sim::SimError;
+use rne_figures::FigureError;
+use rne_sim::SimError;
 
 /// A stress case that failed. Every message names the case or the file it is about.
 #[derive(Debug, thiserror::Error)]
@@ -22,14 +22,14 @@ pub enum StressError {
     /// A built-in robot the case uses is missing.
     #[error("no built-in robot `{0}`")]
     MissingRobot(String),
-    /// A robot's compiled kernels and its model disagree on the number of joints.
+    /// A robot's compiled kernels could not be evaluated at a state.
     #[error("{robot}: {source}")]
-    Dimension {
+    Evaluation {
         /// The robot.
         robot: String,
-        /// The kernels' error.
+        /// Why.
         #[source]
-        source: DimensionError,
+        source: rne_interpreted::Error,
     },
     /// A simulation of the chaotic-run case stopped.
     #[error("{run}: {source}")]
@@ -49,12 +49,7 @@ pub enum StressError {
         #[source]
         source: std::io::Error,
     },
-    /// A figure could not be drawn.
-    #[error("cannot draw figure {figure}: {message}")]
-    Plot {
-        /// The figure's file name.
-        figure: String,
-        /// plotters' error.
-        message: String,
-    },
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Figure(#[from] FigureError),
 }

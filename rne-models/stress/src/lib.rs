@@ -5,39 +5,37 @@
 //!
 //! # Method
 //!
-//! Every case evaluates a robot's kernels at seeded random states twice (see [`Probe`]): in
+//! Every case evaluates a robot's kernels at seeded random states twice (see [`sweep`]): in
 //! `f64` through the optimised programs that code generation emits, which is bit for bit what
 //! the generated kernel computes (the [`cases::compiled`] check confirms it on every built-in
 //! robot), and in [`DoubleDouble`](rne_symbolic::DoubleDouble) (about 32 digits) through the
 //! model's expression graph before optimisation, with the same `f64` constants and inputs. The
 //! double-double value is the exact value of the `f64` model to about 10⁻³¹, so the difference
 //! is the error of the generated kernel alone. Errors are normwise relative, ‖c − e‖∞ / ‖e‖∞,
-//! and in ulps of the largest component (see [`measure`]); each table gives the largest and the
+//! and in ulps of the largest component (see [`rne_figures::measure`]); each table gives the largest and the
 //! median over the states.
 //!
 //! The cases, one module each under [`cases`], return typed measurements (used by the tests
-//! in `rne-models/tests/stress_*.rs`, each with a stated bound) and a [`CaseReport`]: tables,
+//! in `tests/stress_*.rs`, each with a stated bound) and a [`CaseReport`]: tables,
 //! figures, and where accuracy is lost and why. [`run`] runs them all into a
 //! [`StressReport`], which `rne stress` writes as markdown with SVG and PNG figures.
+
+#![deny(missing_docs)]
 
 pub mod cases;
 mod chain;
 mod error;
 pub mod measure;
-mod plot;
-mod probe;
 mod random_robot;
 mod report;
 pub mod states;
-mod table;
+pub mod sweep;
 
 pub use chain::{Chain, ChainLink, JointType};
 pub use error::StressError;
-pub use plot::{Axis, LogPlot, Mark, Series};
-pub use probe::{JointState, Probe, Sweep};
+pub use sweep::Sweep;
 pub use random_robot::random_robot;
 pub use report::{CaseReport, StressReport};
-pub use table::Table;
 
 /// How thorough a run is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,5 +1,5 @@
-//! Error measures: the normwise relative error of one evaluation against its double-double
-//! value, the same error in units in the last place, and summaries over many states.
+//! Summaries of error measures over many states, and the condition numbers of M. The error of
+//! one evaluation against its double-double value is [`rne_figures::Deviation`].
 //!
 //! For an output vector (a matrix is taken row-major) computed as `c` with exact value `e`,
 //! the normwise relative error is ‖c − e‖∞ / ‖e‖∞ (Higham, *Accuracy and Stability of
@@ -11,67 +11,10 @@
 
 use nalgebra::DMatrix;
 use rne_codegen::Kernel;
-use rne_symbolic::DoubleDouble;
+use rne_figures::Deviation;
 
 /// The machine epsilon of `f64`, 2⁻⁵² (the gap between 1 and the next double).
 pub const EPSILON: f64 = f64::EPSILON;
-
-/// The unit in the last place of |x|: the gap between |x| and the next larger double
-/// (2⁻¹⁰⁷⁴ for zero and subnormals, NaN for non-finite x).
-pub fn ulp(x: f64) -> f64 {
-    let x = x.abs();
-    if !x.is_finite() {
-        return f64::NAN;
-    }
-    if x == f64::MAX {
-        return x - f64::from_bits(x.to_bits() - 1);
-    }
-    f64::from_bits(x.to_bits() + 1) - x
-}
-
-/// The error of one `f64` evaluation against its double-double value.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Deviation {
-    /// Normwise relative error ‖c − e‖∞ / ‖e‖∞ (the absolute error when e = 0; NaN when
-    /// either side is not finite).
-    pub relative: f64,
-    /// ‖c − e‖∞ in units in the last place of ‖e‖∞.
-    pub ulps: f64,
-}
-
-impl Deviation {
-    /// The error of `computed` against `exact` (same length).
-    pub fn between(computed: &[f64], exact: &[DoubleDouble]) -> Deviation {
-        let finite = computed.iter().all(|c| c.is_finite()) && exact.iter().all(|e| e.is_finite());
-        if !finite {
-            return Deviation {
-                relative: f64::NAN,
-                ulps: f64::NAN,
-            };
-        }
-        let difference = computed
-            .iter()
-            .zip(exact)
-            .map(|(&c, &e)| (DoubleDouble::from_f64(c) - e).abs().to_f64())
-            .fold(0.0, f64::max);
-        let scale = exact.iter().map(|e| e.abs().to_f64()).fold(0.0, f64::max);
-        if scale > 0.0 {
-            Deviation {
-                relative: difference / scale,
-                ulps: difference / ulp(scale),
-            }
-        } else {
-            Deviation {
-                relative: difference,
-                ulps: if difference == 0.0 {
-                    0.0
-                } else {
-                    f64::INFINITY
-                },
-            }
-        }
-    }
-}
 
 /// The largest and the median of a sample of errors.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -175,23 +118,6 @@ pub fn scaled_condition(m: &[f64], n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// One ulp of 1 is ε; a result one ulp off its largest component is 1 ulp and ε relative.
-    #[test]
-    fn deviation_in_ulps_of_the_largest_component() {
-        assert_eq!(ulp(1.0), EPSILON);
-        assert_eq!(ulp(-2.0), 2.0 * EPSILON);
-        let exact = [DoubleDouble::from_f64(1.0), DoubleDouble::from_f64(1e-3)];
-        let d = Deviation::between(&[1.0 + EPSILON, 1e-3], &exact);
-        assert_eq!(d.relative, EPSILON);
-        assert_eq!(d.ulps, 1.0);
-        // Half an ulp below a double: the correctly rounded double is 0.5 ulp off.
-        let third = DoubleDouble::from_f64(1.0) / DoubleDouble::from_f64(3.0);
-        let d = Deviation::between(&[1.0 / 3.0], &[third]);
-        assert!(d.ulps <= 0.5 && d.ulps > 0.0, "{d:?}");
-        assert!(Deviation::between(&[f64::NAN], &[third]).relative.is_nan());
-        assert_eq!(Deviation::between(&[0.0], &[DoubleDouble::ZERO]).ulps, 0.0);
-    }
 
     /// The spread reports the maximum, the (upper) median, and NaN as the maximum.
     #[test]

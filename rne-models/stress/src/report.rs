@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use super::error::StressError;
-use super::plot::LogPlot;
-use super::table::Table;
+use rne_figures::log_plot::LogPlot;
+use rne_figures::{render, Formats, Table};
 use super::Effort;
 
 /// The outcome of one stress case.
@@ -86,7 +86,7 @@ impl StressReport {
         std::fs::write(&report, self.markdown()).map_err(io(&report))?;
         let mut written = vec![report];
         for plot in self.cases.iter().flat_map(|c| &c.plots) {
-            written.extend(plot.render(dir)?);
+            written.extend(render(plot, dir, Formats::BOTH)?);
         }
         Ok(written)
     }

@@ -4,10 +4,11 @@
 //! states from |q| ≤ π to |q| ~ 1e9 (past the fast argument reduction of `sin_cos`).
 
 use rne_codegen::Kernel;
-use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
-use rne_models::stress::cases::compiled::check;
-use rne_models::stress::states::{generator, uniform};
-use rne_models::stress::{JointState, Probe};
+use rne_interpreted::{evaluate, Interpreted, JointState};
+use rne_models::{RobotSource, Visitor, BUILTIN_ROBOTS};
+use rne_runtime::Dynamics;
+use rne_stress::cases::compiled::check;
+use rne_stress::states::{generator, uniform};
 use rne_symbolic::spec::LoadOptions;
 
 /// Bound: zero differing bits, every built-in robot, 40 seeded states each (320 kernel calls
@@ -25,11 +26,36 @@ fn compiled_kernels_equal_graph_evaluation_bitwise() {
     }
 }
 
-/// The probe that every stress case measures with evaluates the same programs, whatever
-/// subset of kernels it is built with and in whatever order: its `f64` values equal the
-/// compiled kernels' bit for bit (20 states per robot, |q| ≤ 1e3).
+/// Programs built for a subset of kernels, in any order, as every stress case builds them:
+/// their `f64` values equal the compiled kernels' bit for bit (20 states per robot,
+/// |q| ≤ 1e3).
 #[test]
-fn probe_programs_equal_compiled_kernels_bitwise() {
+fn programs_of_some_kernels_equal_compiled_kernels_bitwise() {
+    /// Compares one robot's generated `Model` with `programs`.
+    struct Compare<'a> {
+        name: &'a str,
+        programs: &'a Interpreted,
+    }
+    impl Visitor for Compare<'_> {
+        type Output = ();
+        fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) {
+            let mut rng = generator(5);
+            for _ in 0..20 {
+                let state = JointState {
+                    q: uniform(&mut rng, N, 1e3),
+                    qd: uniform(&mut rng, N, 10.0),
+                    qdd: uniform(&mut rng, N, 10.0),
+                    tau: uniform(&mut rng, N, 100.0),
+                };
+                for kernel in self.programs.kernels() {
+                    let compiled = evaluate(&model, kernel, state.as_ref()).unwrap();
+                    let programmed = self.programs.eval(kernel, state.as_ref()).unwrap();
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&programmed), bits(&compiled), "{} {kernel}", self.name);
+                }
+            }
+        }
+    }
     let kernels = [
         Kernel::ForwardDynamics,
         Kernel::KineticEnergy,
@@ -39,33 +65,10 @@ fn probe_programs_equal_compiled_kernels_bitwise() {
         let model = RobotSource::Builtin(robot)
             .load(&LoadOptions::default())
             .unwrap();
-        let probe = Probe::new(&model, &kernels);
-        let n = probe.dof();
-        let mut rng = generator(5);
-        for _ in 0..20 {
-            let state = JointState {
-                q: uniform(&mut rng, n, 1e3),
-                qd: uniform(&mut rng, n, 10.0),
-                qdd: uniform(&mut rng, n, 10.0),
-                tau: uniform(&mut rng, n, 100.0),
-            };
-            let k = robot.kernels;
-            let compiled = [
-                k.forward_dynamics(&state.q, &state.qd, &state.tau).unwrap(),
-                vec![k.kinetic_energy(&state.q, &state.qd).unwrap()],
-                k.inverse_dynamics(&state.q, &state.qd, &state.qdd).unwrap(),
-            ];
-            for (kernel, expected) in kernels.iter().zip(&compiled) {
-                let probed = probe.eval_f64(*kernel, &state).unwrap();
-                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                assert_eq!(
-                    bits(&probed),
-                    bits(expected),
-                    "{} {}",
-                    robot.name,
-                    kernel.name()
-                );
-            }
-        }
+        let programs = Interpreted::with_kernels(&model, &kernels);
+        robot.visit(Compare {
+            name: robot.name,
+            programs: &programs,
+        });
     }
 }

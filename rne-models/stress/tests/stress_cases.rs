@@ -4,11 +4,11 @@
 //! report runs the same measurements on thousands of states.
 
 use rne_codegen::Kernel;
-use rne_models::stress::cases::{
+use rne_stress::cases::{
     chaos, conditioning, joint_angle, joint_count, link_length, mass_ratio, velocity,
 };
-use rne_models::stress::measure::EPSILON;
-use rne_models::stress::Sweep;
+use rne_stress::measure::EPSILON;
+use rne_stress::Sweep;
 
 /// Asserts `sweep`'s largest error of each of `kernels` is at most `bound`.
 fn assert_within(case: &str, sweep: &Sweep, kernels: &[Kernel], bound: f64) {

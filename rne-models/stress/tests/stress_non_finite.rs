@@ -1,13 +1,12 @@
 //! Case 8 of `rne stress`: NaN and infinite inputs give NaN (or ±∞) outputs, exactly in the
 //! outputs that depend on the bad entry, and never a panic or a hang — in every kernel.
 
-use rne_codegen::Kernel;
-use rne_models::builtin::BUILTIN_ROBOTS;
-use rne_models::interpreted::Interpreted;
-use rne_models::sim::{Dopri5, GaussLegendre, Rk4, SimError};
-use rne_models::stress::cases::non_finite::{check, check_builtin, integrate_from_nan};
-use rne_models::stress::states::generator;
-use rne_models::stress::{random_robot, Probe};
+use rne_interpreted::{Interpreted, RuntimeModel};
+use rne_models::BUILTIN_ROBOTS;
+use rne_sim::{Dopri5, GaussLegendre, Rk4, SimError};
+use rne_stress::cases::non_finite::{check, check_builtin, integrate_from_nan};
+use rne_stress::random_robot;
+use rne_stress::states::generator;
 
 /// Bound: zero violations and zero panics over every kernel of every built-in robot
 /// (compiled), every input entry, NaN, +∞ and −∞; at least one output depends on each input.
@@ -21,18 +20,14 @@ fn every_builtin_kernel_propagates_nan_and_infinity() {
     }
 }
 
-/// The same for the graph evaluation of a random robot with prismatic joints.
+/// The same for the programs of a random robot with prismatic joints, evaluated at run time.
 #[test]
 fn graph_evaluation_propagates_nan_and_infinity() {
     let chain = random_robot(&mut generator(11), 5);
     let model = chain.model().unwrap();
-    let c = check(
-        "random-5",
-        &Interpreted::new(&model),
-        &Probe::new(&model, &Kernel::ALL),
-        1,
-    )
-    .unwrap();
+    let programs = Interpreted::new(&model);
+    let runtime = RuntimeModel::<5>::interpreted(&programs).unwrap();
+    let c = check("random-5", &runtime, &programs, 1).unwrap();
     assert_eq!((c.panics, c.violation_count), (0, 0), "{:#?}", c.violations);
 }
 

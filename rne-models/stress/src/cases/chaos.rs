@@ -17,15 +17,15 @@
 
 use std::time::Instant;
 
-use crate::sim::scenarios::models::PlanarElbow;
-use crate::sim::{
+use rne_models::generated::planar_elbow::Model as PlanarElbow;
+use rne_sim::{
     output_times, simulate, Dopri5, GaussLegendre, Integrator, Record, State, ZeroInput,
 };
-use crate::stress::error::StressError;
-use crate::stress::plot::{Axis, LogPlot, Mark, Series};
-use crate::stress::report::CaseReport;
-use crate::stress::table::{sci, Table};
-use crate::stress::Effort;
+use crate::error::StressError;
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use crate::report::CaseReport;
+use rne_figures::{sci, Table};
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "chaos";

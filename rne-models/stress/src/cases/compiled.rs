@@ -11,14 +11,14 @@
 use rand_chacha::ChaCha8Rng;
 
 use super::{builtin_model, symbol};
-use crate::builtin::{BuiltinRobot, BUILTIN_ROBOTS};
-use crate::interpreted::Interpreted;
-use crate::kernels::{DimensionError, Kernels};
-use crate::stress::error::StressError;
-use crate::stress::report::CaseReport;
-use crate::stress::states::{generator, uniform};
-use crate::stress::table::Table;
-use crate::stress::Effort;
+use crate::error::StressError;
+use rne_interpreted::{evaluate, Interpreted, JointState};
+use rne_models::{BuiltinRobot, Visitor, BUILTIN_ROBOTS};
+use rne_runtime::Dynamics;
+use crate::report::CaseReport;
+use crate::states::{generator, uniform};
+use rne_figures::Table;
+use crate::Effort;
 use rne_codegen::Kernel;
 
 /// The case's name.
@@ -54,66 +54,69 @@ pub const SCALES: [(f64, f64, f64, f64); 4] = [
     (1e9, 1.0, 1.0, 1.0),
 ];
 
-/// Every kernel's outputs at one state, flattened, in the order of `Kernel::ALL`.
-fn outputs(
-    k: &dyn Kernels,
-    q: &[f64],
-    qd: &[f64],
-    qdd: &[f64],
-    tau: &[f64],
-) -> Result<Vec<(Kernel, Vec<f64>)>, DimensionError> {
-    Ok(vec![
-        (Kernel::InverseDynamics, k.inverse_dynamics(q, qd, qdd)?),
-        (Kernel::MassMatrix, k.mass_matrix(q)?.concat()),
-        (Kernel::CoriolisMatrix, k.coriolis_matrix(q, qd)?.concat()),
-        (Kernel::GravityTorques, k.gravity_torques(q)?),
-        (Kernel::BiasTorques, k.bias_torques(q, qd)?),
-        (Kernel::ForwardDynamics, k.forward_dynamics(q, qd, tau)?),
-        (Kernel::KineticEnergy, vec![k.kinetic_energy(q, qd)?]),
-        (Kernel::PotentialEnergy, vec![k.potential_energy(q)?]),
-    ])
-}
-
 /// Compares `robot`'s compiled kernels with its programs, value by value, at `states` seeded
 /// states cycling through [`SCALES`].
 pub fn check(robot: &BuiltinRobot, states: usize) -> Result<BitwiseCheck, StressError> {
-    let graph = Interpreted::new(&builtin_model(robot.name)?);
-    let n = graph.dof();
-    let mut rng: ChaCha8Rng = generator(SEED);
-    let mut result = BitwiseCheck {
+    let programs = Interpreted::new(&builtin_model(robot.name)?);
+    robot.visit(Bitwise {
         robot: robot.name,
-        joints: n,
+        programs: &programs,
         states,
-        values: 0,
-        mismatches: Vec::new(),
-        mismatch_count: 0,
-    };
-    let dimension = |source| StressError::Dimension {
-        robot: robot.name.to_owned(),
-        source,
-    };
-    for s in 0..states {
-        let (qb, qdb, qddb, taub) = SCALES[s % SCALES.len()];
-        let (q, qd) = (uniform(&mut rng, n, qb), uniform(&mut rng, n, qdb));
-        let (qdd, tau) = (uniform(&mut rng, n, qddb), uniform(&mut rng, n, taub));
-        let compiled = outputs(robot.kernels, &q, &qd, &qdd, &tau).map_err(dimension)?;
-        let evaluated = outputs(&graph, &q, &qd, &qdd, &tau).map_err(dimension)?;
-        for ((kernel, a), (_, b)) in compiled.iter().zip(&evaluated) {
-            for (i, (x, y)) in a.iter().zip(b).enumerate() {
-                result.values += 1;
-                if x.to_bits() != y.to_bits() {
-                    result.mismatch_count += 1;
-                    if result.mismatches.len() < 5 {
-                        result.mismatches.push(format!(
-                            "{} output {i}: compiled {x:e}, program {y:e} (|q| ≤ {qb:e})",
-                            kernel.name()
-                        ));
+    })
+}
+
+/// The comparison of one robot, run on its generated `Model`.
+struct Bitwise<'a> {
+    robot: &'static str,
+    programs: &'a Interpreted,
+    states: usize,
+}
+
+impl Visitor for Bitwise<'_> {
+    type Output = Result<BitwiseCheck, StressError>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
+        let mut rng: ChaCha8Rng = generator(SEED);
+        let mut result = BitwiseCheck {
+            robot: self.robot,
+            joints: N,
+            states: self.states,
+            values: 0,
+            mismatches: Vec::new(),
+            mismatch_count: 0,
+        };
+        for s in 0..self.states {
+            let (qb, qdb, qddb, taub) = SCALES[s % SCALES.len()];
+            let state = JointState {
+                q: uniform(&mut rng, N, qb),
+                qd: uniform(&mut rng, N, qdb),
+                qdd: uniform(&mut rng, N, qddb),
+                tau: uniform(&mut rng, N, taub),
+            };
+            for kernel in Kernel::ALL {
+                let compiled = evaluate(&model, kernel, state.as_ref()).map_err(|source| {
+                    StressError::Evaluation {
+                        robot: self.robot.to_owned(),
+                        source,
+                    }
+                })?;
+                let program = self.programs.eval(kernel, state.as_ref()).unwrap_or_default();
+                for (i, (x, y)) in compiled.iter().zip(&program).enumerate() {
+                    result.values += 1;
+                    if x.to_bits() != y.to_bits() {
+                        result.mismatch_count += 1;
+                        if result.mismatches.len() < 5 {
+                            result.mismatches.push(format!(
+                                "{} output {i}: compiled {x:e}, program {y:e} (|q| ≤ {qb:e})",
+                                kernel.name()
+                            ));
+                        }
                     }
                 }
             }
         }
+        Ok(result)
     }
-    Ok(result)
 }
 
 /// The report section: one row per built-in robot.

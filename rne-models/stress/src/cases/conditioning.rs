@@ -17,15 +17,16 @@
 use rne_codegen::Kernel;
 
 use super::chain_model;
-use crate::stress::chain::Chain;
-use crate::stress::error::StressError;
-use crate::stress::measure::{Spread, EPSILON};
-use crate::stress::plot::{Axis, LogPlot, Mark, Series};
-use crate::stress::probe::{JointState, Probe};
-use crate::stress::report::CaseReport;
-use crate::stress::states::{generator, uniform};
-use crate::stress::table::{sci, Table};
-use crate::stress::Effort;
+use crate::chain::Chain;
+use crate::error::StressError;
+use crate::measure::{Spread, EPSILON};
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use crate::sweep::{conditions, deviation};
+use rne_interpreted::{Interpreted, JointState};
+use crate::report::CaseReport;
+use crate::states::{generator, uniform};
+use rne_figures::{sci, Table};
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "conditioning";
@@ -96,7 +97,7 @@ pub struct Point {
 /// |q| ≤ π, |q̇| ≤ 1 rad/s and |τ| ≤ 1 N·m.
 pub fn measure(family: Family, x: f64, samples: usize) -> Result<Vec<Point>, StressError> {
     let kernels = [Kernel::MassMatrix, Kernel::ForwardDynamics];
-    let probe = Probe::new(&chain_model(&family.robot(x))?, &kernels);
+    let probe = Interpreted::with_kernels(&chain_model(&family.robot(x))?, &kernels);
     let n = probe.dof();
     let mut rng = generator(SEED);
     let points = (0..samples)
@@ -108,9 +109,8 @@ pub fn measure(family: Family, x: f64, samples: usize) -> Result<Vec<Point>, Str
                 tau: uniform(&mut rng, n, 1.0),
             };
             let (condition, scaled_condition) =
-                probe.conditions(&state.q).unwrap_or((f64::NAN, f64::NAN));
-            let error = probe
-                .deviation(Kernel::ForwardDynamics, &state)
+                conditions(&probe, &state.q).unwrap_or((f64::NAN, f64::NAN));
+            let error = deviation(&probe, Kernel::ForwardDynamics, &state)
                 .map_or(f64::NAN, |d| d.relative);
             Point {
                 condition,

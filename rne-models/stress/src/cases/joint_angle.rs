@@ -11,13 +11,15 @@ use rne_codegen::Kernel;
 use rne_symbolic::DoubleDouble;
 
 use super::{builtin_model, kernel_cells, kernel_table, largest, sweep_cells, SWEEP_HEADINGS};
-use crate::stress::error::StressError;
-use crate::stress::measure::{ulp, Deviation, Spread};
-use crate::stress::probe::{JointState, Probe, Sweep};
-use crate::stress::report::CaseReport;
-use crate::stress::states::{generator, magnitudes, uniform};
-use crate::stress::table::sci;
-use crate::stress::Effort;
+use crate::error::StressError;
+use crate::measure::Spread;
+use rne_figures::{ulp, Deviation, Format};
+use crate::sweep::{sweep, torque_for, Sweep};
+use rne_interpreted::{Interpreted, JointState};
+use crate::report::CaseReport;
+use crate::states::{generator, magnitudes, uniform};
+use rne_figures::sci;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "joint-angle";
@@ -65,7 +67,7 @@ fn angles(rng: &mut ChaCha8Rng, n: usize, magnitude: f64) -> Vec<f64> {
 /// The errors of [`KERNELS`] on the PUMA 560 at `samples` states with angles of size
 /// `magnitude`, |q̇| ≤ 2, |q̈| ≤ 2, τ from inverse dynamics.
 pub fn measure(magnitude: f64, samples: usize) -> Result<AngleRow, StressError> {
-    let probe = Probe::new(&builtin_model(ROBOT)?, &KERNELS);
+    let probe = Interpreted::with_kernels(&builtin_model(ROBOT)?, &KERNELS);
     let n = probe.dof();
     let mut rng = generator(SEED);
     let states: Vec<JointState> = (0..samples)
@@ -76,7 +78,7 @@ pub fn measure(magnitude: f64, samples: usize) -> Result<AngleRow, StressError> 
                 qdd: uniform(&mut rng, n, 2.0),
                 tau: Vec::new(),
             };
-            s.tau = probe.torque_for(&s).unwrap_or_default();
+            s.tau = torque_for(&probe, &s).unwrap_or_default();
             s
         })
         .collect();
@@ -87,15 +89,15 @@ pub fn measure(magnitude: f64, samples: usize) -> Result<AngleRow, StressError> 
         };
         let at = |state: &JointState| {
             probe
-                .eval_dd(Kernel::InverseDynamics, state)
+                .exact(Kernel::InverseDynamics, state.as_ref())
                 .unwrap_or_default()
         };
         let moved: Vec<f64> = at(&moved).into_iter().map(DoubleDouble::to_f64).collect();
-        Deviation::between(&moved, &at(s)).relative
+        Deviation::between(&moved, &at(s), Format::F64).relative
     }));
     Ok(AngleRow {
         magnitude,
-        sweep: probe.sweep(&KERNELS, &states),
+        sweep: sweep(&probe, &KERNELS, &states),
         input_ulp_effect,
     })
 }

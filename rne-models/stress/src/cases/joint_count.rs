@@ -7,15 +7,16 @@
 use rne_codegen::Kernel;
 
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
-use crate::stress::error::StressError;
-use crate::stress::measure::{ErrorsByKernel, KernelErrors, Spread, EPSILON};
-use crate::stress::plot::{Axis, LogPlot, Mark, Series};
-use crate::stress::probe::{JointState, Probe, Sweep};
-use crate::stress::random_robot::random_robot;
-use crate::stress::report::CaseReport;
-use crate::stress::states::generator;
-use crate::stress::table::sci;
-use crate::stress::Effort;
+use crate::error::StressError;
+use crate::measure::{ErrorsByKernel, KernelErrors, Spread, EPSILON};
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use crate::sweep::{deviation, eval_f64, sweep, Sweep};
+use rne_interpreted::{Interpreted, JointState};
+use crate::random_robot::random_robot;
+use crate::report::CaseReport;
+use crate::states::generator;
+use rne_figures::sci;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "joint-count";
@@ -60,10 +61,10 @@ pub fn measure(joints: usize, robots: usize, samples: usize) -> Result<JointCoun
     let mut against_terms = Vec::with_capacity(robots * samples);
     for _ in 0..robots {
         let robot = random_robot(&mut rng, joints);
-        let probe = Probe::new(&chain_model(&robot)?, &KERNELS);
+        let probe = Interpreted::with_kernels(&chain_model(&robot)?, &KERNELS);
         let states = driven_states(&probe, &mut rng, samples, STATE);
         against_terms.extend(states.iter().filter_map(|s| tau_against_terms(&probe, s)));
-        sweeps.push(probe.sweep(&KERNELS, &states));
+        sweeps.push(sweep(&probe, &KERNELS, &states));
     }
     Ok(JointCountRow {
         joints,
@@ -74,17 +75,17 @@ pub fn measure(joints: usize, robots: usize, samples: usize) -> Result<JointCoun
 }
 
 /// τ's absolute error at `state` over ‖M q̈‖∞ + ‖C q̇ + g‖∞.
-fn tau_against_terms(probe: &Probe, state: &JointState) -> Option<f64> {
+fn tau_against_terms(probe: &Interpreted, state: &JointState) -> Option<f64> {
     let norm = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let n = probe.dof();
-    let m = probe.eval_f64(Kernel::MassMatrix, state)?;
+    let m = eval_f64(probe, Kernel::MassMatrix, state)?;
     let m_qdd: Vec<f64> = m
         .chunks(n.max(1))
         .map(|row| row.iter().zip(&state.qdd).map(|(a, b)| a * b).sum())
         .collect();
-    let bias = probe.eval_f64(Kernel::BiasTorques, state)?;
-    let tau = probe.eval_f64(Kernel::InverseDynamics, state)?;
-    let error = probe.deviation(Kernel::InverseDynamics, state)?.relative * norm(&tau);
+    let bias = eval_f64(probe, Kernel::BiasTorques, state)?;
+    let tau = eval_f64(probe, Kernel::InverseDynamics, state)?;
+    let error = deviation(probe, Kernel::InverseDynamics, state)?.relative * norm(&tau);
     Some(error / (norm(&m_qdd) + norm(&bias)))
 }
 

@@ -7,14 +7,15 @@
 use rne_codegen::Kernel;
 
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
-use crate::stress::chain::Chain;
-use crate::stress::error::StressError;
-use crate::stress::measure::EPSILON;
-use crate::stress::probe::{Probe, Sweep};
-use crate::stress::report::CaseReport;
-use crate::stress::states::generator;
-use crate::stress::table::sci;
-use crate::stress::Effort;
+use crate::chain::Chain;
+use crate::error::StressError;
+use crate::measure::EPSILON;
+use crate::sweep::{sweep, Sweep};
+use rne_interpreted::Interpreted;
+use crate::report::CaseReport;
+use crate::states::generator;
+use rne_figures::sci;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "link-length";
@@ -68,9 +69,9 @@ pub fn robot(scales: &[f64; 4]) -> Chain {
 
 /// The errors of [`KERNELS`] for the length scales `scales` over `samples` seeded states.
 pub fn measure(scales: &[f64; 4], samples: usize) -> Result<Sweep, StressError> {
-    let probe = Probe::new(&chain_model(&robot(scales))?, &KERNELS);
+    let probe = Interpreted::with_kernels(&chain_model(&robot(scales))?, &KERNELS);
     let states = driven_states(&probe, &mut generator(SEED), samples, STATE);
-    Ok(probe.sweep(&KERNELS, &states))
+    Ok(sweep(&probe, &KERNELS, &states))
 }
 
 /// The report section.

@@ -8,13 +8,14 @@
 use rne_codegen::Kernel;
 
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
-use crate::stress::chain::Chain;
-use crate::stress::error::StressError;
-use crate::stress::probe::{Probe, Sweep};
-use crate::stress::report::CaseReport;
-use crate::stress::states::generator;
-use crate::stress::table::sci;
-use crate::stress::Effort;
+use crate::chain::Chain;
+use crate::error::StressError;
+use crate::sweep::{sweep, Sweep};
+use rne_interpreted::Interpreted;
+use crate::report::CaseReport;
+use crate::states::generator;
+use rne_figures::sci;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "mass-ratio";
@@ -62,9 +63,9 @@ pub fn robot(r: f64) -> Chain {
 /// The errors of [`KERNELS`] for mass ratio `r` over `samples` seeded states (τ of the
 /// states from inverse dynamics, see [`driven_states`]).
 pub fn measure(r: f64, samples: usize) -> Result<Sweep, StressError> {
-    let probe = Probe::new(&chain_model(&robot(r))?, &KERNELS);
+    let probe = Interpreted::with_kernels(&chain_model(&robot(r))?, &KERNELS);
     let states = driven_states(&probe, &mut generator(SEED), samples, STATE);
-    Ok(probe.sweep(&KERNELS, &states))
+    Ok(sweep(&probe, &KERNELS, &states))
 }
 
 /// The report section.

@@ -16,13 +16,14 @@ use rne_codegen::Kernel;
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::RobotModel;
 
-use super::chain::Chain;
-use super::error::StressError;
-use super::measure::ErrorsByKernel;
-use super::probe::{JointState, Probe, Sweep};
-use super::states::uniform;
-use super::table::{sci, ulps, Table};
-use crate::builtin::{builtin, RobotSource};
+use crate::chain::Chain;
+use crate::error::StressError;
+use crate::measure::ErrorsByKernel;
+use crate::sweep::{torque_for, Sweep};
+use rne_interpreted::{Interpreted, JointState};
+use crate::states::uniform;
+use rne_figures::{sci, ulps, Table};
+use rne_models::{builtin, RobotSource};
 
 /// The model of the built-in robot `name`.
 pub fn builtin_model(name: &str) -> Result<RobotModel, StressError> {
@@ -63,7 +64,7 @@ pub fn symbol(kernel: Kernel) -> &'static str {
 /// accelerations of the size of `qdd`, whatever the masses and lengths of the robot (random
 /// torques would make a light link's acceleration swamp every other one).
 pub fn driven_states(
-    probe: &Probe,
+    probe: &Interpreted,
     rng: &mut ChaCha8Rng,
     samples: usize,
     (q, qd, qdd): (f64, f64, f64),
@@ -77,7 +78,7 @@ pub fn driven_states(
                 qdd: uniform(rng, n, qdd),
                 tau: Vec::new(),
             };
-            state.tau = probe.torque_for(&state).unwrap_or_default();
+            state.tau = torque_for(&probe, &state).unwrap_or_default();
             state
         })
         .collect()

@@ -24,16 +24,17 @@ use rne_codegen_core::Input;
 use rne_symbolic::Symbol;
 
 use super::builtin_model;
-use crate::builtin::{BuiltinRobot, BUILTIN_ROBOTS};
-use crate::kernels::{DimensionError, Kernels};
-use crate::sim::scenarios::models::PlanarElbow;
-use crate::sim::{simulate, Dopri5, GaussLegendre, Integrator, Rk4, SimError, State, ZeroInput};
-use crate::stress::error::StressError;
-use crate::stress::probe::Probe;
-use crate::stress::report::CaseReport;
-use crate::stress::states::{generator, uniform};
-use crate::stress::table::Table;
-use crate::stress::Effort;
+use rne_interpreted::{evaluate, StateRef};
+use rne_models::{BuiltinRobot, Visitor, BUILTIN_ROBOTS};
+use rne_runtime::Dynamics;
+use rne_models::generated::planar_elbow::Model as PlanarElbow;
+use rne_sim::{simulate, Dopri5, GaussLegendre, Integrator, Rk4, SimError, State, ZeroInput};
+use crate::error::StressError;
+use rne_interpreted::Interpreted;
+use crate::report::CaseReport;
+use crate::states::{generator, uniform};
+use rne_figures::Table;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "non-finite";
@@ -63,24 +64,15 @@ pub struct NonFiniteCheck {
     pub panics: usize,
 }
 
-/// Calls `kernel` of `k` with the state arrays; matrices flattened row-major.
-fn call(
-    k: &dyn Kernels,
+/// Calls `kernel` of `model` with the state arrays `[q, q̇, q̈, τ]`; matrices flattened
+/// row-major.
+fn call<const NQ: usize, const NV: usize, D: Dynamics<NQ, NV, Scalar = f64>>(
+    model: &D,
     kernel: Kernel,
     arrays: &[Vec<f64>; 4],
-) -> Result<Vec<f64>, DimensionError> {
+) -> Result<Vec<f64>, rne_interpreted::Error> {
     let [q, qd, qdd, tau] = arrays;
-    Ok(match kernel {
-        Kernel::InverseDynamics => k.inverse_dynamics(q, qd, qdd)?,
-        Kernel::MassMatrix => k.mass_matrix(q)?.concat(),
-        Kernel::CoriolisMatrix => k.coriolis_matrix(q, qd)?.concat(),
-        Kernel::GravityTorques => k.gravity_torques(q)?,
-        Kernel::BiasTorques => k.bias_torques(q, qd)?,
-        Kernel::ForwardDynamics => k.forward_dynamics(q, qd, tau)?,
-        Kernel::KineticEnergy => vec![k.kinetic_energy(q, qd)?],
-        Kernel::PotentialEnergy => vec![k.potential_energy(q)?],
-        other => unreachable!("`Kernels` has no method for {other}"),
-    })
+    evaluate(model, kernel, StateRef { q, qd, qdd, tau })
 }
 
 /// The array of `input` in `[q, q̇, q̈, τ]`, and the symbol of its entry `j`.
@@ -95,12 +87,12 @@ fn slot(input: Input, j: usize) -> (usize, Symbol) {
     }
 }
 
-/// Checks every kernel of `kernels` (a robot whose programs `probe` holds) at `states` seeded
+/// Checks every kernel of `model` (a robot whose programs `probe` holds) at `states` seeded
 /// finite states, each input entry set in turn to each of [`BAD_VALUES`].
-pub fn check(
+pub fn check<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     name: &str,
-    kernels: &dyn Kernels,
-    probe: &Probe,
+    model: &D,
+    probe: &Interpreted,
     states: usize,
 ) -> Result<NonFiniteCheck, StressError> {
     let n = probe.dof();
@@ -109,7 +101,7 @@ pub fn check(
         robot: name.to_owned(),
         ..NonFiniteCheck::default()
     };
-    let dimension = |source| StressError::Dimension {
+    let dimension = |source| StressError::Evaluation {
         robot: name.to_owned(),
         source,
     };
@@ -117,7 +109,7 @@ pub fn check(
         let finite = [0; 4].map(|_| uniform(&mut rng, n, 2.0));
         for kernel in Kernel::ALL {
             let dependencies = probe.dependencies(kernel).unwrap_or_default();
-            let baseline = call(kernels, kernel, &finite).map_err(dimension)?;
+            let baseline = call(model, kernel, &finite).map_err(dimension)?;
             for &input in kernel.inputs() {
                 for j in 0..n {
                     let (array, symbol) = slot(input, j);
@@ -126,7 +118,7 @@ pub fn check(
                         arrays[array][j] = bad;
                         result.calls += 1;
                         let Ok(outputs) =
-                            catch_unwind(AssertUnwindSafe(|| call(kernels, kernel, &arrays)))
+                            catch_unwind(AssertUnwindSafe(|| call(model, kernel, &arrays)))
                         else {
                             result.panics += 1;
                             continue;
@@ -166,8 +158,27 @@ pub fn check(
 
 /// Runs [`check`] on a built-in robot's compiled kernels.
 pub fn check_builtin(robot: &BuiltinRobot, states: usize) -> Result<NonFiniteCheck, StressError> {
-    let probe = Probe::new(&builtin_model(robot.name)?, &Kernel::ALL);
-    check(robot.name, robot.kernels, &probe, states)
+    let probe = Interpreted::new(&builtin_model(robot.name)?);
+    robot.visit(Builtin {
+        name: robot.name,
+        probe: &probe,
+        states,
+    })
+}
+
+/// [`check`] on a built-in robot's generated `Model`.
+struct Builtin<'a> {
+    name: &'a str,
+    probe: &'a Interpreted,
+    states: usize,
+}
+
+impl Visitor for Builtin<'_> {
+    type Output = Result<NonFiniteCheck, StressError>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
+        check(self.name, &model, self.probe, self.states)
+    }
 }
 
 /// What an integrator does from a non-finite initial state of the planar elbow.

@@ -8,12 +8,13 @@
 use rne_codegen::Kernel;
 
 use super::{builtin_model, largest, sweep_row, sweep_table};
-use crate::stress::error::StressError;
-use crate::stress::probe::{JointState, Probe, Sweep};
-use crate::stress::report::CaseReport;
-use crate::stress::states::{generator, magnitudes, uniform};
-use crate::stress::table::sci;
-use crate::stress::Effort;
+use crate::error::StressError;
+use crate::sweep::{sweep, torque_for, Sweep};
+use rne_interpreted::{Interpreted, JointState};
+use crate::report::CaseReport;
+use crate::states::{generator, magnitudes, uniform};
+use rne_figures::sci;
+use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "velocity";
@@ -40,7 +41,7 @@ const SEED: u64 = 0x5eed_0004;
 /// The errors of [`KERNELS`] on the PUMA 560 at `samples` states with |q̇| ∈ [V/2, V],
 /// |q| ≤ π, |q̈| ≤ 10 rad/s², τ from inverse dynamics.
 pub fn measure(speed: f64, samples: usize) -> Result<Sweep, StressError> {
-    let probe = Probe::new(&builtin_model(ROBOT)?, &KERNELS);
+    let probe = Interpreted::with_kernels(&builtin_model(ROBOT)?, &KERNELS);
     let n = probe.dof();
     let mut rng = generator(SEED);
     let states: Vec<JointState> = (0..samples)
@@ -51,11 +52,11 @@ pub fn measure(speed: f64, samples: usize) -> Result<Sweep, StressError> {
                 qdd: uniform(&mut rng, n, 10.0),
                 tau: Vec::new(),
             };
-            s.tau = probe.torque_for(&s).unwrap_or_default();
+            s.tau = torque_for(&probe, &s).unwrap_or_default();
             s
         })
         .collect();
-    Ok(probe.sweep(&KERNELS, &states))
+    Ok(sweep(&probe, &KERNELS, &states))
 }
 
 /// The report section.
