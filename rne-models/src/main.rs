@@ -5,8 +5,8 @@ use std::process::ExitCode;
 use clap::Parser;
 
 fn main() -> ExitCode {
-    let cli = rne_models::cli::Cli::parse();
-    match rne_models::cli::run(cli, &mut std::io::stdout().lock()) {
+    let cli = rne_cli::Cli::parse();
+    match rne_cli::run(cli, &mut std::io::stdout().lock()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error}");

@@ -3,7 +3,8 @@
 use std::process::Command;
 
 use clap::Parser;
-use rne_models::cli::{run, Cli};
+use rne_cli::{run, Cli};
+use rne_scenarios::SCENARIOS;
 
 fn rne(args: &[&str]) -> Result<String, String> {
     let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
@@ -84,7 +85,10 @@ fn eval_json_has_the_documented_keys_and_engines_agree() {
 
 #[test]
 fn eval_of_a_spec_file_uses_the_expression_graph() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/planar-elbow.toml");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/planar-elbow.toml"
+    );
     let by_file = rne(&[
         "eval", path, "--q", "0.2,0.4", "--qd", "1,-1", "--what", "tau,C", "--json",
     ])
@@ -348,5 +352,57 @@ fn check_of_a_builtin_and_of_a_broken_file() {
         error.contains("joint 'FL-finger', field 'mimic.joint': the mimic joint follows '9'"),
         "{error}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The command line: `--list`, a bad scenario name and a scenario file with an unknown key fail
+/// with a message on stderr naming the problem and a non-zero exit code, without panicking.
+#[test]
+fn command_line_lists_and_reports_errors() {
+    let rne = env!("CARGO_BIN_EXE_rne");
+    let list = Command::new(rne)
+        .args(["simulate", "--list"])
+        .output()
+        .unwrap();
+    assert!(list.status.success());
+    let text = String::from_utf8(list.stdout).unwrap();
+    assert_eq!(text.lines().count(), SCENARIOS.len());
+    assert!(text.contains("double-pendulum") && text.contains("6.4-6.7"));
+
+    let unknown = Command::new(rne)
+        .args(["simulate", "no-such-scenario"])
+        .output()
+        .unwrap();
+    assert!(!unknown.status.success());
+    let message = String::from_utf8(unknown.stderr).unwrap();
+    assert!(
+        message.contains("unknown scenario `no-such-scenario`"),
+        "{message}"
+    );
+
+    let dir = std::env::temp_dir().join(format!("rne-cli-simulate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("typo.toml");
+    std::fs::write(
+        &file,
+        "model = \"planar-elbow\"\nduration = 1\nq0 = [0, 0]\ndamping = 2\n",
+    )
+    .unwrap();
+    let bad = Command::new(rne)
+        .args([
+            "simulate",
+            file.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    let message = String::from_utf8(bad.stderr).unwrap();
+    assert!(
+        message.contains("typo.toml") && message.contains("damping"),
+        "{message}"
+    );
+    assert!(!message.contains("panicked"), "{message}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -3,14 +3,14 @@
 //! and as the ratio reference / generated.
 //!
 //! ```text
-//! cargo bench -p rne-models --bench kernels            # criterion options go after `--`
+//! cargo bench -p rne-bench --bench kernels             # criterion options go after `--`
 //! ```
 //!
 //! # What is timed
 //!
-//! Each criterion group `<robot>/<kernel>` holds the function `generated`, the kernel of
-//! [`rne_models::generated`] called directly (statically dispatched and inlinable, as user code
-//! calls it), and, where the reference computes the same quantity, `reference`: the
+//! Each criterion group `<robot>/<kernel>` holds the function `generated`, the kernel of the
+//! robot's `Model` in [`rne_models::generated`] called through the `Dynamics` trait (statically
+//! dispatched and inlined into the module's free function, as user code calls it), and, where the reference computes the same quantity, `reference`: the
 //! allocation-free `Reference::*_into` method writing into a buffer allocated before the timed
 //! loop, or `kinetic_energy` / `potential_energy`, which return an `f64`. The reference's calls
 //! include its argument-length checks, which are part of its API. `coriolis_matrix` has no
@@ -27,8 +27,8 @@
 //! For each robot, [`POOL`] states drawn from ChaCha8 seeded with [`SEED`]: |q| ≤ π, |q̇| ≤ 10,
 //! |q̈| ≤ 10 (the ranges of the accuracy tests), and τ = RNEA(q, q̇, q̈) from the reference, so
 //! that forward dynamics gets consistent torques. While the pool is made, the generated inverse
-//! dynamics is checked against those torques: a benchmark line that pairs a built-in name with
-//! the wrong generated module fails before anything is timed.
+//! dynamics is checked against those torques, so a built-in name paired with the wrong
+//! generated module fails before anything is timed.
 //!
 //! # Summary
 //!
@@ -54,7 +54,8 @@ use criterion::measurement::WallTime;
 use criterion::{Bencher, BenchmarkGroup, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rne_models::builtin::{builtin, RobotSource, BUILTIN_ROBOTS};
+use rne_codegen::Dynamics;
+use rne_models::{RobotSource, Visitor, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 
@@ -67,86 +68,8 @@ const SEED: u64 = 0x5eed_be4c;
 /// Why the reference cannot reject the benchmark's arguments.
 const SIZED: &str = "every array has the robot's number of joints";
 
-/// Lists the benchmarked robots, one line each: the built-in name and its module in
-/// [`rne_models::generated`]. Generates, per robot, a module whose `Kernels` implements
-/// [`Generated`], then [`ROBOTS`] and [`bench_robots`].
-macro_rules! robots {
-    ($($name:literal => $module:ident),* $(,)?) => {
-        $(
-            mod $module {
-                use rne_models::generated::$module as m;
-
-                const N: usize = m::NDOF;
-
-                /// The generated functions of the robot's module.
-                pub struct Kernels;
-
-                impl super::Generated<N> for Kernels {
-                    const JOINTS: [&'static str; N] = m::JOINTS;
-                    fn inverse_dynamics(q: &[f64; N], qd: &[f64; N], qdd: &[f64; N]) -> [f64; N] {
-                        m::inverse_dynamics(q, qd, qdd)
-                    }
-                    fn mass_matrix(q: &[f64; N]) -> [[f64; N]; N] {
-                        m::mass_matrix(q)
-                    }
-                    fn coriolis_matrix(q: &[f64; N], qd: &[f64; N]) -> [[f64; N]; N] {
-                        m::coriolis_matrix(q, qd)
-                    }
-                    fn gravity_torques(q: &[f64; N]) -> [f64; N] {
-                        m::gravity_torques(q)
-                    }
-                    fn bias_torques(q: &[f64; N], qd: &[f64; N]) -> [f64; N] {
-                        m::bias_torques(q, qd)
-                    }
-                    fn forward_dynamics(q: &[f64; N], qd: &[f64; N], tau: &[f64; N]) -> [f64; N] {
-                        m::forward_dynamics(q, qd, tau)
-                    }
-                    fn kinetic_energy(q: &[f64; N], qd: &[f64; N]) -> f64 {
-                        m::kinetic_energy(q, qd)
-                    }
-                    fn potential_energy(q: &[f64; N]) -> f64 {
-                        m::potential_energy(q)
-                    }
-                }
-            }
-        )*
-
-        /// The built-in names of the benchmarked robots.
-        const ROBOTS: &[&str] = &[$($name),*];
-
-        /// Benchmarks every listed robot, recording its groups in `groups`.
-        fn bench_robots(criterion: &mut Criterion, groups: &mut Vec<Group>) {
-            $(
-                bench_robot::<{ rne_models::generated::$module::NDOF }, $module::Kernels>(
-                    criterion, groups, $name,
-                );
-            )*
-        }
-    };
-}
-
-robots! {
-    "planar-elbow" => planar_elbow,
-    "irb140-3dof" => irb140_3dof,
-    "puma560" => puma560,
-    "ur5" => ur5,
-    "panda" => panda,
-    "panda-arm" => panda_arm,
-    "irb140" => irb140,
-}
-
-/// The functions of one generated module (DESIGN.md §4), for static dispatch.
-trait Generated<const N: usize> {
-    const JOINTS: [&'static str; N];
-    fn inverse_dynamics(q: &[f64; N], qd: &[f64; N], qdd: &[f64; N]) -> [f64; N];
-    fn mass_matrix(q: &[f64; N]) -> [[f64; N]; N];
-    fn coriolis_matrix(q: &[f64; N], qd: &[f64; N]) -> [[f64; N]; N];
-    fn gravity_torques(q: &[f64; N]) -> [f64; N];
-    fn bias_torques(q: &[f64; N], qd: &[f64; N]) -> [f64; N];
-    fn forward_dynamics(q: &[f64; N], qd: &[f64; N], tau: &[f64; N]) -> [f64; N];
-    fn kinetic_energy(q: &[f64; N], qd: &[f64; N]) -> f64;
-    fn potential_energy(q: &[f64; N]) -> f64;
-}
+/// Why a generated `Model` of a built-in robot returns every kernel.
+const GENERATED: &str = "the built-in modules generate every kernel";
 
 /// A criterion group that ran: (robot, kernel).
 type Group = (&'static str, &'static str);
@@ -161,14 +84,6 @@ struct State<const N: usize> {
 
 fn main() {
     let started = SystemTime::now();
-    for robot in BUILTIN_ROBOTS {
-        assert!(
-            ROBOTS.contains(&robot.name),
-            "the built-in robot `{}` has no benchmarks: add it to `robots!` in {}",
-            robot.name,
-            file!()
-        );
-    }
     // Modest settings, so that every robot runs in a few minutes on two loaded cores; the
     // command line (`--sample-size`, `--measurement-time`, `--quick`, ...) overrides them.
     let mut criterion = Criterion::default()
@@ -179,29 +94,51 @@ fn main() {
         .without_plots()
         .configure_from_args();
     let mut groups = Vec::new();
-    bench_robots(&mut criterion, &mut groups);
+    for robot in BUILTIN_ROBOTS {
+        robot.visit(BenchRobot {
+            criterion: &mut criterion,
+            groups: &mut groups,
+            robot: robot.name,
+        });
+    }
     criterion.final_summary();
     summarise(&groups, started);
 }
 
-/// Times every kernel of `robot`, whose generated functions are `G`, against its reference.
-fn bench_robot<const N: usize, G: Generated<N>>(
+/// The benchmarks of one built-in robot, run on its generated `Model`.
+struct BenchRobot<'a> {
+    criterion: &'a mut Criterion,
+    groups: &'a mut Vec<Group>,
+    robot: &'static str,
+}
+
+impl Visitor for BenchRobot<'_> {
+    type Output = ();
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) {
+        bench_robot(self.criterion, self.groups, self.robot, &model);
+    }
+}
+
+/// Times every kernel of `robot`, whose generated `Model` is `g`, against its reference.
+fn bench_robot<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     criterion: &mut Criterion,
     groups: &mut Vec<Group>,
     robot: &'static str,
+    g: &D,
 ) {
-    let spec = builtin(robot).unwrap_or_else(|| panic!("`{robot}` is not a built-in robot"));
+    let spec = rne_models::builtin(robot).unwrap_or_else(|| panic!("`{robot}` is not built in"));
     let model = RobotSource::Builtin(spec)
         .load(&LoadOptions::default())
         .unwrap_or_else(|error| panic!("{error}"));
     let mut reference = Reference::new(&model.to_numeric());
     assert!(
-        reference.joint_names() == G::JOINTS,
+        reference.joint_names() == D::JOINTS,
         "{robot}: the reference's joints {:?} are not the generated module's {:?}",
         reference.joint_names(),
-        G::JOINTS
+        D::JOINTS
     );
-    let pool = input_pool::<N, G>(robot, &mut reference);
+    let pool = input_pool(robot, g, &mut reference);
     let mut bench = Bench {
         criterion,
         groups,
@@ -213,7 +150,7 @@ fn bench_robot<const N: usize, G: Generated<N>>(
 
     bench.compare(
         "inverse_dynamics",
-        |s| G::inverse_dynamics(&s.q, &s.qd, &s.qdd),
+        |s| g.inverse_dynamics(&s.q, &s.qd, &s.qdd),
         |s| {
             reference
                 .inverse_dynamics_into(&s.q, &s.qd, &s.qdd, &mut v)
@@ -223,7 +160,7 @@ fn bench_robot<const N: usize, G: Generated<N>>(
     );
     bench.compare(
         "mass_matrix",
-        |s| G::mass_matrix(&s.q),
+        |s| g.mass_matrix(&s.q),
         |s| {
             reference
                 .mass_matrix_into(&s.q, m.as_flattened_mut())
@@ -233,7 +170,7 @@ fn bench_robot<const N: usize, G: Generated<N>>(
     );
     bench.compare(
         "bias_torques",
-        |s| G::bias_torques(&s.q, &s.qd),
+        |s| g.bias_torques(&s.q, &s.qd),
         |s| {
             reference
                 .bias_torques_into(&s.q, &s.qd, &mut v)
@@ -243,7 +180,7 @@ fn bench_robot<const N: usize, G: Generated<N>>(
     );
     bench.compare(
         "forward_dynamics",
-        |s| G::forward_dynamics(&s.q, &s.qd, &s.tau),
+        |s| g.forward_dynamics(&s.q, &s.qd, &s.tau),
         |s| {
             reference
                 .forward_dynamics_into(&s.q, &s.qd, &s.tau, &mut v)
@@ -253,29 +190,30 @@ fn bench_robot<const N: usize, G: Generated<N>>(
     );
     bench.compare(
         "gravity_torques",
-        |s| G::gravity_torques(&s.q),
+        |s| g.gravity_torques(&s.q),
         |s| {
             reference.gravity_torques_into(&s.q, &mut v).expect(SIZED);
             black_box(&v);
         },
     );
-    bench.generated("coriolis_matrix", |s| G::coriolis_matrix(&s.q, &s.qd));
+    bench.generated("coriolis_matrix", |s| g.coriolis_matrix(&s.q, &s.qd));
     bench.compare(
         "kinetic_energy",
-        |s| G::kinetic_energy(&s.q, &s.qd),
+        |s| g.kinetic_energy(&s.q, &s.qd),
         |s| reference.kinetic_energy(&s.q, &s.qd).expect(SIZED),
     );
     bench.compare(
         "potential_energy",
-        |s| G::potential_energy(&s.q),
+        |s| g.potential_energy(&s.q),
         |s| reference.potential_energy(&s.q).expect(SIZED),
     );
 }
 
 /// `robot`'s input pool (see the crate docs), checking the generated inverse dynamics against
 /// the reference's on every state (normwise, to 1e-12 of the largest torque or of 1 N·m).
-fn input_pool<const N: usize, G: Generated<N>>(
+fn input_pool<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     robot: &str,
+    g: &D,
     reference: &mut Reference,
 ) -> Vec<State<N>> {
     let mut rng = ChaCha8Rng::seed_from_u64(SEED);
@@ -288,7 +226,7 @@ fn input_pool<const N: usize, G: Generated<N>>(
             reference
                 .inverse_dynamics_into(&q, &qd, &qdd, &mut tau)
                 .expect(SIZED);
-            let generated = G::inverse_dynamics(&q, &qd, &qdd);
+            let generated = g.inverse_dynamics(&q, &qd, &qdd).expect(GENERATED);
             let scale = tau.iter().fold(1.0, |s: f64, t| s.max(t.abs()));
             assert!(
                 generated
@@ -296,7 +234,7 @@ fn input_pool<const N: usize, G: Generated<N>>(
                     .zip(&tau)
                     .all(|(g, t)| (g - t).abs() <= 1e-12 * scale),
                 "{robot}: generated τ {generated:?} ≠ reference τ {tau:?}: \
-                 does `robots!` pair the name with the right module?"
+                 is the name paired with the right module?"
             );
             State { q, qd, qdd, tau }
         })

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 use rne_codegen::CodegenError;
 use rne_symbolic::spec::SpecError;
 
-use crate::kernels::DimensionError;
-use crate::sim::SimError;
+use rne_figures::FigureError;
 use rne_reference::ReferenceError;
+use rne_sim::SimError;
 
 /// A benchmark that failed. Every message names the robot, run or file it is about.
 #[derive(Debug, thiserror::Error)]
@@ -39,14 +39,15 @@ pub enum BenchError {
         #[source]
         source: ReferenceError,
     },
-    /// A generated variant and the sampled states disagree on the number of joints.
+    /// An implementation could not be set up on the sampled states (a variant with another
+    /// number of joints, a model the reference cannot evaluate at run time).
     #[error("{robot}: {source}")]
-    Dimension {
+    Evaluation {
         /// The robot.
         robot: String,
-        /// The mismatch.
+        /// Why.
         #[source]
-        source: DimensionError,
+        source: rne_interpreted::Error,
     },
     /// The benchmark has no generated variants for a built-in robot, or they do not match it.
     #[error("{robot}: {problem}")]
@@ -82,12 +83,7 @@ pub enum BenchError {
         #[source]
         source: std::io::Error,
     },
-    /// A figure could not be drawn.
-    #[error("cannot draw figure {figure}: {message}")]
-    Plot {
-        /// The figure's file name.
-        figure: String,
-        /// plotters' error.
-        message: String,
-    },
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Figure(#[from] FigureError),
 }

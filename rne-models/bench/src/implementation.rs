@@ -1,11 +1,11 @@
 //! The implementations of a kernel that rne offers, and what each is measured on.
 
-use super::precision::Format;
+use rne_figures::Format;
 
 /// One way rne offers to evaluate a kernel.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Implementation {
-    /// The built-in robot's generated module ([`crate::generated`]): `f64`, constant
+    /// The built-in robot's generated module ([`rne_models::generated`]): `f64`, constant
     /// parameters, the spec's gravity.
     Generated,
     /// Generated with `scalar: f32`.
@@ -20,7 +20,7 @@ pub enum Implementation {
     /// Generated with `velocities: zero` (a static scene), called at q̇ = 0.
     AtRest,
     /// The same optimised programs evaluated without compiling them
-    /// ([`crate::interpreted::Interpreted`]), in `f64`.
+    /// ([`rne_interpreted::Interpreted`]), in `f64`.
     Interpreted,
     /// The independent numeric reference: spatial RNEA, CRBA and ABA on nalgebra
     /// ([`rne_reference::Reference`], its allocation-free `*_into` methods).

@@ -1,12 +1,12 @@
 //! Integrator work-precision: time to solution against final-state error and against energy
-//! drift, for the integrators of [`crate::sim`] on two conservative runs of the thesis.
+//! drift, for the integrators of [`rne_sim`] on two conservative runs of the thesis.
 //!
 //! # Problems
 //! - **Double pendulum**: the planar elbow released from rest at q = 0 with no input (figures
-//!   6.4–6.8), on its generated kernels ([`models::PlanarElbow`]); chaotic, so errors grow
+//!   6.4–6.8), on its generated kernels ([`planar_elbow::Model`]); chaotic, so errors grow
 //!   quickly with the duration.
 //! - **IRB 140 joint-3 pendulum**: the IRB 140 with joints 1 and 2 locked at 0 (a `lock` scene,
-//!   [`models::Irb140Joint3`]), link 3 released from rest at q₃ = 0 (figures 6.16–6.17).
+//!   [`irb140_joint3::Model`]), link 3 released from rest at q₃ = 0 (figures 6.16–6.17).
 //!
 //! # Method
 //! - **Settings**: RK4 at several steps h, Dormand–Prince 5(4) at several tolerances
@@ -18,7 +18,7 @@
 //! - **Final-state error**: max over joints of |Δq| (rad) and |Δq̇| (rad/s) at the final time,
 //!   against the reference.
 //! - **Energy drift**: max over the output grid (every [`SAMPLE`] s) of |E(t) − E(0)| (J),
-//!   from [`Record::energy_drift`](crate::sim::Record::energy_drift) of a recorded run with the
+//!   from [`Record::energy_drift`](rne_sim::Record::energy_drift) of a recorded run with the
 //!   same steps (Dormand–Prince interpolates the grid with its dense output, which does not
 //!   change its steps; the fixed-step methods land on it).
 //! - **Time to solution**: one integration from 0 to the final time with no intermediate
@@ -27,10 +27,12 @@
 
 use super::error::BenchError;
 use super::timing::{time_interleaved, Plan, Timed, Timing};
-use crate::sim::scenarios::models;
-use crate::sim::scenarios::parameters::SAMPLE;
-use crate::sim::{
-    output_times, simulate, Dopri5, Dynamics, GaussLegendre, Integrator, Method, Rk4, State, Stats,
+use rne_codegen::Dynamics;
+use rne_models::generated::planar_elbow;
+use rne_models::generated::scenes::irb140_joint3;
+use rne_scenarios::parameters::SAMPLE;
+use rne_sim::{
+    output_times, simulate, Dopri5, GaussLegendre, Integrator, Method, Rk4, SimError, State, Stats,
     ZeroInput,
 };
 
@@ -146,7 +148,7 @@ pub fn double_pendulum(settings: &Settings, plan: &Plan) -> Result<IntegratorStu
     study(
         "double-pendulum",
         "double pendulum: planar elbow released from q = 0",
-        &models::PlanarElbow,
+        &planar_elbow::Model,
         State::at_rest([0.0; 2]),
         settings,
         plan,
@@ -158,7 +160,7 @@ pub fn irb140_pendulum(settings: &Settings, plan: &Plan) -> Result<IntegratorStu
     study(
         "irb140-pendulum",
         "IRB 140 joint-3 pendulum: joints 1–2 locked, released from q3 = 0",
-        &models::Irb140Joint3,
+        &irb140_joint3::Model,
         State::at_rest([0.0]),
         settings,
         plan,
@@ -173,9 +175,9 @@ struct Run<'a, const N: usize, D> {
     times: [f64; 2],
 }
 
-impl<const N: usize, D: Dynamics<N>> Run<'_, N, D> {
+impl<const N: usize, D: Dynamics<N, N, Scalar = f64>> Run<'_, N, D> {
     /// Integrates once: the final state and the integrator's work.
-    fn integrate(&self) -> Result<(State<N>, Stats), crate::sim::SimError> {
+    fn integrate(&self) -> Result<(State<N>, Stats), SimError> {
         let mut last = self.x0;
         let stats =
             self.method
@@ -186,7 +188,7 @@ impl<const N: usize, D: Dynamics<N>> Run<'_, N, D> {
     }
 }
 
-impl<const N: usize, D: Dynamics<N>> Timed for Run<'_, N, D> {
+impl<const N: usize, D: Dynamics<N, N, Scalar = f64>> Timed for Run<'_, N, D> {
     fn run(&mut self, calls: u64) {
         for _ in 0..calls {
             std::hint::black_box(self.integrate().ok());
@@ -207,7 +209,7 @@ fn distance<const N: usize>(a: &State<N>, b: &State<N>) -> f64 {
 }
 
 /// Runs the study of `model` from `x0` (see the module documentation).
-fn study<const N: usize, D: Dynamics<N>>(
+fn study<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     name: &'static str,
     title: &'static str,
     model: &D,

@@ -3,7 +3,7 @@
 //!
 //! The errors are measured over the whole sample, state by state: each implementation is
 //! evaluated on its case's inputs, the exact value of that case computed once per state and
-//! kernel ([`Cases::exact`]), and [`error`] compares them. The implementations of one kernel
+//! kernel ([`Cases::exact`]), and [`Deviation::between`] compares them. The implementations of one kernel
 //! are then timed together by [`time_interleaved`] on the first states of the sample (the
 //! timing pool), so that their ratios come from the same rounds.
 
@@ -11,9 +11,10 @@ use rne_codegen::{DoubleDouble, Kernel};
 
 use super::error::BenchError;
 use super::implementation::{Case, Implementation};
-use super::precision::{error, Error, ErrorSummary};
+use super::precision::ErrorSummary;
 use super::robots::{subjects, Candidate, Cases, BENCHED};
 use super::timing::{time_interleaved, Plan, Timed, Timing};
+use rne_figures::Deviation;
 
 /// One implementation of one kernel.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,7 +66,7 @@ pub fn measure(cases: &Cases, plan: &Plan, pool: usize) -> Result<RobotKernels, 
     }
     Ok(RobotKernels {
         robot: cases.robot.name,
-        dof: cases.robot.kernels.dof(),
+        dof: cases.model.dof(),
         rows,
     })
 }
@@ -78,18 +79,22 @@ pub fn errors(
 ) -> Vec<ErrorSummary> {
     let states = candidates
         .iter()
-        .map(|c| c.subject.len())
+        .map(|c| c.calls.states())
         .min()
         .unwrap_or(0);
-    let mut errors: Vec<Vec<Error>> = vec![Vec::with_capacity(states); candidates.len()];
+    let mut errors: Vec<Vec<Deviation>> = vec![Vec::with_capacity(states); candidates.len()];
     let mut result = Vec::new();
     for k in 0..states {
         let mut exact: [Option<Vec<DoubleDouble>>; 5] = Default::default();
         for (candidate, errors) in candidates.iter_mut().zip(&mut errors) {
             let case: Case = candidate.implementation.case();
             let x = exact[case.index()].get_or_insert_with(|| cases.exact(case, kernel, k));
-            candidate.subject.evaluate(k, &mut result);
-            errors.push(error(&result, x, candidate.implementation.format()));
+            candidate.calls.evaluate(k, &mut result);
+            errors.push(Deviation::between(
+                &result,
+                x,
+                candidate.implementation.format(),
+            ));
         }
     }
     errors.iter().map(|e| ErrorSummary::of(e)).collect()

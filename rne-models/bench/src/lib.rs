@@ -4,7 +4,7 @@
 //! - **Kernels** ([`kernels`]): for every built-in robot and for inverse dynamics, mass
 //!   matrix, bias torques and forward dynamics, every implementation rne offers
 //!   ([`Implementation`]: generated `f64`, `f32`, runtime parameters, the scene variants of
-//!   [`variants`], the interpreted programs, the numeric reference), timed per call and measured
+//!   [`rne_models::generated::variants`], the interpreted programs, the numeric reference), timed per call and measured
 //!   for error against the double-double value of the same model ([`precision`]);
 //! - **Scene savings** ([`scenes`]): operations and time of the inverse dynamics against the
 //!   gravity torques and the zero-gravity, locked-joint and static-scene variants;
@@ -15,20 +15,20 @@
 //! Times come from the interleaved-batch harness of [`timing`]; on a shared machine the
 //! absolute times move with the load, the ratios measured within one run much less.
 
+#![deny(missing_docs)]
+
+pub mod calls;
 pub mod error;
 pub mod implementation;
 pub mod integrators;
 pub mod kernels;
 pub mod pinocchio;
-pub mod plot;
 pub mod precision;
 pub mod report;
 pub mod robots;
 pub mod sample;
 pub mod scenes;
-pub mod subject;
 pub mod timing;
-pub mod variants;
 
 use std::time::{Duration, Instant};
 
@@ -37,8 +37,8 @@ pub use implementation::{Case, Implementation};
 pub use pinocchio::{PinocchioScript, PinocchioTimes};
 pub use report::Report;
 
-use crate::builtin::BUILTIN_ROBOTS;
 use integrators::Settings;
+use rne_models::BUILTIN_ROBOTS;
 use timing::Plan;
 
 /// How much to measure.

@@ -18,7 +18,7 @@ use super::error::BenchError;
 use super::implementation::Implementation;
 use super::kernels::RobotKernels;
 use super::timing::quantile;
-use crate::builtin::BuiltinRobot;
+use rne_models::BuiltinRobot;
 
 /// Built-in robots compared with Pinocchio: the URDF ones.
 pub const COMPARED: [&str; 3] = ["ur5", "panda-arm", "panda"];

@@ -12,11 +12,12 @@ use super::implementation::Implementation;
 use super::integrators::{Family, IntegratorStudy, REFERENCE_TOLERANCE};
 use super::kernels::RobotKernels;
 use super::pinocchio::{self, PinocchioTimes, ALGORITHMS};
-use super::plot::{Chart, Marker, Panel, Point, Series};
 use super::robots::{BENCHED, SEED};
 use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
 use super::scenes::{RobotScenes, SceneKernel};
 use super::Effort;
+use rne_figures::work_precision::{Chart, Marker, Panel, Point, Series};
+use rne_figures::{render, sci, ulps, Formats};
 
 /// Inverse-dynamics operation counts published for built-in robots (ROBOTS.md): robot,
 /// multiplications, additions, source.
@@ -65,30 +66,6 @@ fn ns(t: f64) -> String {
         format!("{t:.1}")
     } else {
         format!("{t:.2}")
-    }
-}
-
-/// An error in scientific notation.
-fn sci(e: f64) -> String {
-    if e == 0.0 {
-        "0".into()
-    } else if e.is_nan() {
-        "NaN".into()
-    } else {
-        format!("{e:.1e}")
-    }
-}
-
-/// An error in ulps.
-fn ulps(u: f64) -> String {
-    if u.is_nan() {
-        "NaN".into()
-    } else if u < 10.0 {
-        format!("{u:.2}")
-    } else if u < 1e4 {
-        format!("{u:.0}")
-    } else {
-        format!("{u:.1e}")
     }
 }
 
@@ -172,7 +149,7 @@ impl Report {
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let mut written = Vec::new();
         for chart in self.charts() {
-            written.extend(chart.render(dir)?);
+            written.extend(render(&chart, dir, Formats::BOTH)?);
         }
         let report = dir.join(REPORT_FILE);
         std::fs::write(&report, self.markdown()).map_err(io(&report))?;

@@ -5,23 +5,24 @@
 //! double-double evaluation gives the exact values: the robot's own (also for the static scene,
 //! at q̇ = 0, and for the `f32` kernels, at their rounded inputs), the robot without gravity and
 //! the robot with its first joint locked. [`subjects`] lists the implementations of one kernel
-//! as [`Subject`]s: the generated functions are called directly (statically dispatched and
-//! inlinable, as user code calls them), the interpreted programs through
-//! [`Interpreted::eval_in`], the reference through its allocation-free `*_into` methods.
+//! as [`Calls`] of a [`Dynamics`]: the generated modules' `Model`s (statically dispatched and
+//! inlined, as user code calls them), the interpreted programs and the reference (through its
+//! allocation-free `*_into` methods) as [`RuntimeModel`]s.
 
-use rne_codegen::{DoubleDouble, Kernel, Scene};
+use rne_codegen::{DoubleDouble, Dynamics, Kernel, Scene};
+use rne_interpreted::{Interpreted, RuntimeModel, StateRef};
+use rne_models::generated::{self, variants};
+use rne_models::{BuiltinRobot, RobotSource};
+use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::RobotModel;
 
-use super::error::BenchError;
-use super::implementation::{Case, Implementation};
-use super::precision::exact;
-use super::sample::Sample;
-use super::subject::{Input, Returning, Subject, Writing};
-use super::timing::Timed;
-use crate::builtin::{BuiltinRobot, RobotSource};
-use crate::interpreted::Interpreted;
-use rne_reference::Reference;
+use crate::calls::{Calls, KernelCalls};
+use crate::error::BenchError;
+use crate::implementation::{Case, Implementation};
+use crate::precision::exact;
+use crate::sample::Sample;
+use crate::timing::Timed;
 
 /// Seed of every robot's sample.
 pub const SEED: u64 = 0x5eed_be4c;
@@ -71,21 +72,30 @@ impl Cases {
             lock: vec![(locked_joint.clone(), 0.0)],
             ..Scene::default()
         })?;
-        let kernels = robot.kernels;
-        let sample = Sample::draw(kernels.dof(), len, SEED, |q| {
-            kernels.gravity_torques(q).unwrap_or_default()
-        });
+        let programs = [
+            Interpreted::new(&model),
+            Interpreted::new(&zero_gravity),
+            Interpreted::new(&locked),
+        ];
+        // The programs are the generated kernels bit for bit, so g(q) is the generated one.
+        let gravity = |q: &[f64]| {
+            let state = StateRef {
+                q,
+                qd: &[],
+                qdd: &[],
+                tau: &[],
+            };
+            programs[0]
+                .eval(Kernel::GravityTorques, state)
+                .unwrap_or_default()
+        };
+        let sample = Sample::draw(model.dof(), len, SEED, gravity);
         let samples = [
             sample.clone(),
             sample.rounded_to_f32(),
             sample.clone(),
             sample.without_joint(0),
             sample.at_rest(),
-        ];
-        let programs = [
-            Interpreted::new(&model),
-            Interpreted::new(&zero_gravity),
-            Interpreted::new(&locked),
         ];
         Ok(Cases {
             robot,
@@ -116,7 +126,7 @@ impl Cases {
     }
 
     /// The numeric reference of the robot.
-    fn reference(&self) -> Result<Reference, BenchError> {
+    pub fn reference(&self) -> Result<Reference, BenchError> {
         Reference::try_new(&self.model.to_numeric()).map_err(|source| BenchError::Reference {
             robot: self.robot.name.to_owned(),
             source,
@@ -124,143 +134,17 @@ impl Cases {
     }
 }
 
-/// An implementation with its subject.
+/// An implementation with its calls.
 pub struct Candidate<'a> {
     /// The implementation.
     pub implementation: Implementation,
     /// Its calls.
-    pub subject: Box<dyn Subject + 'a>,
+    pub calls: Box<dyn KernelCalls + 'a>,
 }
 
 impl Timed for Candidate<'_> {
     fn run(&mut self, calls: u64) {
-        self.subject.run(calls);
-    }
-}
-
-/// Collects the candidates of one kernel.
-struct Candidates<'a> {
-    cases: &'a Cases,
-    pool: usize,
-    list: Vec<Candidate<'a>>,
-}
-
-impl<'a> Candidates<'a> {
-    fn new(cases: &'a Cases, pool: usize) -> Candidates<'a> {
-        Candidates {
-            cases,
-            pool,
-            list: Vec::new(),
-        }
-    }
-
-    /// The inputs of `implementation`, with scalar `T` and N joints.
-    fn inputs<T: rne_codegen::Real, const N: usize>(
-        &self,
-        implementation: Implementation,
-    ) -> Result<Vec<Input<T, N>>, BenchError> {
-        self.cases
-            .sample(implementation.case())
-            .inputs::<T, N>()
-            .map_err(|source| BenchError::Dimension {
-                robot: self.cases.robot.name.to_owned(),
-                source,
-            })
-    }
-
-    /// Adds a kernel that returns its result.
-    fn add<T, const N: usize, R, F>(
-        &mut self,
-        implementation: Implementation,
-        kernel: F,
-    ) -> Result<(), BenchError>
-    where
-        T: rne_codegen::Real + 'a,
-        R: super::subject::Output,
-        F: FnMut(&Input<T, N>) -> R + 'a,
-    {
-        let inputs = self.inputs::<T, N>(implementation)?;
-        self.list.push(Candidate {
-            implementation,
-            subject: Box::new(Returning::new(inputs, self.pool, kernel)),
-        });
-        Ok(())
-    }
-
-    /// Adds the interpreted program of `kernel`.
-    fn interpreted<const N: usize>(&mut self, kernel: Kernel) -> Result<(), BenchError> {
-        let program = self.cases.program(Case::Full);
-        self.add::<f64, N, _, _>(Implementation::Interpreted, move |s| {
-            program.eval_in::<f64>(kernel, &s.q, &s.qd, &s.qdd, &s.tau)
-        })
-    }
-
-    /// Adds the numeric reference's `kernel`, if it has one. An argument error (impossible:
-    /// the arrays have the robot's length) would leave NaN in the result.
-    fn reference<const N: usize>(&mut self, kernel: Kernel) -> Result<(), BenchError> {
-        let inputs = self.inputs::<f64, N>(Implementation::Reference)?;
-        let mut reference = self.cases.reference()?;
-        let pool = self.pool;
-        fn write(result: Result<(), rne_reference::ReferenceError>, out: &mut [f64]) {
-            if result.is_err() {
-                out.fill(f64::NAN);
-            }
-        }
-        let subject: Box<dyn Subject + 'a> = match kernel {
-            Kernel::InverseDynamics => Box::new(Writing::new(
-                inputs,
-                pool,
-                N,
-                move |s: &Input<f64, N>, out: &mut [f64]| {
-                    write(
-                        reference.inverse_dynamics_into(&s.q, &s.qd, &s.qdd, out),
-                        out,
-                    )
-                },
-            )),
-            Kernel::MassMatrix => Box::new(Writing::new(
-                inputs,
-                pool,
-                N * N,
-                move |s: &Input<f64, N>, out: &mut [f64]| {
-                    write(reference.mass_matrix_into(&s.q, out), out)
-                },
-            )),
-            Kernel::BiasTorques => Box::new(Writing::new(
-                inputs,
-                pool,
-                N,
-                move |s: &Input<f64, N>, out: &mut [f64]| {
-                    write(reference.bias_torques_into(&s.q, &s.qd, out), out)
-                },
-            )),
-            Kernel::ForwardDynamics => Box::new(Writing::new(
-                inputs,
-                pool,
-                N,
-                move |s: &Input<f64, N>, out: &mut [f64]| {
-                    write(
-                        reference.forward_dynamics_into(&s.q, &s.qd, &s.tau, out),
-                        out,
-                    )
-                },
-            )),
-            Kernel::GravityTorques => Box::new(Writing::new(
-                inputs,
-                pool,
-                N,
-                move |s: &Input<f64, N>, out: &mut [f64]| {
-                    write(reference.gravity_torques_into(&s.q, out), out)
-                },
-            )),
-            // C(q, q̇), the energies and any later kernel have no reference implementation.
-            _ => return Ok(()),
-        };
-        self.list.push(Candidate {
-            implementation: Implementation::Reference,
-            subject,
-        });
-        Ok(())
+        self.calls.run(calls);
     }
 }
 
@@ -272,130 +156,215 @@ pub const BENCHED: [Kernel; 4] = [
     Kernel::ForwardDynamics,
 ];
 
-/// Defines, for one robot, the function listing its candidates for a kernel: its generated
-/// module, then the variants of [`super::variants`], the interpreted programs and the
-/// reference. Gravity and velocities do not enter M, so the mass matrix has no zero-gravity or
-/// static-scene variant. `gravity_torques` lists the generated function alone (for the scene
-/// savings).
-macro_rules! robot_candidates {
-    ($function:ident, $module:ident $(, $runtime:ident)?) => {
-        fn $function(
-            kernel: Kernel,
-            cases: &Cases,
-            pool: usize,
-        ) -> Result<Vec<Candidate<'_>>, BenchError> {
-            use super::variants::$module as v;
-            use crate::generated::$module as g;
-            use Implementation::*;
-            const N: usize = g::NDOF;
-            const L: usize = v::locked::NDOF;
-            let mut c = Candidates::new(cases, pool);
-            if g::JOINTS.get(1..) != Some(&v::locked::JOINTS[..])
-                || cases.locked_joint != g::JOINTS[0]
-            {
-                return Err(BenchError::Variants {
-                    robot: cases.robot.name.to_owned(),
-                    problem: format!(
-                        "the locked variant's joints {:?} are not the robot's {:?} without `{}`",
-                        v::locked::JOINTS, g::JOINTS, cases.locked_joint
-                    ),
-                });
-            }
-            match kernel {
-                Kernel::InverseDynamics => {
-                    c.add::<f64, N, _, _>(Generated, |s| g::inverse_dynamics(&s.q, &s.qd, &s.qdd))?;
-                    c.add::<f32, N, _, _>(Single, |s| v::single::inverse_dynamics(&s.q, &s.qd, &s.qdd))?;
-                    $(
-                        let p = v::$runtime::Params::default();
-                        c.add::<f64, N, _, _>(RuntimeParameters, move |s| {
-                            v::$runtime::inverse_dynamics(&p, &s.q, &s.qd, &s.qdd)
-                        })?;
-                    )?
-                    c.add::<f64, N, _, _>(ZeroGravity, |s| {
-                        v::zero_gravity::inverse_dynamics(&s.q, &s.qd, &s.qdd)
-                    })?;
-                    c.add::<f64, L, _, _>(Locked, |s| v::locked::inverse_dynamics(&s.q, &s.qd, &s.qdd))?;
-                    c.add::<f64, N, _, _>(AtRest, |s| v::at_rest::inverse_dynamics(&s.q, &s.qd, &s.qdd))?;
-                }
-                Kernel::MassMatrix => {
-                    c.add::<f64, N, _, _>(Generated, |s| g::mass_matrix(&s.q))?;
-                    c.add::<f32, N, _, _>(Single, |s| v::single::mass_matrix(&s.q))?;
-                    $(
-                        let p = v::$runtime::Params::default();
-                        c.add::<f64, N, _, _>(RuntimeParameters, move |s| v::$runtime::mass_matrix(&p, &s.q))?;
-                    )?
-                    c.add::<f64, L, _, _>(Locked, |s| v::locked::mass_matrix(&s.q))?;
-                }
-                Kernel::BiasTorques => {
-                    c.add::<f64, N, _, _>(Generated, |s| g::bias_torques(&s.q, &s.qd))?;
-                    c.add::<f32, N, _, _>(Single, |s| v::single::bias_torques(&s.q, &s.qd))?;
-                    $(
-                        let p = v::$runtime::Params::default();
-                        c.add::<f64, N, _, _>(RuntimeParameters, move |s| {
-                            v::$runtime::bias_torques(&p, &s.q, &s.qd)
-                        })?;
-                    )?
-                    c.add::<f64, N, _, _>(ZeroGravity, |s| v::zero_gravity::bias_torques(&s.q, &s.qd))?;
-                    c.add::<f64, L, _, _>(Locked, |s| v::locked::bias_torques(&s.q, &s.qd))?;
-                    c.add::<f64, N, _, _>(AtRest, |s| v::at_rest::bias_torques(&s.q, &s.qd))?;
-                }
-                Kernel::ForwardDynamics => {
-                    c.add::<f64, N, _, _>(Generated, |s| g::forward_dynamics(&s.q, &s.qd, &s.tau))?;
-                    c.add::<f32, N, _, _>(Single, |s| v::single::forward_dynamics(&s.q, &s.qd, &s.tau))?;
-                    $(
-                        let p = v::$runtime::Params::default();
-                        c.add::<f64, N, _, _>(RuntimeParameters, move |s| {
-                            v::$runtime::forward_dynamics(&p, &s.q, &s.qd, &s.tau)
-                        })?;
-                    )?
-                    c.add::<f64, N, _, _>(ZeroGravity, |s| {
-                        v::zero_gravity::forward_dynamics(&s.q, &s.qd, &s.tau)
-                    })?;
-                    c.add::<f64, L, _, _>(Locked, |s| v::locked::forward_dynamics(&s.q, &s.qd, &s.tau))?;
-                    c.add::<f64, N, _, _>(AtRest, |s| v::at_rest::forward_dynamics(&s.q, &s.qd, &s.tau))?;
-                }
-                Kernel::GravityTorques => {
-                    c.add::<f64, N, _, _>(Generated, |s| g::gravity_torques(&s.q))?;
-                    return Ok(c.list);
-                }
-                // C(q, q̇), the energies and any later kernel have no variants.
-                _ => return Ok(c.list),
-            }
-            c.interpreted::<N>(kernel)?;
-            c.reference::<N>(kernel)?;
-            Ok(c.list)
+/// One robot's generated modules that the benchmark compares (see
+/// [`rne_models::generated::variants`]): the default module, `f32`, zero gravity, the first
+/// joint locked (L = N − 1 joints), the static scene and, for robots with named parameters,
+/// runtime parameters.
+pub struct Modules<G, S, Z, K, R, P> {
+    /// The default module.
+    pub generated: G,
+    /// `scalar: f32`.
+    pub single: S,
+    /// `gravity: [0.0, 0.0, 0.0]`.
+    pub zero_gravity: Z,
+    /// The first joint locked at 0.
+    pub locked: K,
+    /// `velocities: zero`.
+    pub at_rest: R,
+    /// `parameters: runtime` with the spec's values, if the spec has named parameters.
+    pub runtime: Option<P>,
+}
+
+/// Collects the candidates of one kernel.
+struct Candidates<'a> {
+    cases: &'a Cases,
+    kernel: Kernel,
+    pool: usize,
+    list: Vec<Candidate<'a>>,
+}
+
+impl<'a> Candidates<'a> {
+    /// Adds `model`'s kernel as `implementation`, if the model has the kernel.
+    fn add<D, const N: usize>(
+        &mut self,
+        implementation: Implementation,
+        model: D,
+    ) -> Result<(), BenchError>
+    where
+        D: Dynamics<N, N> + 'a,
+    {
+        if !model.has(self.kernel) {
+            return Ok(());
+        }
+        let inputs = self
+            .cases
+            .sample(implementation.case())
+            .inputs::<D::Scalar, N>()
+            .map_err(|source| BenchError::Evaluation {
+                robot: self.cases.robot.name.to_owned(),
+                source,
+            })?;
+        self.list.push(Candidate {
+            implementation,
+            calls: Box::new(Calls::new(model, self.kernel, inputs, self.pool)),
+        });
+        Ok(())
+    }
+}
+
+/// The candidates of `kernel` for the robot of `cases` with its generated `modules`, in
+/// [`Implementation::ALL`] order: for a kernel of [`BENCHED`] every implementation that has
+/// it (gravity and velocities do not enter M, so the mass matrix has no zero-gravity or
+/// static-scene variant), then the interpreted programs and the reference; for the gravity
+/// torques the generated function alone (for the scene savings); nothing for the others.
+pub fn candidates<'a, const N: usize, const L: usize, G, S, Z, K, R, P>(
+    kernel: Kernel,
+    cases: &'a Cases,
+    pool: usize,
+    modules: Modules<G, S, Z, K, R, P>,
+) -> Result<Vec<Candidate<'a>>, BenchError>
+where
+    G: Dynamics<N, N, Scalar = f64> + 'a,
+    S: Dynamics<N, N, Scalar = f32> + 'a,
+    Z: Dynamics<N, N, Scalar = f64> + 'a,
+    K: Dynamics<L, L, Scalar = f64> + 'a,
+    R: Dynamics<N, N, Scalar = f64> + 'a,
+    P: Dynamics<N, N, Scalar = f64> + 'a,
+{
+    let robot = cases.robot.name.to_owned();
+    if G::JOINTS.get(1..) != Some(K::JOINTS) || G::JOINTS.first() != Some(&&*cases.locked_joint) {
+        return Err(BenchError::Variants {
+            robot,
+            problem: format!(
+                "the locked variant's joints {:?} are not the robot's {:?} without `{}`",
+                K::JOINTS,
+                G::JOINTS,
+                cases.locked_joint
+            ),
+        });
+    }
+    let mut c = Candidates {
+        cases,
+        kernel,
+        pool,
+        list: Vec::new(),
+    };
+    if kernel == Kernel::GravityTorques {
+        c.add(Implementation::Generated, modules.generated)?;
+        return Ok(c.list);
+    }
+    if !BENCHED.contains(&kernel) {
+        return Ok(c.list);
+    }
+    c.add(Implementation::Generated, modules.generated)?;
+    c.add(Implementation::Single, modules.single)?;
+    if let Some(runtime) = modules.runtime {
+        c.add(Implementation::RuntimeParameters, runtime)?;
+    }
+    c.add(Implementation::ZeroGravity, modules.zero_gravity)?;
+    c.add(Implementation::Locked, modules.locked)?;
+    c.add(Implementation::AtRest, modules.at_rest)?;
+    let interpreted = RuntimeModel::<N>::interpreted(cases.program(Case::Full));
+    let reference = cases.reference().and_then(|r| {
+        RuntimeModel::<N>::reference(r).map_err(|source| BenchError::Evaluation {
+            robot: robot.clone(),
+            source,
+        })
+    });
+    c.add(
+        Implementation::Interpreted,
+        interpreted.map_err(|source| BenchError::Evaluation {
+            robot: robot.clone(),
+            source,
+        })?,
+    )?;
+    c.add(Implementation::Reference, reference?)?;
+    Ok(c.list)
+}
+
+/// The [`Modules`] of the built-in robot whose modules are called `$module`, with runtime
+/// parameters if `runtime` follows.
+macro_rules! modules {
+    ($module:ident) => {
+        modules!(@ $module, None::<generated::$module::Model>)
+    };
+    ($module:ident, runtime) => {
+        modules!(@ $module, Some(variants::$module::runtime::Model::default()))
+    };
+    (@ $module:ident, $runtime:expr) => {
+        Modules {
+            generated: generated::$module::Model,
+            single: variants::$module::single::Model,
+            zero_gravity: variants::$module::zero_gravity::Model,
+            locked: variants::$module::locked::Model,
+            at_rest: variants::$module::at_rest::Model,
+            runtime: $runtime,
         }
     };
 }
 
-robot_candidates!(planar_elbow, planar_elbow, runtime);
-robot_candidates!(irb140_3dof, irb140_3dof, runtime);
-robot_candidates!(puma560, puma560);
-robot_candidates!(ur5, ur5);
-robot_candidates!(panda, panda);
-robot_candidates!(panda_arm, panda_arm);
-robot_candidates!(irb140, irb140, runtime);
-
-/// The implementations of `kernel` for the robot of `cases`, each timed on the first `pool`
-/// states of its sample: those of [`BENCHED`] kernels, the generated `gravity_torques` alone,
-/// nothing for the other kernels.
+/// The implementations of `kernel` for the robot of `cases` ([`candidates`]), each timed on
+/// the first `pool` states of its sample.
 pub fn subjects(
     kernel: Kernel,
     cases: &Cases,
     pool: usize,
 ) -> Result<Vec<Candidate<'_>>, BenchError> {
+    use generated::{irb140, irb140_3dof, panda, panda_arm, planar_elbow, puma560, ur5};
+    use variants as v;
     match cases.robot.name {
-        "planar-elbow" => planar_elbow(kernel, cases, pool),
-        "irb140-3dof" => irb140_3dof(kernel, cases, pool),
-        "puma560" => puma560(kernel, cases, pool),
-        "ur5" => ur5(kernel, cases, pool),
-        "panda" => panda(kernel, cases, pool),
-        "panda-arm" => panda_arm(kernel, cases, pool),
-        "irb140" => irb140(kernel, cases, pool),
+        "planar-elbow" => {
+            candidates::<{ planar_elbow::NV }, { v::planar_elbow::locked::NV }, _, _, _, _, _, _>(
+                kernel,
+                cases,
+                pool,
+                modules!(planar_elbow, runtime),
+            )
+        }
+        "irb140-3dof" => {
+            candidates::<{ irb140_3dof::NV }, { v::irb140_3dof::locked::NV }, _, _, _, _, _, _>(
+                kernel,
+                cases,
+                pool,
+                modules!(irb140_3dof, runtime),
+            )
+        }
+        "puma560" => candidates::<{ puma560::NV }, { v::puma560::locked::NV }, _, _, _, _, _, _>(
+            kernel,
+            cases,
+            pool,
+            modules!(puma560),
+        ),
+        "ur5" => candidates::<{ ur5::NV }, { v::ur5::locked::NV }, _, _, _, _, _, _>(
+            kernel,
+            cases,
+            pool,
+            modules!(ur5),
+        ),
+        "panda" => candidates::<{ panda::NV }, { v::panda::locked::NV }, _, _, _, _, _, _>(
+            kernel,
+            cases,
+            pool,
+            modules!(panda),
+        ),
+        "panda-arm" => {
+            candidates::<{ panda_arm::NV }, { v::panda_arm::locked::NV }, _, _, _, _, _, _>(
+                kernel,
+                cases,
+                pool,
+                modules!(panda_arm),
+            )
+        }
+        "irb140" => candidates::<{ irb140::NV }, { v::irb140::locked::NV }, _, _, _, _, _, _>(
+            kernel,
+            cases,
+            pool,
+            modules!(irb140, runtime),
+        ),
         other => Err(BenchError::Variants {
             robot: other.to_owned(),
-            problem: "no generated variants: add the robot to bench/variants.rs and \
-                      bench/robots.rs"
+            problem: "no generated variants: add the robot to rne_models::generated::variants \
+                      and to bench/src/robots.rs"
                 .into(),
         }),
     }

@@ -14,8 +14,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rne_codegen::Real;
 
-use super::subject::Input;
-use crate::kernels::DimensionError;
+use rne_codegen::Input as Array;
+use rne_interpreted::{Error, StateRef};
+
+use crate::calls::Input;
 
 /// Bound on |q|.
 pub const Q_BOUND: f64 = PI;
@@ -25,19 +27,6 @@ pub const QD_BOUND: f64 = 10.0;
 pub const QDD_BOUND: f64 = 10.0;
 /// Smallest bound on |τ|.
 pub const TAU_FLOOR: f64 = 10.0;
-
-/// One state's arrays.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StateRef<'a> {
-    /// Joint positions.
-    pub q: &'a [f64],
-    /// Joint velocities.
-    pub qd: &'a [f64],
-    /// Joint accelerations.
-    pub qdd: &'a [f64],
-    /// Joint torques.
-    pub tau: &'a [f64],
-}
 
 /// `len` states, stored flat: state k's positions are `q[k·dof .. (k+1)·dof]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -165,10 +154,10 @@ impl Sample {
     /// The states as a generated function with scalar `T` and N joints takes them (each value
     /// converted by [`Real::from_f64`]), or an error if the sample has another number of
     /// joints.
-    pub fn inputs<T: Real, const N: usize>(&self) -> Result<Vec<Input<T, N>>, DimensionError> {
+    pub fn inputs<T: Real, const N: usize>(&self) -> Result<Vec<Input<T, N>>, Error> {
         if self.dof != N {
-            return Err(DimensionError {
-                argument: "q",
+            return Err(Error::Dimension {
+                input: Array::Q,
                 got: self.dof,
                 expected: N,
             });

@@ -148,7 +148,7 @@ pub fn measure(cases: &Cases, plan: &Plan, pool: usize) -> Result<RobotScenes, B
     }
     Ok(RobotScenes {
         robot,
-        dof: cases.robot.kernels.dof(),
+        dof: cases.model.dof(),
         rows,
     })
 }

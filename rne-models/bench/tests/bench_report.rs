@@ -4,10 +4,10 @@
 
 use std::collections::BTreeSet;
 
-use rne_models::bench::integrators::Family;
-use rne_models::bench::robots::BENCHED;
-use rne_models::bench::{self, Effort, Implementation};
-use rne_models::builtin::BUILTIN_ROBOTS;
+use rne_bench::integrators::Family;
+use rne_bench::robots::BENCHED;
+use rne_bench::{self as bench, Effort, Implementation};
+use rne_models::BUILTIN_ROBOTS;
 
 #[test]
 fn quick_bench_measures_every_robot_and_writes_its_report() {

@@ -7,12 +7,13 @@
 //! the largest |U| over the sample instead (the other kernels' errors are normwise relative,
 //! state by state).
 
-use rne_codegen::{DoubleDouble, Kernel};
-use rne_models::bench::implementation::Case;
-use rne_models::bench::precision::{error, Error, ErrorSummary, Format};
-use rne_models::bench::robots::Cases;
-use rne_models::builtin::BUILTIN_ROBOTS;
-use rne_models::kernels::Kernels;
+use rne_bench::implementation::Case;
+use rne_bench::precision::ErrorSummary;
+use rne_bench::robots::Cases;
+use rne_codegen::{DoubleDouble, Dynamics, Kernel};
+use rne_figures::{Deviation, Format};
+use rne_interpreted::evaluate;
+use rne_models::{Visitor, BUILTIN_ROBOTS};
 
 const STATES: usize = 10_000;
 /// Largest normwise relative error allowed anywhere.
@@ -20,23 +21,23 @@ const MAX_RELATIVE: f64 = 1e-13;
 /// Largest median normwise relative error allowed per kernel.
 const MEDIAN_RELATIVE: f64 = 2e-15;
 
-/// The generated kernel's value, matrices row by row.
-fn generated(kernels: &dyn Kernels, kernel: Kernel, cases: &Cases, k: usize) -> Vec<f64> {
-    let state = cases.sample(Case::Full).state(k);
-    let (q, qd, qdd, tau) = (state.q, state.qd, state.qdd, state.tau);
-    let flat = |m: Vec<Vec<f64>>| m.concat();
-    let value = match kernel {
-        Kernel::InverseDynamics => kernels.inverse_dynamics(q, qd, qdd),
-        Kernel::MassMatrix => kernels.mass_matrix(q).map(flat),
-        Kernel::CoriolisMatrix => kernels.coriolis_matrix(q, qd).map(flat),
-        Kernel::GravityTorques => kernels.gravity_torques(q),
-        Kernel::BiasTorques => kernels.bias_torques(q, qd),
-        Kernel::ForwardDynamics => kernels.forward_dynamics(q, qd, tau),
-        Kernel::KineticEnergy => kernels.kinetic_energy(q, qd).map(|e| vec![e]),
-        Kernel::PotentialEnergy => kernels.potential_energy(q).map(|e| vec![e]),
-        other => panic!("`Kernels` has no method for {other}"),
-    };
-    value.expect("the sample has the robot's number of joints")
+/// The generated kernel's values over the sample of `cases`, matrices row by row.
+struct Generated<'a> {
+    kernel: Kernel,
+    cases: &'a Cases,
+}
+
+impl Visitor for Generated<'_> {
+    type Output = Vec<Vec<f64>>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
+        (0..STATES)
+            .map(|k| {
+                let state = self.cases.sample(Case::Full).state(k);
+                evaluate(&model, self.kernel, state).expect("every kernel at the robot's size")
+            })
+            .collect()
+    }
 }
 
 #[test]
@@ -48,10 +49,14 @@ fn every_generated_f64_kernel_is_within_1e_13_of_the_double_double_value() {
             let exact: Vec<Vec<DoubleDouble>> = (0..STATES)
                 .map(|k| cases.exact(Case::Full, kernel, k))
                 .collect();
-            let mut errors: Vec<Error> = exact
+            let values = robot.visit(Generated {
+                kernel,
+                cases: &cases,
+            });
+            let mut errors: Vec<Deviation> = values
                 .iter()
-                .enumerate()
-                .map(|(k, x)| error(&generated(robot.kernels, kernel, &cases, k), x, Format::F64))
+                .zip(&exact)
+                .map(|(value, x)| Deviation::between(value, x, Format::F64))
                 .collect();
             if kernel == Kernel::PotentialEnergy {
                 let range = exact.iter().fold(0.0f64, |m, x| m.max(x[0].to_f64().abs()));

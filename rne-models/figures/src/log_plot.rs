@@ -90,7 +90,6 @@ impl LogPlot {
             })
             .collect()
     }
-
 }
 
 impl Draw for LogPlot {
@@ -120,9 +119,8 @@ impl Draw for LogPlot {
         match self.x_axis {
             Axis::Log => {
                 let (x0, x1) = (x0 / 10f64.powf(0.1), x1 * 10f64.powf(0.1));
-                let mut chart = builder
-                    .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-                    ?;
+                let mut chart =
+                    builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
                 chart
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
@@ -130,15 +128,13 @@ impl Draw for LogPlot {
                     .x_label_formatter(&|x| format!("{x:.0e}"))
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
-                    .draw()
-                    ?;
+                    .draw()?;
                 draw_series(&mut chart, &self.series, &visible)?;
             }
             Axis::Linear => {
                 let pad = 0.03 * (x1 - x0);
-                let mut chart = builder
-                    .build_cartesian_2d((x0 - pad)..(x1 + pad), (y0..y1).log_scale())
-                    ?;
+                let mut chart =
+                    builder.build_cartesian_2d((x0 - pad)..(x1 + pad), (y0..y1).log_scale())?;
                 chart
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
@@ -146,8 +142,7 @@ impl Draw for LogPlot {
                     .x_label_formatter(&|x| format!("{x:.0}"))
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
-                    .draw()
-                    ?;
+                    .draw()?;
                 draw_series(&mut chart, &self.series, &visible)?;
             }
         }

@@ -124,7 +124,11 @@ impl Deviation {
         } else {
             Deviation {
                 relative: difference,
-                ulps: if difference == 0.0 { 0.0 } else { f64::INFINITY },
+                ulps: if difference == 0.0 {
+                    0.0
+                } else {
+                    f64::INFINITY
+                },
             }
         }
     }
@@ -146,7 +150,10 @@ mod tests {
         assert_eq!(ulp(0.0), f64::from_bits(1));
         assert_eq!(ulp(1e-310), f64::from_bits(1));
         assert_eq!(ulp(f64::MIN_POSITIVE), f64::from_bits(1));
-        assert_eq!(ulp(f64::MAX), f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1));
+        assert_eq!(
+            ulp(f64::MAX),
+            f64::MAX - f64::from_bits(f64::MAX.to_bits() - 1)
+        );
         assert!(ulp(f64::INFINITY).is_nan());
         assert_eq!(Format::F64.unit_roundoff(), f64::EPSILON / 2.0);
     }
@@ -163,11 +170,18 @@ mod tests {
         let e = Deviation::between(&[4.0, -8.0 + 8.0 * f64::EPSILON], &exact, Format::F64);
         assert_eq!(e.relative, f64::EPSILON);
         assert_eq!(e.ulps, 1.0);
-        assert!(Deviation::between(&[f64::NAN, 1.0], &exact, Format::F64).relative.is_nan());
-        assert!(Deviation::between(&[1.0], &exact, Format::F64).relative.is_nan());
+        assert!(Deviation::between(&[f64::NAN, 1.0], &exact, Format::F64)
+            .relative
+            .is_nan());
+        assert!(Deviation::between(&[1.0], &exact, Format::F64)
+            .relative
+            .is_nan());
         let zero = [DoubleDouble::from_f64(0.0)];
         assert_eq!(Deviation::between(&[0.0], &zero, Format::F64).ulps, 0.0);
-        assert_eq!(Deviation::between(&[1e-300], &zero, Format::F64).ulps, f64::INFINITY);
+        assert_eq!(
+            Deviation::between(&[1e-300], &zero, Format::F64).ulps,
+            f64::INFINITY
+        );
     }
 
     /// The f64 relative error is normwise and absolute against a zero value.

@@ -60,17 +60,27 @@ pub trait Draw {
 }
 
 /// Writes `DIR/FILE.svg` and `DIR/FILE.png` (as `formats` says) and returns their paths.
-pub fn render<F: Draw>(figure: &F, dir: &Path, formats: Formats) -> Result<Vec<PathBuf>, FigureError> {
+pub fn render<F: Draw>(
+    figure: &F,
+    dir: &Path,
+    formats: Formats,
+) -> Result<Vec<PathBuf>, FigureError> {
     register_font()?;
     let mut written = Vec::new();
     if formats.svg {
         let path = dir.join(format!("{}.svg", figure.file()));
-        present(figure, SVGBackend::new(&path, figure.size()).into_drawing_area())?;
+        present(
+            figure,
+            SVGBackend::new(&path, figure.size()).into_drawing_area(),
+        )?;
         written.push(path);
     }
     if formats.png {
         let path = dir.join(format!("{}.png", figure.file()));
-        present(figure, BitMapBackend::new(&path, figure.size()).into_drawing_area())?;
+        present(
+            figure,
+            BitMapBackend::new(&path, figure.size()).into_drawing_area(),
+        )?;
         written.push(path);
     }
     Ok(written)

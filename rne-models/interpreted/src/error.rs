@@ -8,7 +8,7 @@ use rne_reference::ReferenceError;
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A state array had the wrong length.
-    #[error("`{}` has {got} values; the robot has {expected}", input.name())]
+    #[error("`{}` has {got} values; the robot has {expected} joints", input.name())]
     Dimension {
         /// The array.
         input: Input,

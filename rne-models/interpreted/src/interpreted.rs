@@ -17,11 +17,12 @@
 
 use std::sync::OnceLock;
 
-use rne_codegen::{build_kernel, BuiltKernel, DoubleDouble, Kernel, Program, Real};
+use rne_codegen::{build_kernel, BuiltKernel, DoubleDouble, Input, Kernel, Program, Real};
 use rne_codegen_core::Operand;
 use rne_symbolic::expr::Evaluator;
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
+use crate::error::Error;
 use crate::state::StateRef;
 
 /// One kernel: its graph, its emitted program and, once asked for, the evaluation order of
@@ -97,11 +98,7 @@ impl Interpreted {
             Symbol::Velocity(k) => pick(state.qd, k),
             Symbol::Acceleration(k) => pick(state.qdd, k),
             Symbol::Force(k) => pick(state.tau, k),
-            Symbol::Parameter(_) => self
-                .dynamics
-                .model
-                .parameter_value(symbol)
-                .map(T::from_f64),
+            Symbol::Parameter(_) => self.dynamics.model.parameter_value(symbol).map(T::from_f64),
         }
         .unwrap_or_else(|| T::from_f64(f64::NAN))
     }
@@ -114,6 +111,29 @@ impl Interpreted {
         Some(program.eval(|s| self.input(state, s)))
     }
 
+    /// `kernel` at `state` in `f64`, like [`evaluate`](crate::evaluate) for a `Dynamics`: the
+    /// arrays the kernel takes must have the robot's number of joints.
+    pub fn evaluate(&self, kernel: Kernel, state: StateRef<'_>) -> Result<Vec<f64>, Error> {
+        let expected = self.dof();
+        for &input in kernel.inputs() {
+            let got = match input {
+                Input::Q => state.q.len(),
+                Input::Qd => state.qd.len(),
+                Input::Qdd => state.qdd.len(),
+                Input::Tau => state.tau.len(),
+            };
+            if got != expected {
+                return Err(Error::Dimension {
+                    input,
+                    got,
+                    expected,
+                });
+            }
+        }
+        self.eval(kernel, state)
+            .ok_or(Error::MissingKernel { kernel })
+    }
+
     /// The double-double value of `kernel` at the `f64` `state`: the model's graph, before
     /// optimisation. `None` if the kernel was not built.
     pub fn exact(&self, kernel: Kernel, state: StateRef<'_>) -> Option<Vec<DoubleDouble>> {
@@ -122,9 +142,7 @@ impl Interpreted {
         let evaluator = prepared
             .exact
             .get_or_init(|| Evaluator::new(graph, &prepared.built.roots));
-        Some(evaluator.eval(graph, |s| {
-            DoubleDouble::from_f64(self.input(state, s))
-        }))
+        Some(evaluator.eval(graph, |s| DoubleDouble::from_f64(self.input(state, s))))
     }
 
     /// For each output of `kernel` (matrices row-major), the inputs its emitted program reads:

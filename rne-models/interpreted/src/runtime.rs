@@ -160,12 +160,7 @@ impl<const N: usize> Dynamics<N, N> for RuntimeModel<'_, N> {
         }
     }
 
-    fn inverse_dynamics(
-        &self,
-        q: &[f64; N],
-        qd: &[f64; N],
-        qdd: &[f64; N],
-    ) -> Option<[f64; N]> {
+    fn inverse_dynamics(&self, q: &[f64; N], qd: &[f64; N], qdd: &[f64; N]) -> Option<[f64; N]> {
         self.vector(Kernel::InverseDynamics, state(q, qd, qdd, &[]))
     }
 
@@ -185,12 +180,7 @@ impl<const N: usize> Dynamics<N, N> for RuntimeModel<'_, N> {
         self.vector(Kernel::BiasTorques, state(q, qd, &[], &[]))
     }
 
-    fn forward_dynamics(
-        &self,
-        q: &[f64; N],
-        qd: &[f64; N],
-        tau: &[f64; N],
-    ) -> Option<[f64; N]> {
+    fn forward_dynamics(&self, q: &[f64; N], qd: &[f64; N], tau: &[f64; N]) -> Option<[f64; N]> {
         self.vector(Kernel::ForwardDynamics, state(q, qd, &[], tau))
     }
 

@@ -14,8 +14,8 @@ use super::measures::{
 };
 use super::outcome::{Finding, Outcome, Table};
 use super::parameters::*;
-use rne_figures::time_series::{Curve, Figure, Panel};
 use super::progress::WithProgress;
+use rne_figures::time_series::{Curve, Figure, Panel};
 use rne_sim::{output_times, GaussLegendre, Integrator, Record, Rk4, SimError};
 
 /// How to run a scenario.

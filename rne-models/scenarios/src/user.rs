@@ -35,14 +35,14 @@ use super::catalogue::{pd_findings, RunOptions};
 use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
 use super::outcome::{Finding, Outcome, Table};
-use rne_figures::time_series::Figure;
 use super::progress::WithProgress;
+use rne_figures::time_series::Figure;
 use rne_interpreted::Interpreted;
 use rne_models::{RobotSource, Visitor};
 use rne_runtime::Dynamics;
 use rne_sim::{
-    output_times, simulate, ConstantTorque, Controller, Damping, Dopri5, GaussLegendre, Method,
-    Pd, Record, Rk4, State, WithoutGravity,
+    output_times, simulate, ConstantTorque, Controller, Damping, Dopri5, GaussLegendre, Method, Pd,
+    Record, Rk4, State, WithoutGravity,
 };
 use rne_symbolic::spec::LoadOptions;
 
@@ -328,7 +328,8 @@ impl Visitor for Run<'_> {
     type Output = Result<Outcome, ScenarioError>;
 
     fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
-        self.scenario.run_with::<N, D>(model, &self.names, self.options)
+        self.scenario
+            .run_with::<N, D>(model, &self.names, self.options)
     }
 }
 

@@ -138,4 +138,3 @@ fn user_scenarios_run_on_generated_kernels_and_on_the_expression_graph() {
     assert!(dir.join("builtin.svg").exists() && !dir.join("builtin.png").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
-

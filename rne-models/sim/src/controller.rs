@@ -49,7 +49,10 @@ pub trait Controller<const N: usize> {
 
     /// Adds the gravity torques g(q) of `model` to this input (before any saturation applied
     /// afterwards): u = u_self + g(q).
-    fn with_gravity_compensation<D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> GravityCompensation<D, Self>
+    fn with_gravity_compensation<D: Dynamics<N, N, Scalar = f64>>(
+        self,
+        model: D,
+    ) -> GravityCompensation<D, Self>
     where
         Self: Sized,
     {
@@ -184,7 +187,9 @@ pub struct GravityCompensation<D, C> {
     pub inner: C,
 }
 
-impl<const N: usize, D: Dynamics<N, N, Scalar = f64>, C: Controller<N>> Controller<N> for GravityCompensation<D, C> {
+impl<const N: usize, D: Dynamics<N, N, Scalar = f64>, C: Controller<N>> Controller<N>
+    for GravityCompensation<D, C>
+{
     fn torque(&self, t: f64, q: &[f64; N], qd: &[f64; N]) -> [f64; N] {
         let u = self.inner.torque(t, q, qd);
         let g = vector(self.model.gravity_torques(q));

@@ -2,10 +2,10 @@
 //! the thesis used at relative tolerance 1e-10 (section 6.1).
 
 use super::controller::Controller;
-use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::integrator::{derivative, validate_times, Integrator, Stats};
 use super::state::State;
+use rne_runtime::Dynamics;
 
 // Dormand–Prince 5(4) tableau (Hairer–Nørsett–Wanner I, table II.5.2).
 const C2: f64 = 1.0 / 5.0;

@@ -4,10 +4,10 @@
 use super::controller::Controller;
 use rne_runtime::Dynamics;
 
-use super::model::{matrix, vector};
 use super::error::SimError;
 use super::integrator::{substeps, validate_times, Integrator, Stats};
 use super::linalg::{cholesky, cholesky_solve, mat_t_vec, mat_vec};
+use super::model::{matrix, vector};
 use super::state::State;
 
 /// √3 / 6, the offset of the 2-stage Gauss nodes from ½.
@@ -164,8 +164,8 @@ fn velocities<const N: usize, D: Dynamics<N, N, Scalar = f64> + ?Sized>(
     t: f64,
     y: &Canonical<N>,
 ) -> Result<[f64; N], SimError> {
-    let l =
-        cholesky(&matrix(model.mass_matrix(&y.q))).ok_or(SimError::MassMatrixNotPositiveDefinite { t })?;
+    let l = cholesky(&matrix(model.mass_matrix(&y.q)))
+        .ok_or(SimError::MassMatrixNotPositiveDefinite { t })?;
     Ok(cholesky_solve(&l, &y.p))
 }
 

@@ -2,12 +2,12 @@
 
 use super::controller::Controller;
 use super::dopri5::Dopri5;
-use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::gauss_legendre::GaussLegendre;
 use super::model::vector;
 use super::rk4::Rk4;
 use super::state::State;
+use rne_runtime::Dynamics;
 
 /// Work done by one integration.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

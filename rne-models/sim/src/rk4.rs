@@ -1,10 +1,10 @@
 //! The classical fixed-step Runge–Kutta method of order 4.
 
 use super::controller::Controller;
-use rne_runtime::Dynamics;
 use super::error::SimError;
 use super::integrator::{derivative, substeps, validate_times, Integrator, Stats};
 use super::state::State;
+use rne_runtime::Dynamics;
 
 /// The classical explicit Runge–Kutta method of order 4 (Hairer–Nørsett–Wanner, *Solving
 /// Ordinary Differential Equations I*, section II.1) on the first-order form (6.6)–(6.11), with

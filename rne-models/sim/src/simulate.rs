@@ -3,9 +3,9 @@
 use super::controller::Controller;
 use rne_runtime::Dynamics;
 
-use super::model::{check_kernels, scalar};
 use super::error::SimError;
 use super::integrator::{validate_times, Integrator};
+use super::model::{check_kernels, scalar};
 use super::record::Record;
 use super::state::State;
 

@@ -12,10 +12,13 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rne_codegen::{Dynamics, Kernel};
+use rne_figures::relative_error;
+use rne_models::Visitor;
+use rne_reference::Reference;
 use rne_symbolic::RobotModel;
 
-use crate::kernels::{DimensionError, Kernels};
-use rne_reference::{Reference, ReferenceError};
+use super::CliError;
 
 /// The worst error of one quantity over the sampled states.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,48 +31,47 @@ pub struct Agreement {
     pub median_error: f64,
 }
 
-/// Why a comparison could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum AccuracyError {
-    /// The model cannot be evaluated numerically.
-    #[error(transparent)]
-    Reference(#[from] ReferenceError),
-    /// Kernels and model disagree on the number of joints.
-    #[error(transparent)]
-    Dimension(#[from] DimensionError),
+/// The comparison of a robot's generated `Model` with the reference built from `model` over
+/// `samples` states with |q| ≤ π, |q̇| ≤ 10, |q̈| ≤ 10 drawn from a ChaCha8 generator seeded
+/// with `seed`.
+pub struct Compare<'a> {
+    /// The robot's model, for the reference.
+    pub model: &'a RobotModel,
+    /// Number of states.
+    pub samples: usize,
+    /// Seed of the states.
+    pub seed: u64,
 }
 
-/// Normwise relative error ‖a − b‖∞ / ‖b‖∞ (absolute when b is zero).
-pub fn relative_error(a: &[f64], b: &[f64]) -> f64 {
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(0.0, f64::max);
-    if scale > 0.0 {
-        diff / scale
-    } else {
-        diff
+impl Visitor for Compare<'_> {
+    type Output = Result<Vec<Agreement>, CliError>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, robot: D) -> Self::Output {
+        compare(self.model, &robot, self.samples, self.seed)
     }
 }
 
-/// Compares `kernels` with the reference built from `model` over `samples` states with
-/// |q| ≤ π, |q̇| ≤ 10, |q̈| ≤ 10 drawn from a ChaCha8 generator seeded with `seed`.
-pub fn compare(
+/// The value of a kernel the robot must have: `verify` checks every kernel.
+fn required<T>(value: Option<T>, kernel: Kernel) -> Result<T, CliError> {
+    value.ok_or(CliError::Evaluation(
+        rne_interpreted::Error::MissingKernel { kernel },
+    ))
+}
+
+/// Compares `robot`'s kernels with the reference built from `model` (see [`Compare`]).
+fn compare<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     model: &RobotModel,
-    kernels: &dyn Kernels,
+    robot: &D,
     samples: usize,
     seed: u64,
-) -> Result<Vec<Agreement>, AccuracyError> {
+) -> Result<Vec<Agreement>, CliError> {
     let mut reference = Reference::try_new(&model.to_numeric())?;
     let mut weightless = model.to_numeric();
     weightless.gravity = [0.0; 3];
     let mut weightless = Reference::try_new(&weightless)?;
-    let n = kernels.dof();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut uniform =
-        |bound: f64| -> Vec<f64> { (0..n).map(|_| rng.gen_range(-bound..=bound)).collect() };
+        |bound: f64| -> [f64; N] { std::array::from_fn(|_| rng.gen_range(-bound..=bound)) };
     const NAMES: [&str; 8] = [
         "tau",
         "M",
@@ -84,17 +86,21 @@ pub fn compare(
     for _ in 0..samples {
         let (q, qd, qdd) = (uniform(std::f64::consts::PI), uniform(10.0), uniform(10.0));
         let tau_ref: Vec<f64> = reference.inverse_dynamics(&q, &qd, &qdd)?.data.into();
-        errors[0].push(relative_error(
-            &kernels.inverse_dynamics(&q, &qd, &qdd)?,
-            &tau_ref,
-        ));
+        let tau = required(
+            robot.inverse_dynamics(&q, &qd, &qdd),
+            Kernel::InverseDynamics,
+        )?;
+        errors[0].push(relative_error(&tau, &tau_ref));
         let m_ref: Vec<f64> = reference.mass_matrix(&q)?.transpose().data.into();
-        errors[1].push(relative_error(&kernels.mass_matrix(&q)?.concat(), &m_ref));
+        let m = required(robot.mass_matrix(&q), Kernel::MassMatrix)?;
+        errors[1].push(relative_error(m.as_flattened(), &m_ref));
         let g_ref: Vec<f64> = reference.gravity_torques(&q)?.data.into();
-        errors[2].push(relative_error(&kernels.gravity_torques(&q)?, &g_ref));
+        let g = required(robot.gravity_torques(&q), Kernel::GravityTorques)?;
+        errors[2].push(relative_error(&g, &g_ref));
         let bias_ref: Vec<f64> = reference.bias_torques(&q, &qd)?.data.into();
-        errors[3].push(relative_error(&kernels.bias_torques(&q, &qd)?, &bias_ref));
-        let c = kernels.coriolis_matrix(&q, &qd)?;
+        let bias = required(robot.bias_torques(&q, &qd), Kernel::BiasTorques)?;
+        errors[3].push(relative_error(&bias, &bias_ref));
+        let c = required(robot.coriolis_matrix(&q, &qd), Kernel::CoriolisMatrix)?;
         let c_qd: Vec<f64> = c
             .iter()
             .map(|row| row.iter().zip(&qd).map(|(a, b)| a * b).sum())
@@ -104,18 +110,17 @@ pub fn compare(
         let scale = g_ref.iter().fold(10.0, |m: f64, g| m.max(g.abs()));
         let tau_in = uniform(scale);
         let qdd_ref: Vec<f64> = reference.forward_dynamics(&q, &qd, &tau_in)?.data.into();
-        errors[5].push(relative_error(
-            &kernels.forward_dynamics(&q, &qd, &tau_in)?,
-            &qdd_ref,
-        ));
+        let fd = required(
+            robot.forward_dynamics(&q, &qd, &tau_in),
+            Kernel::ForwardDynamics,
+        )?;
+        errors[5].push(relative_error(&fd, &qdd_ref));
         let t_ref = reference.kinetic_energy(&q, &qd)?;
-        errors[6].push(relative_error(
-            &[kernels.kinetic_energy(&q, &qd)?],
-            &[t_ref],
-        ));
+        let t = required(robot.kinetic_energy(&q, &qd), Kernel::KineticEnergy)?;
+        errors[6].push(relative_error(&[t], &[t_ref]));
         let v_ref = reference.potential_energy(&q)?;
         let v_scale = g_ref.iter().fold(v_ref.abs(), |m, g| m.max(g.abs()));
-        let v = kernels.potential_energy(&q)?;
+        let v = required(robot.potential_energy(&q), Kernel::PotentialEnergy)?;
         errors[7].push(if v_scale > 0.0 {
             (v - v_ref).abs() / v_scale
         } else {

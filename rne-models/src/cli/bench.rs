@@ -8,7 +8,7 @@ use std::time::Instant;
 use clap::Args;
 
 use super::CliError;
-use crate::bench::{self, Effort, PinocchioScript};
+use rne_bench::{self as bench, Effort, PinocchioScript};
 
 /// Arguments of `rne bench`.
 #[derive(Debug, Args)]
@@ -49,11 +49,8 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
         if !args.quiet {
             eprintln!("[{:7.1} s] {step}", start.elapsed().as_secs_f64());
         }
-    })
-    .map_err(|e| CliError::Argument(e.to_string()))?;
-    let written = report
-        .write(&args.out)
-        .map_err(|e| CliError::Argument(e.to_string()))?;
+    })?;
+    let written = report.write(&args.out)?;
     write!(out, "{}", report.markdown())?;
     writeln!(
         out,

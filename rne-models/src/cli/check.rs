@@ -9,7 +9,7 @@ use rne_symbolic::{JointKind, RobotModel};
 
 use super::model::ModelOptions;
 use super::CliError;
-use crate::builtin::RobotSource;
+use rne_models::RobotSource;
 
 /// Arguments of `rne check`.
 #[derive(Debug, Args)]

@@ -8,7 +8,7 @@ use rne_codegen::generate;
 use super::model::ModelOptions;
 use super::options::scene;
 use super::CliError;
-use crate::builtin::RobotSource;
+use rne_models::RobotSource;
 
 /// Arguments of `rne emit`.
 #[derive(Debug, Args)]

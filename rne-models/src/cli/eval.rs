@@ -8,9 +8,9 @@ use clap::{Args, ValueEnum};
 use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
-use crate::builtin::RobotSource;
-use crate::interpreted::Interpreted;
-use crate::kernels::Kernels;
+use rne_codegen::{Dynamics, Kernel, Shape};
+use rne_interpreted::{evaluate, Interpreted, StateRef};
+use rne_models::{RobotSource, Visitor};
 use rne_reference::Reference;
 
 /// Which implementation computes the numbers.
@@ -108,66 +108,52 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let matrix = |m: Vec<Vec<f64>>| serde_json::json!(m);
     match args.engine {
         Engine::Symbolic => {
-            let interpreted;
-            let kernels: &dyn Kernels = match &source {
-                RobotSource::Builtin(robot) => robot.kernels,
+            let kernels: Vec<Kernel> = KERNELS
+                .iter()
+                .filter(|(quantity, _)| wants(*quantity))
+                .map(|&(_, kernel)| kernel)
+                .collect();
+            let state = StateRef {
+                q: &q,
+                qd: &qd,
+                qdd: &qdd,
+                tau: &tau,
+            };
+            let values = match &source {
+                RobotSource::Builtin(robot) => robot.visit(Values {
+                    kernels: &kernels,
+                    state,
+                })?,
                 RobotSource::File(_) => {
-                    interpreted = Interpreted::new(&model);
-                    &interpreted
+                    let programs = Interpreted::new(&model);
+                    kernels
+                        .iter()
+                        .map(|&k| Ok((k, programs.evaluate(k, state)?)))
+                        .collect::<Result<_, rne_interpreted::Error>>()?
                 }
             };
-            if wants(Quantity::Tau) {
-                results.push(("tau", vector(kernels.inverse_dynamics(&q, &qd, &qdd)?)));
-            }
-            if wants(Quantity::M) {
-                results.push(("M", matrix(kernels.mass_matrix(&q)?)));
-            }
-            if wants(Quantity::C) {
-                results.push(("C", matrix(kernels.coriolis_matrix(&q, &qd)?)));
-            }
-            if wants(Quantity::G) {
-                results.push(("g", vector(kernels.gravity_torques(&q)?)));
-            }
-            if wants(Quantity::Bias) {
-                results.push(("bias", vector(kernels.bias_torques(&q, &qd)?)));
-            }
-            if wants(Quantity::Fd) {
-                results.push(("qdd", vector(kernels.forward_dynamics(&q, &qd, &tau)?)));
-            }
-            if wants(Quantity::Energy) {
-                results.push((
-                    "kinetic",
-                    serde_json::json!(kernels.kinetic_energy(&q, &qd)?),
-                ));
-                results.push((
-                    "potential",
-                    serde_json::json!(kernels.potential_energy(&q)?),
-                ));
+            for (kernel, v) in values {
+                let value = match kernel.shape() {
+                    Shape::Matrix => matrix(v.chunks(n.max(1)).map(<[f64]>::to_vec).collect()),
+                    Shape::Vector => vector(v),
+                    Shape::Scalar => serde_json::json!(v.first().copied().unwrap_or(f64::NAN)),
+                };
+                results.push((key(kernel), value));
             }
         }
         Engine::Numeric => {
-            let numeric = |e: rne_reference::ReferenceError| CliError::Argument(e.to_string());
-            let mut reference = Reference::try_new(&model.to_numeric()).map_err(numeric)?;
+            let mut reference = Reference::try_new(&model.to_numeric())?;
             let rows = |m: nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
                 m.row_iter().map(|r| r.iter().copied().collect()).collect()
             };
             if wants(Quantity::Tau) {
                 results.push((
                     "tau",
-                    vector(
-                        reference
-                            .inverse_dynamics(&q, &qd, &qdd)
-                            .map_err(numeric)?
-                            .data
-                            .into(),
-                    ),
+                    vector(reference.inverse_dynamics(&q, &qd, &qdd)?.data.into()),
                 ));
             }
             if wants(Quantity::M) {
-                results.push((
-                    "M",
-                    matrix(rows(reference.mass_matrix(&q).map_err(numeric)?)),
-                ));
+                results.push(("M", matrix(rows(reference.mass_matrix(&q)?))));
             }
             if args.what.contains(&Quantity::C) {
                 return Err(CliError::Argument(
@@ -175,43 +161,25 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
                 ));
             }
             if wants(Quantity::G) {
-                results.push((
-                    "g",
-                    vector(reference.gravity_torques(&q).map_err(numeric)?.data.into()),
-                ));
+                results.push(("g", vector(reference.gravity_torques(&q)?.data.into())));
             }
             if wants(Quantity::Bias) {
-                results.push((
-                    "bias",
-                    vector(
-                        reference
-                            .bias_torques(&q, &qd)
-                            .map_err(numeric)?
-                            .data
-                            .into(),
-                    ),
-                ));
+                results.push(("bias", vector(reference.bias_torques(&q, &qd)?.data.into())));
             }
             if wants(Quantity::Fd) {
                 results.push((
                     "qdd",
-                    vector(
-                        reference
-                            .forward_dynamics(&q, &qd, &tau)
-                            .map_err(numeric)?
-                            .data
-                            .into(),
-                    ),
+                    vector(reference.forward_dynamics(&q, &qd, &tau)?.data.into()),
                 ));
             }
             if wants(Quantity::Energy) {
                 results.push((
                     "kinetic",
-                    serde_json::json!(reference.kinetic_energy(&q, &qd).map_err(numeric)?),
+                    serde_json::json!(reference.kinetic_energy(&q, &qd)?),
                 ));
                 results.push((
                     "potential",
-                    serde_json::json!(reference.potential_energy(&q).map_err(numeric)?),
+                    serde_json::json!(reference.potential_energy(&q)?),
                 ));
             }
         }
@@ -244,6 +212,50 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// The kernels behind each quantity, in output order.
+const KERNELS: [(Quantity, Kernel); 8] = [
+    (Quantity::Tau, Kernel::InverseDynamics),
+    (Quantity::M, Kernel::MassMatrix),
+    (Quantity::C, Kernel::CoriolisMatrix),
+    (Quantity::G, Kernel::GravityTorques),
+    (Quantity::Bias, Kernel::BiasTorques),
+    (Quantity::Fd, Kernel::ForwardDynamics),
+    (Quantity::Energy, Kernel::KineticEnergy),
+    (Quantity::Energy, Kernel::PotentialEnergy),
+];
+
+/// The output key of a kernel's value.
+fn key(kernel: Kernel) -> &'static str {
+    match kernel {
+        Kernel::InverseDynamics => "tau",
+        Kernel::MassMatrix => "M",
+        Kernel::CoriolisMatrix => "C",
+        Kernel::GravityTorques => "g",
+        Kernel::BiasTorques => "bias",
+        Kernel::ForwardDynamics => "qdd",
+        Kernel::KineticEnergy => "kinetic",
+        Kernel::PotentialEnergy => "potential",
+        other => other.name(),
+    }
+}
+
+/// The values of `kernels` of a built-in robot's generated `Model` at `state`.
+struct Values<'a> {
+    kernels: &'a [Kernel],
+    state: StateRef<'a>,
+}
+
+impl Visitor for Values<'_> {
+    type Output = Result<Vec<(Kernel, Vec<f64>)>, rne_interpreted::Error>;
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> Self::Output {
+        self.kernels
+            .iter()
+            .map(|&k| Ok((k, evaluate(&model, k, self.state)?)))
+            .collect()
+    }
 }
 
 fn format_row(value: &serde_json::Value) -> String {

@@ -5,7 +5,7 @@ use std::io::Write;
 use rne_symbolic::spec::LoadOptions;
 
 use super::CliError;
-use crate::builtin::{RobotSource, BUILTIN_ROBOTS};
+use rne_models::{RobotSource, BUILTIN_ROBOTS};
 
 /// Lists the built-in robots with their joint counts.
 pub fn run(out: &mut dyn Write) -> Result<(), CliError> {

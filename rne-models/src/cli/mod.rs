@@ -1,5 +1,9 @@
-//! The `rne` command line: one file per subcommand.
+//! The `rne` command line (DESIGN.md §5): one file per subcommand, each turning its arguments
+//! into calls of the library crates (`rne-models`, `rne-interpreted`, `rne-scenarios`,
+//! `rne-bench`, `rne-stress`) and their errors into one [`CliError`] that keeps every cause.
+#![deny(missing_docs)]
 
+mod accuracy;
 mod bench;
 mod check;
 mod emit;

@@ -7,7 +7,7 @@ use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::RobotModel;
 
 use super::CliError;
-use crate::builtin::RobotSource;
+use rne_models::RobotSource;
 
 /// Model options shared by every command that takes a MODEL.
 #[derive(Debug, Default, Args)]

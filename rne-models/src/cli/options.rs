@@ -2,7 +2,9 @@
 
 use rne_codegen::{Kernel, Scene};
 
-/// Why a command failed; printed as `error: ...` with a non-zero exit code.
+/// Why a command failed; printed as `error: ...` with a non-zero exit code. Every library
+/// error is kept as the source of its variant, so that the message says what failed (a bad
+/// argument, a model, a simulation, a file that could not be written) and why.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     /// The robot file could not be read.
@@ -11,9 +13,30 @@ pub enum CliError {
     /// Code generation failed.
     #[error(transparent)]
     Codegen(#[from] rne_codegen::CodegenError),
-    /// A state vector has the wrong length.
+    /// A model could not be evaluated at the given state (a state of the wrong length, a
+    /// kernel the engine does not have).
     #[error(transparent)]
-    Dimension(#[from] crate::kernels::DimensionError),
+    Evaluation(#[from] rne_interpreted::Error),
+    /// The numeric reference rejected the model or the state.
+    #[error("numeric reference: {0}")]
+    Reference(#[from] rne_reference::ReferenceError),
+    /// A scenario could not be run or written.
+    #[error(transparent)]
+    Scenario(#[from] rne_scenarios::ScenarioError),
+    /// A stress case could not be run or its report written.
+    #[error(transparent)]
+    Stress(#[from] rne_stress::StressError),
+    /// A benchmark could not be run or its report written.
+    #[error(transparent)]
+    Bench(#[from] rne_bench::BenchError),
+    /// A built-in robot's kernels disagree with the numeric reference.
+    #[error("errors above {tolerance:e}: {}", failures.join(", "))]
+    Disagreement {
+        /// The largest relative error accepted.
+        tolerance: f64,
+        /// The robot and quantity of each error above it.
+        failures: Vec<String>,
+    },
     /// A malformed argument.
     #[error("{0}")]
     Argument(String),

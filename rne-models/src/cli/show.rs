@@ -8,7 +8,7 @@ use rne_symbolic::{Id, SymbolicDynamics};
 
 use super::model::ModelOptions;
 use super::CliError;
-use crate::builtin::RobotSource;
+use rne_models::RobotSource;
 
 /// Which part of the dynamics to print.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]

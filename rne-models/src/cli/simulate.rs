@@ -7,9 +7,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::CliError;
-use crate::sim::scenarios::{
-    self, Format, Outcome, RunOptions, ScenarioError, UserScenario, SCENARIOS,
-};
+use rne_scenarios::{Format, Outcome, RunOptions, ScenarioError, UserScenario, SCENARIOS};
 
 /// A kind of output file.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -58,7 +56,6 @@ pub struct SimulateArgs {
 
 /// Runs the scenario(s) and reports what was written and measured.
 pub fn run(args: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let failed = |e: ScenarioError| CliError::Argument(e.to_string());
     if args.list {
         for s in SCENARIOS {
             writeln!(out, "{:<24} {:<12} {}", s.name, s.figures, s.description)?;
@@ -78,16 +75,13 @@ pub fn run(args: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
         SCENARIOS
             .iter()
             .map(|s| s.run(&options))
-            .collect::<Result<_, _>>()
-            .map_err(failed)?
-    } else if let Some(scenario) = scenarios::find(name) {
-        vec![scenario.run(&options).map_err(failed)?]
+            .collect::<Result<_, _>>()?
+    } else if let Some(scenario) = rne_scenarios::find(name) {
+        vec![scenario.run(&options)?]
     } else if Path::new(name).extension().is_some_and(|e| e == "toml") {
-        vec![UserScenario::load(Path::new(name))
-            .and_then(|s| s.run(&options))
-            .map_err(failed)?]
+        vec![UserScenario::load(Path::new(name)).and_then(|s| s.run(&options))?]
     } else {
-        return Err(failed(ScenarioError::Unknown(name.to_owned())));
+        return Err(ScenarioError::Unknown(name.to_owned()).into());
     };
     let formats: Vec<Format> = args
         .formats
@@ -100,7 +94,7 @@ pub fn run(args: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
         })
         .collect();
     for outcome in &outcomes {
-        let written = outcome.write(&args.out, &formats).map_err(failed)?;
+        let written = outcome.write(&args.out, &formats)?;
         writeln!(out, "## {}\n", outcome.scenario)?;
         write!(out, "{}", outcome.findings_table())?;
         writeln!(
@@ -127,8 +121,11 @@ fn time(name: &str, repeat: usize, out: &mut dyn Write) -> Result<(), CliError> 
     if repeat == 0 {
         return Err(CliError::Argument("--repeat must be at least 1".into()));
     }
-    let timing = scenarios::time_thesis_release(repeat)
-        .map_err(|e| CliError::Argument(format!("double-pendulum: {e}")))?;
+    let timing =
+        rne_scenarios::time_thesis_release(repeat).map_err(|source| ScenarioError::Simulation {
+            run: "double-pendulum".into(),
+            source,
+        })?;
     writeln!(
         out,
         "70 s double-pendulum release, Dormand-Prince rtol 1e-10, generated kernels, {} samples recorded:",

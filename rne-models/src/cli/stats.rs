@@ -7,7 +7,7 @@ use rne_codegen::{generate, Scene};
 
 use super::model::ModelOptions;
 use super::CliError;
-use crate::builtin::RobotSource;
+use rne_models::RobotSource;
 
 /// Arguments of `rne stats`.
 #[derive(Debug, Args)]

@@ -8,7 +8,7 @@ use std::time::Instant;
 use clap::Args;
 
 use super::CliError;
-use crate::stress::{self, Effort};
+use rne_stress::{self as stress, Effort};
 
 /// Arguments of `rne stress`.
 #[derive(Debug, Args)]
@@ -36,11 +36,8 @@ pub fn run(args: &StressArgs, out: &mut dyn Write) -> Result<(), CliError> {
         if !args.quiet {
             eprintln!("[{:7.1} s] {case}", start.elapsed().as_secs_f64());
         }
-    })
-    .map_err(|e| CliError::Argument(e.to_string()))?;
-    let written = report
-        .write(&args.out)
-        .map_err(|e| CliError::Argument(e.to_string()))?;
+    })?;
+    let written = report.write(&args.out)?;
     write!(out, "{}", report.markdown())?;
     writeln!(
         out,

@@ -7,9 +7,9 @@ use clap::Args;
 use rne_codegen::{generate, Scene};
 use rne_symbolic::spec::LoadOptions;
 
+use super::accuracy::Compare;
 use super::CliError;
-use crate::accuracy::compare;
-use crate::builtin::{builtin, RobotSource, BUILTIN_ROBOTS};
+use rne_models::{builtin, RobotSource, BUILTIN_ROBOTS};
 
 /// Arguments of `rne verify`.
 #[derive(Debug, Args)]
@@ -68,8 +68,11 @@ pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
         for k in &module.kernels {
             writeln!(out, "  {:<18} {}", k.kernel.name(), k.ops)?;
         }
-        let agreement = compare(&model, robot.kernels, args.samples, args.seed)
-            .map_err(|e| CliError::Argument(e.to_string()))?;
+        let agreement = robot.visit(Compare {
+            model: &model,
+            samples: args.samples,
+            seed: args.seed,
+        })?;
         writeln!(
             out,
             "  against the numeric reference, {} seeded states (max / median relative error):",
@@ -99,10 +102,9 @@ pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
         )?;
         Ok(())
     } else {
-        Err(CliError::Argument(format!(
-            "errors above {:e}: {}",
-            args.tolerance,
-            failures.join(", ")
-        )))
+        Err(CliError::Disagreement {
+            tolerance: args.tolerance,
+            failures,
+        })
     }
 }

@@ -33,9 +33,9 @@ pub mod sweep;
 
 pub use chain::{Chain, ChainLink, JointType};
 pub use error::StressError;
-pub use sweep::Sweep;
 pub use random_robot::random_robot;
 pub use report::{CaseReport, StressReport};
+pub use sweep::Sweep;
 
 /// How thorough a run is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use super::error::StressError;
+use super::Effort;
 use rne_figures::log_plot::LogPlot;
 use rne_figures::{render, Formats, Table};
-use super::Effort;
 
 /// The outcome of one stress case.
 #[derive(Clone, Debug, PartialEq)]

@@ -10,9 +10,7 @@ use rne_codegen::{DoubleDouble, Kernel};
 use rne_figures::{Deviation, Format};
 use rne_interpreted::{Interpreted, JointState};
 
-use crate::measure::{
-    condition, scaled_condition, ErrorsByKernel, KernelErrors, Spread, EPSILON,
-};
+use crate::measure::{condition, scaled_condition, ErrorsByKernel, KernelErrors, Spread, EPSILON};
 
 /// The errors of several kernels over a set of states, and how well conditioned M was there.
 #[derive(Clone, Debug, Default, PartialEq)]

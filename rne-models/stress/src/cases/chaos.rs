@@ -17,15 +17,15 @@
 
 use std::time::Instant;
 
+use crate::error::StressError;
+use crate::report::CaseReport;
+use crate::Effort;
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use rne_figures::{sci, Table};
 use rne_models::generated::planar_elbow::Model as PlanarElbow;
 use rne_sim::{
     output_times, simulate, Dopri5, GaussLegendre, Integrator, Record, State, ZeroInput,
 };
-use crate::error::StressError;
-use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
-use crate::report::CaseReport;
-use rne_figures::{sci, Table};
-use crate::Effort;
 
 /// The case's name.
 pub const SLUG: &str = "chaos";

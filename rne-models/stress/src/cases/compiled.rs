@@ -12,14 +12,14 @@ use rand_chacha::ChaCha8Rng;
 
 use super::{builtin_model, symbol};
 use crate::error::StressError;
+use crate::report::CaseReport;
+use crate::states::{generator, uniform};
+use crate::Effort;
+use rne_codegen::Kernel;
+use rne_figures::Table;
 use rne_interpreted::{evaluate, Interpreted, JointState};
 use rne_models::{BuiltinRobot, Visitor, BUILTIN_ROBOTS};
 use rne_runtime::Dynamics;
-use crate::report::CaseReport;
-use crate::states::{generator, uniform};
-use rne_figures::Table;
-use crate::Effort;
-use rne_codegen::Kernel;
 
 /// The case's name.
 pub const SLUG: &str = "compiled";
@@ -100,7 +100,10 @@ impl Visitor for Bitwise<'_> {
                         source,
                     }
                 })?;
-                let program = self.programs.eval(kernel, state.as_ref()).unwrap_or_default();
+                let program = self
+                    .programs
+                    .eval(kernel, state.as_ref())
+                    .unwrap_or_default();
                 for (i, (x, y)) in compiled.iter().zip(&program).enumerate() {
                     result.values += 1;
                     if x.to_bits() != y.to_bits() {

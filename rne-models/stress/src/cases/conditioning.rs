@@ -20,13 +20,13 @@ use super::chain_model;
 use crate::chain::Chain;
 use crate::error::StressError;
 use crate::measure::{Spread, EPSILON};
-use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
-use crate::sweep::{conditions, deviation};
-use rne_interpreted::{Interpreted, JointState};
 use crate::report::CaseReport;
 use crate::states::{generator, uniform};
-use rne_figures::{sci, Table};
+use crate::sweep::{conditions, deviation};
 use crate::Effort;
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use rne_figures::{sci, Table};
+use rne_interpreted::{Interpreted, JointState};
 
 /// The case's name.
 pub const SLUG: &str = "conditioning";
@@ -110,8 +110,8 @@ pub fn measure(family: Family, x: f64, samples: usize) -> Result<Vec<Point>, Str
             };
             let (condition, scaled_condition) =
                 conditions(&probe, &state.q).unwrap_or((f64::NAN, f64::NAN));
-            let error = deviation(&probe, Kernel::ForwardDynamics, &state)
-                .map_or(f64::NAN, |d| d.relative);
+            let error =
+                deviation(&probe, Kernel::ForwardDynamics, &state).map_or(f64::NAN, |d| d.relative);
             Point {
                 condition,
                 scaled_condition,

@@ -13,13 +13,13 @@ use rne_symbolic::DoubleDouble;
 use super::{builtin_model, kernel_cells, kernel_table, largest, sweep_cells, SWEEP_HEADINGS};
 use crate::error::StressError;
 use crate::measure::Spread;
-use rne_figures::{ulp, Deviation, Format};
-use crate::sweep::{sweep, torque_for, Sweep};
-use rne_interpreted::{Interpreted, JointState};
 use crate::report::CaseReport;
 use crate::states::{generator, magnitudes, uniform};
-use rne_figures::sci;
+use crate::sweep::{sweep, torque_for, Sweep};
 use crate::Effort;
+use rne_figures::sci;
+use rne_figures::{ulp, Deviation, Format};
+use rne_interpreted::{Interpreted, JointState};
 
 /// The case's name.
 pub const SLUG: &str = "joint-angle";

@@ -9,14 +9,14 @@ use rne_codegen::Kernel;
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
 use crate::error::StressError;
 use crate::measure::{ErrorsByKernel, KernelErrors, Spread, EPSILON};
-use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
-use crate::sweep::{deviation, eval_f64, sweep, Sweep};
-use rne_interpreted::{Interpreted, JointState};
 use crate::random_robot::random_robot;
 use crate::report::CaseReport;
 use crate::states::generator;
-use rne_figures::sci;
+use crate::sweep::{deviation, eval_f64, sweep, Sweep};
 use crate::Effort;
+use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
+use rne_figures::sci;
+use rne_interpreted::{Interpreted, JointState};
 
 /// The case's name.
 pub const SLUG: &str = "joint-count";

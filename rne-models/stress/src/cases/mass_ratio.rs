@@ -10,12 +10,12 @@ use rne_codegen::Kernel;
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
 use crate::chain::Chain;
 use crate::error::StressError;
-use crate::sweep::{sweep, Sweep};
-use rne_interpreted::Interpreted;
 use crate::report::CaseReport;
 use crate::states::generator;
-use rne_figures::sci;
+use crate::sweep::{sweep, Sweep};
 use crate::Effort;
+use rne_figures::sci;
+use rne_interpreted::Interpreted;
 
 /// The case's name.
 pub const SLUG: &str = "mass-ratio";

@@ -19,10 +19,10 @@ use rne_symbolic::RobotModel;
 use crate::chain::Chain;
 use crate::error::StressError;
 use crate::measure::ErrorsByKernel;
-use crate::sweep::{torque_for, Sweep};
-use rne_interpreted::{Interpreted, JointState};
 use crate::states::uniform;
+use crate::sweep::{torque_for, Sweep};
 use rne_figures::{sci, ulps, Table};
+use rne_interpreted::{Interpreted, JointState};
 use rne_models::{builtin, RobotSource};
 
 /// The model of the built-in robot `name`.

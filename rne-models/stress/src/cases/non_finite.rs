@@ -24,17 +24,17 @@ use rne_codegen_core::Input;
 use rne_symbolic::Symbol;
 
 use super::builtin_model;
-use rne_interpreted::{evaluate, StateRef};
-use rne_models::{BuiltinRobot, Visitor, BUILTIN_ROBOTS};
-use rne_runtime::Dynamics;
-use rne_models::generated::planar_elbow::Model as PlanarElbow;
-use rne_sim::{simulate, Dopri5, GaussLegendre, Integrator, Rk4, SimError, State, ZeroInput};
 use crate::error::StressError;
-use rne_interpreted::Interpreted;
 use crate::report::CaseReport;
 use crate::states::{generator, uniform};
-use rne_figures::Table;
 use crate::Effort;
+use rne_figures::Table;
+use rne_interpreted::Interpreted;
+use rne_interpreted::{evaluate, StateRef};
+use rne_models::generated::planar_elbow::Model as PlanarElbow;
+use rne_models::{BuiltinRobot, Visitor, BUILTIN_ROBOTS};
+use rne_runtime::Dynamics;
+use rne_sim::{simulate, Dopri5, GaussLegendre, Integrator, Rk4, SimError, State, ZeroInput};
 
 /// The case's name.
 pub const SLUG: &str = "non-finite";

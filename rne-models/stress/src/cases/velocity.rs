@@ -9,12 +9,12 @@ use rne_codegen::Kernel;
 
 use super::{builtin_model, largest, sweep_row, sweep_table};
 use crate::error::StressError;
-use crate::sweep::{sweep, torque_for, Sweep};
-use rne_interpreted::{Interpreted, JointState};
 use crate::report::CaseReport;
 use crate::states::{generator, magnitudes, uniform};
-use rne_figures::sci;
+use crate::sweep::{sweep, torque_for, Sweep};
 use crate::Effort;
+use rne_figures::sci;
+use rne_interpreted::{Interpreted, JointState};
 
 /// The case's name.
 pub const SLUG: &str = "velocity";
