@@ -27,9 +27,11 @@
 #![deny(missing_docs)]
 
 mod catalogue;
+mod control;
 mod error;
 pub mod experiments;
 mod figures;
+mod free_runs;
 pub mod measures;
 mod outcome;
 pub mod parameters;

@@ -31,7 +31,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::catalogue::{pd_findings, RunOptions};
+use super::catalogue::RunOptions;
+use super::control::pd_findings;
 use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
 use super::outcome::{Finding, Outcome, Table};
