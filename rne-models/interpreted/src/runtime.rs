@@ -32,8 +32,8 @@ enum Engine<'a> {
     /// The optimised programs, in `f64` (what the generated kernels compute, bit for bit).
     Interpreted(&'a Interpreted),
     /// The numeric reference through its allocation-free `*_into` methods; they need a
-    /// mutable workspace.
-    Reference(RefCell<Reference>),
+    /// mutable workspace (boxed: it is large beside a reference).
+    Reference(Box<RefCell<Reference>>),
 }
 
 /// A model evaluated at run time, with N joints and a fixed base, as [`Dynamics<N, N>`].
@@ -61,7 +61,7 @@ impl<'a, const N: usize> RuntimeModel<'a, N> {
         check::<N>(reference.nq())?;
         check::<N>(reference.nv())?;
         Ok(RuntimeModel {
-            engine: Engine::Reference(RefCell::new(reference)),
+            engine: Engine::Reference(Box::new(RefCell::new(reference))),
         })
     }
 

@@ -88,11 +88,14 @@ pub fn rows(values: Vec<f64>, n: usize) -> Vec<Vec<f64>> {
     values.chunks(n.max(1)).map(<[f64]>::to_vec).collect()
 }
 
+/// One kernel at one state, flattened.
+type Evaluate<'a> = dyn Fn(Kernel, StateRef<'_>) -> Result<Vec<f64>, EvalError> + 'a;
+
 /// A robot's kernels as these tests call them: over slices, matrices as rows, through
 /// `rne_interpreted::evaluate` on a built-in robot's generated `Model` ([`with_generated`]) or
 /// `Interpreted::evaluate` on the programs ([`SliceModel::programs`]).
 pub struct SliceModel<'a> {
-    eval: &'a dyn Fn(Kernel, StateRef<'_>) -> Result<Vec<f64>, EvalError>,
+    eval: &'a Evaluate<'a>,
     joints: Vec<String>,
 }
 

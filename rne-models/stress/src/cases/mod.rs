@@ -78,7 +78,7 @@ pub fn driven_states(
                 qdd: uniform(rng, n, qdd),
                 tau: Vec::new(),
             };
-            state.tau = torque_for(&probe, &state).unwrap_or_default();
+            state.tau = torque_for(probe, &state).unwrap_or_default();
             state
         })
         .collect()
