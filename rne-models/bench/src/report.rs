@@ -81,8 +81,8 @@ fn ratio(r: f64) -> String {
 /// The command that produces a report with `effort`.
 fn command(effort: Effort) -> &'static str {
     match effort {
-        Effort::Quick => "cargo run --release -p rne-models --bin rne -- bench --quick",
-        Effort::Full => "cargo run --release -p rne-models --bin rne -- bench",
+        Effort::Quick => "cargo run --release -p rne-cli --bin rne -- bench --quick",
+        Effort::Full => "cargo run --release -p rne-cli --bin rne -- bench",
     }
 }
 
