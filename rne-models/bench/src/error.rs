@@ -1,13 +1,11 @@
 //! Why a benchmark could not run or its report could not be written.
 
-use std::path::PathBuf;
-
 use rne_codegen::CodegenError;
 use rne_symbolic::spec::SpecError;
 
 use rne_figures::FigureError;
 use rne_reference::ReferenceError;
-use rne_sim::SimError;
+use rne_sim::RunError;
 
 /// A benchmark that failed. Every message names the robot, run or file it is about.
 #[derive(Debug, thiserror::Error)]
@@ -57,15 +55,9 @@ pub enum BenchError {
         /// What is missing or wrong.
         problem: String,
     },
-    /// A simulation of the integrator benchmark stopped.
-    #[error("{run}: {source}")]
-    Simulation {
-        /// The run.
-        run: String,
-        /// Why it stopped.
-        #[source]
-        source: SimError,
-    },
+    /// A simulation stopped early.
+    #[error(transparent)]
+    Simulation(#[from] RunError),
     /// Pinocchio's timing script failed or printed something unexpected.
     #[error("{robot}: Pinocchio: {problem}")]
     Pinocchio {
@@ -74,16 +66,7 @@ pub enum BenchError {
         /// What went wrong.
         problem: String,
     },
-    /// A file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
-    Io {
-        /// The file or directory.
-        path: PathBuf,
-        /// The system's error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A figure could not be drawn or written.
+    /// A figure or a report file could not be drawn or written.
     #[error(transparent)]
-    Figure(#[from] FigureError),
+    Output(#[from] FigureError),
 }

@@ -218,7 +218,7 @@ fn study<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
     plan: &Plan,
 ) -> Result<IntegratorStudy, BenchError> {
     let duration = settings.duration;
-    let simulation = |what: String| move |source| BenchError::Simulation { run: what, source };
+    let simulation = SimError::in_run;
     let run = |method: Method| Run {
         model,
         method,

@@ -18,6 +18,7 @@ use super::error::BenchError;
 use super::implementation::Implementation;
 use super::kernels::RobotKernels;
 use super::timing::quantile;
+use rne_figures::FigureError;
 use rne_models::BuiltinRobot;
 
 /// Built-in robots compared with Pinocchio: the URDF ones.
@@ -60,15 +61,9 @@ impl PinocchioScript {
             robot: robot.name.to_owned(),
             problem,
         };
-        std::fs::create_dir_all(scratch).map_err(|source| BenchError::Io {
-            path: scratch.to_path_buf(),
-            source,
-        })?;
+        std::fs::create_dir_all(scratch).map_err(FigureError::io(scratch))?;
         let urdf = scratch.join(format!("{}.urdf", robot.name));
-        std::fs::write(&urdf, robot.source).map_err(|source| BenchError::Io {
-            path: urdf.clone(),
-            source,
-        })?;
+        std::fs::write(&urdf, robot.source).map_err(FigureError::io(&urdf))?;
         let output = Command::new("bash")
             .arg(&self.path)
             .arg(&urdf)

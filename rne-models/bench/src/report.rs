@@ -17,7 +17,7 @@ use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
 use super::scenes::{RobotScenes, SceneKernel};
 use super::Effort;
 use rne_figures::work_precision::{Chart, Marker, Panel, Point, Series};
-use rne_figures::{render, sci, ulps, Formats};
+use rne_figures::{render, sci, ulps, FigureError, Formats};
 
 /// Inverse-dynamics operation counts published for built-in robots (ROBOTS.md): robot,
 /// multiplications, additions, source.
@@ -142,17 +142,13 @@ impl Report {
     /// Writes [`REPORT_FILE`] and every chart (SVG and PNG) to `dir`, created if missing, and
     /// returns the paths written.
     pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, BenchError> {
-        let io = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| BenchError::Io { path, source }
-        };
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        std::fs::create_dir_all(dir).map_err(FigureError::io(dir))?;
         let mut written = Vec::new();
         for chart in self.charts() {
             written.extend(render(&chart, dir, Formats::BOTH)?);
         }
         let report = dir.join(REPORT_FILE);
-        std::fs::write(&report, self.markdown()).map_err(io(&report))?;
+        std::fs::write(&report, self.markdown()).map_err(FigureError::io(&report))?;
         written.push(report);
         Ok(written)
     }

@@ -164,8 +164,8 @@ pub(crate) fn run_with<const N: usize, I: Integrator<N>>(
     integrator: &I,
     run: impl FnOnce(&WithProgress<'_, I>) -> Result<Record<N>, SimError>,
 ) -> Result<Record<N>, ScenarioError> {
-    run(&WithProgress::new(integrator, label, options.progress))
-        .map_err(ScenarioError::simulation(label))
+    Ok(run(&WithProgress::new(integrator, label, options.progress))
+        .map_err(SimError::in_run(label))?)
 }
 
 /// `(a, b, …)` with three decimals.

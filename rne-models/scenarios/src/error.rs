@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use rne_figures::FigureError;
-use rne_sim::SimError;
+use rne_sim::RunError;
 
 /// A scenario that failed: an unknown name, a bad scenario file, a failed simulation, or output
 /// that could not be written. Every message names what it is about.
@@ -31,27 +31,12 @@ pub enum ScenarioError {
         #[source]
         source: rne_symbolic::spec::SpecError,
     },
-    /// The simulation stopped early.
-    #[error("{run}: {source}")]
-    Simulation {
-        /// The run that failed.
-        run: String,
-        /// Why it stopped.
-        #[source]
-        source: SimError,
-    },
-    /// A file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
-    Io {
-        /// The file or directory.
-        path: PathBuf,
-        /// The system's error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A figure could not be drawn or written.
+    /// A simulation stopped early.
     #[error(transparent)]
-    Figure(#[from] FigureError),
+    Simulation(#[from] RunError),
+    /// A figure or a report file could not be drawn or written.
+    #[error(transparent)]
+    Output(#[from] FigureError),
     /// A scenario file's robot could not be evaluated at run time.
     #[error("{}: model: {source}", path.display())]
     Evaluation {
@@ -61,14 +46,4 @@ pub enum ScenarioError {
         #[source]
         source: rne_interpreted::Error,
     },
-}
-
-impl ScenarioError {
-    /// Wraps a simulation error with the name of the run.
-    pub(crate) fn simulation(run: &str) -> impl FnOnce(SimError) -> Self + '_ {
-        move |source| Self::Simulation {
-            run: run.to_owned(),
-            source,
-        }
-    }
 }

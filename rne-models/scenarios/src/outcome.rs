@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::error::ScenarioError;
 use rne_figures::time_series::Figure;
-use rne_figures::{render, Formats};
+use rne_figures::{render, FigureError, Formats};
 use rne_sim::Record;
 
 /// One run as CSV text: `t, q, q̇, u, kinetic, potential, total[, lyapunov]` (the columns of
@@ -94,16 +94,12 @@ impl Outcome {
     /// Writes the tables, figures and findings in `formats` into `dir`, creating it, and returns
     /// the paths written.
     pub fn write(&self, dir: &Path, formats: &[Format]) -> Result<Vec<PathBuf>, ScenarioError> {
-        let io = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| ScenarioError::Io { path, source }
-        };
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        std::fs::create_dir_all(dir).map_err(FigureError::io(dir))?;
         let mut written = Vec::new();
         if formats.contains(&Format::Csv) {
             for table in &self.tables {
                 let path = dir.join(&table.file);
-                std::fs::write(&path, &table.csv).map_err(io(&path))?;
+                std::fs::write(&path, &table.csv).map_err(FigureError::io(&path))?;
                 written.push(path);
             }
         }
@@ -116,7 +112,7 @@ impl Outcome {
         }
         if formats.contains(&Format::Md) {
             let path = dir.join(format!("{}-findings.md", self.scenario));
-            std::fs::write(&path, self.findings_table()).map_err(io(&path))?;
+            std::fs::write(&path, self.findings_table()).map_err(FigureError::io(&path))?;
             written.push(path);
         }
         Ok(written)

@@ -43,7 +43,7 @@ use rne_models::{RobotSource, Visitor};
 use rne_runtime::Dynamics;
 use rne_sim::{
     output_times, simulate, ConstantTorque, Controller, Damping, Dopri5, GaussLegendre, Method, Pd,
-    Record, Rk4, State, WithoutGravity,
+    Record, Rk4, SimError, State, WithoutGravity,
 };
 use rne_symbolic::spec::LoadOptions;
 
@@ -313,8 +313,8 @@ impl UserScenario {
         let sample = self.file.sample.unwrap_or(0.01);
         let times = output_times(0.0, self.file.duration, sample);
         let integrator = WithProgress::new(&self.method, &self.name, options.progress);
-        simulate(model, controller, &integrator, x0, &times)
-            .map_err(ScenarioError::simulation(&self.name))
+        Ok(simulate(model, controller, &integrator, x0, &times)
+            .map_err(SimError::in_run(&self.name))?)
     }
 }
 

@@ -88,7 +88,7 @@ pub use controller::{
     ConstantTorque, Controller, Damping, GravityCompensation, Pd, Saturation, Sum, ZeroInput,
 };
 pub use dopri5::Dopri5;
-pub use error::SimError;
+pub use error::{RunError, SimError};
 pub use gauss_legendre::{GaussLegendre, Stages};
 pub use integrator::{Integrator, Method, Stats};
 pub use metrics::{Summary, SETTLING_BAND};

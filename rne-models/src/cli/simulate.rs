@@ -121,11 +121,9 @@ fn time(name: &str, repeat: usize, out: &mut dyn Write) -> Result<(), CliError> 
     if repeat == 0 {
         return Err(CliError::Argument("--repeat must be at least 1".into()));
     }
-    let timing =
-        rne_scenarios::time_thesis_release(repeat).map_err(|source| ScenarioError::Simulation {
-            run: "double-pendulum".into(),
-            source,
-        })?;
+    let timing = rne_scenarios::time_thesis_release(repeat)
+        .map_err(rne_sim::SimError::in_run("double-pendulum"))
+        .map_err(ScenarioError::from)?;
     writeln!(
         out,
         "70 s double-pendulum release, Dormand-Prince rtol 1e-10, generated kernels, {} samples recorded:",

@@ -1,11 +1,9 @@
 //! Why a stress case could not run or its report could not be written.
 
-use std::path::PathBuf;
-
 use rne_symbolic::spec::SpecError;
 
 use rne_figures::FigureError;
-use rne_sim::SimError;
+use rne_sim::RunError;
 
 /// A stress case that failed. Every message names the case or the file it is about.
 #[derive(Debug, thiserror::Error)]
@@ -31,25 +29,10 @@ pub enum StressError {
         #[source]
         source: rne_interpreted::Error,
     },
-    /// A simulation of the chaotic-run case stopped.
-    #[error("{run}: {source}")]
-    Simulation {
-        /// The run.
-        run: String,
-        /// Why it stopped.
-        #[source]
-        source: SimError,
-    },
-    /// A file could not be written.
-    #[error("cannot write {}: {source}", path.display())]
-    Io {
-        /// The file or directory.
-        path: PathBuf,
-        /// The system's error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A figure could not be drawn or written.
+    /// A simulation stopped early.
     #[error(transparent)]
-    Figure(#[from] FigureError),
+    Simulation(#[from] RunError),
+    /// A figure or a report file could not be drawn or written.
+    #[error(transparent)]
+    Output(#[from] FigureError),
 }

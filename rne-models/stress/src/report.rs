@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use super::error::StressError;
 use super::Effort;
 use rne_figures::log_plot::LogPlot;
-use rne_figures::{render, Formats, Table};
+use rne_figures::{render, FigureError, Formats, Table};
 
 /// The outcome of one stress case.
 #[derive(Clone, Debug, PartialEq)]
@@ -77,13 +77,9 @@ impl StressReport {
     /// Writes `DIR/report.md` and every figure as SVG and PNG into `dir` (created if
     /// missing); returns the paths written.
     pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, StressError> {
-        let io = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| StressError::Io { path, source }
-        };
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        std::fs::create_dir_all(dir).map_err(FigureError::io(dir))?;
         let report = dir.join("report.md");
-        std::fs::write(&report, self.markdown()).map_err(io(&report))?;
+        std::fs::write(&report, self.markdown()).map_err(FigureError::io(&report))?;
         let mut written = vec![report];
         for plot in self.cases.iter().flat_map(|c| &c.plots) {
             written.extend(render(plot, dir, Formats::BOTH)?);

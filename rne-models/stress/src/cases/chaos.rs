@@ -24,7 +24,7 @@ use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
 use rne_figures::{sci, Table};
 use rne_models::generated::planar_elbow::Model as PlanarElbow;
 use rne_sim::{
-    output_times, simulate, Dopri5, GaussLegendre, Integrator, Record, State, ZeroInput,
+    output_times, simulate, Dopri5, GaussLegendre, Integrator, Record, SimError, State, ZeroInput,
 };
 
 /// The case's name.
@@ -168,10 +168,7 @@ fn release<I: Integrator<2>>(
         &State::at_rest(q0),
         times,
     )
-    .map_err(|source| StressError::Simulation {
-        run: label.to_owned(),
-        source,
-    })?;
+    .map_err(SimError::in_run(label))?;
     Ok(Run {
         label: label.to_owned(),
         record,
