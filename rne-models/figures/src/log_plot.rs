@@ -5,21 +5,11 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::render::{draw_legend, Draw, PALETTE, REFERENCE_GREY};
+pub use crate::render::Mark;
+use crate::render::{draw_marked, Draw};
 
 /// Size of a rendered figure in pixels.
 const SIZE: (u32, u32) = (960, 600);
-
-/// How a series is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mark {
-    /// Unconnected dots: one measurement each.
-    Points,
-    /// A solid line through the points in order.
-    Line,
-    /// A dashed grey line: a bound or a reference, such as ε·cond(M).
-    Reference,
-}
 
 /// One labelled set of points.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,6 +62,17 @@ pub struct LogPlot {
 }
 
 impl LogPlot {
+    /// Each series' label and mark with its `visible` points.
+    fn marked<'b>(
+        &'b self,
+        visible: &'b [Vec<(f64, f64)>],
+    ) -> impl Iterator<Item = (&'b str, Mark, &'b [(f64, f64)])> {
+        self.series
+            .iter()
+            .zip(visible)
+            .map(|(s, points)| (s.label.as_str(), s.mark, points.as_slice()))
+    }
+
     /// The points of each series that the axes can show.
     fn visible(&self) -> Vec<Vec<(f64, f64)>> {
         self.series
@@ -129,7 +130,11 @@ impl Draw for LogPlot {
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
                     .draw()?;
-                draw_series(&mut chart, &self.series, &visible)?;
+                draw_marked(
+                    &mut chart,
+                    self.marked(&visible),
+                    SeriesLabelPosition::UpperLeft,
+                )?;
             }
             Axis::Linear => {
                 let pad = 0.03 * (x1 - x0);
@@ -143,7 +148,11 @@ impl Draw for LogPlot {
                     .y_label_formatter(&|y| format!("{y:.0e}"))
                     .light_line_style(WHITE.mix(0.0))
                     .draw()?;
-                draw_series(&mut chart, &self.series, &visible)?;
+                draw_marked(
+                    &mut chart,
+                    self.marked(&visible),
+                    SeriesLabelPosition::UpperLeft,
+                )?;
             }
         }
         Ok(())
@@ -168,51 +177,6 @@ fn bounds(visible: &[Vec<(f64, f64)>]) -> ((f64, f64), (f64, f64)) {
         }
     };
     (widen(x0, x1), widen(y0, y1))
-}
-
-/// Draws the series on a chart, with a legend.
-fn draw_series<'a, DB, X, Y>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    series: &[Series],
-    visible: &[Vec<(f64, f64)>],
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
-where
-    DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
-    let mut colour = 0;
-    for (s, points) in series.iter().zip(visible) {
-        let c = PALETTE[colour % PALETTE.len()];
-        if s.mark != Mark::Reference {
-            colour += 1;
-        }
-        let drawn = match s.mark {
-            Mark::Points => chart.draw_series(
-                points
-                    .iter()
-                    .map(|&p| Circle::new(p, 3, c.mix(0.75).filled())),
-            )?,
-            Mark::Line => {
-                chart.draw_series(LineSeries::new(points.iter().copied(), c.stroke_width(2)))?
-            }
-            Mark::Reference => chart.draw_series(DashedLineSeries::new(
-                points.iter().copied(),
-                6,
-                4,
-                REFERENCE_GREY.stroke_width(1),
-            ))?,
-        };
-        let legend_colour = if s.mark == Mark::Reference {
-            REFERENCE_GREY
-        } else {
-            c
-        };
-        drawn.label(s.label.as_str()).legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + 22, y)], legend_colour.stroke_width(2))
-        });
-    }
-    draw_legend(chart, SeriesLabelPosition::UpperLeft)
 }
 
 #[cfg(test)]

@@ -118,6 +118,63 @@ fn register_font() -> Result<(), FigureError> {
     }
 }
 
+/// How a set of points is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mark {
+    /// Unconnected dots: one measurement each.
+    Points,
+    /// A solid line through the points in order.
+    Line,
+    /// A thin dashed grey line: a bound or a reference, such as ε·cond(M) or a set-point.
+    Reference,
+}
+
+/// Draws labelled point sets with their marks, in [`PALETTE`] colours in order (references
+/// are grey and take no colour), and their legend at `position`.
+pub(crate) fn draw_marked<'a, 'b, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    sets: impl IntoIterator<Item = (&'b str, Mark, &'b [(f64, f64)])>,
+    position: SeriesLabelPosition,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let mut colour = 0;
+    for (label, mark, points) in sets {
+        let c = PALETTE[colour % PALETTE.len()];
+        if mark != Mark::Reference {
+            colour += 1;
+        }
+        let drawn = match mark {
+            Mark::Points => chart.draw_series(
+                points
+                    .iter()
+                    .map(|&p| Circle::new(p, 3, c.mix(0.75).filled())),
+            )?,
+            Mark::Line => {
+                chart.draw_series(LineSeries::new(points.iter().copied(), c.stroke_width(2)))?
+            }
+            Mark::Reference => chart.draw_series(DashedLineSeries::new(
+                points.iter().copied(),
+                6,
+                4,
+                REFERENCE_GREY.stroke_width(1),
+            ))?,
+        };
+        let legend = if mark == Mark::Reference {
+            REFERENCE_GREY.stroke_width(1)
+        } else {
+            c.stroke_width(2)
+        };
+        drawn
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend));
+    }
+    draw_legend(chart, position)
+}
+
 /// Draws the legend of a chart's labelled series at `position`, in the style of every figure.
 pub fn draw_legend<'a, DB, X, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,

@@ -8,7 +8,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::render::{draw_legend, Draw, PALETTE, REFERENCE_GREY};
+pub use crate::render::Mark;
+use crate::render::{draw_marked, Draw};
 
 /// Width of a rendered figure in pixels.
 const WIDTH: u32 = 1000;
@@ -21,15 +22,6 @@ const TITLE_HEIGHT: u32 = 44;
 /// holds several buckets at [`WIDTH`]).
 const MAX_POINTS: usize = 4000;
 
-/// How a curve is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LineStyle {
-    /// A solid line in the next palette colour: a simulated quantity.
-    Solid,
-    /// A thin dashed grey line: a reference such as a set-point or a saturation limit.
-    Reference,
-}
-
 /// One curve y(t) of a panel.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
@@ -38,7 +30,7 @@ pub struct Curve {
     /// The samples (t, y).
     pub points: Vec<(f64, f64)>,
     /// How it is drawn.
-    pub style: LineStyle,
+    pub style: Mark,
 }
 
 impl Curve {
@@ -47,7 +39,7 @@ impl Curve {
         Self {
             label: label.into(),
             points: t.iter().copied().zip(y).collect(),
-            style: LineStyle::Solid,
+            style: Mark::Line,
         }
     }
 
@@ -57,7 +49,7 @@ impl Curve {
         Self {
             label: label.into(),
             points: ends.into_iter().flatten().map(|&t| (t, y)).collect(),
-            style: LineStyle::Reference,
+            style: Mark::Reference,
         }
     }
 }
@@ -135,6 +127,18 @@ impl Draw for Figure {
         }
         Ok(())
     }
+}
+
+/// Each curve's label and style with its visible `points`.
+fn marked<'b>(
+    panel: &'b Panel,
+    points: &'b [Vec<(f64, f64)>],
+) -> impl Iterator<Item = (&'b str, Mark, &'b [(f64, f64)])> {
+    panel
+        .curves
+        .iter()
+        .zip(points)
+        .map(|(c, p)| (c.label.as_str(), c.style, p.as_slice()))
 }
 
 /// The points of a curve that the scale can show, reduced to at most [`MAX_POINTS`].
@@ -263,7 +267,11 @@ fn draw_panel<DB: DrawingBackend>(
                 .y_label_formatter(&tick_format(y1 - y0))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
-            draw_curves(&mut chart, panel, &curves)
+            draw_marked(
+                &mut chart,
+                marked(panel, &curves),
+                SeriesLabelPosition::UpperRight,
+            )
         }
         Scale::Log => {
             let (y0, y1) = if y1 > y0 {
@@ -282,45 +290,13 @@ fn draw_panel<DB: DrawingBackend>(
                 .y_label_formatter(&|y| format!("{y:.0e}"))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()?;
-            draw_curves(&mut chart, panel, &curves)
+            draw_marked(
+                &mut chart,
+                marked(panel, &curves),
+                SeriesLabelPosition::UpperRight,
+            )
         }
     }
-}
-
-/// Draws the curves of a panel on its chart, with a legend.
-fn draw_curves<'a, DB, X, Y>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    panel: &Panel,
-    curves: &[Vec<(f64, f64)>],
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
-where
-    DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
-    let mut colour = 0;
-    for (curve, points) in panel.curves.iter().zip(curves) {
-        let style = match curve.style {
-            LineStyle::Solid => {
-                let c = PALETTE[colour % PALETTE.len()];
-                colour += 1;
-                c.stroke_width(2)
-            }
-            LineStyle::Reference => REFERENCE_GREY.stroke_width(1),
-        };
-        let series = match curve.style {
-            LineStyle::Solid => {
-                chart.draw_series(LineSeries::new(points.iter().copied(), style))?
-            }
-            LineStyle::Reference => {
-                chart.draw_series(DashedLineSeries::new(points.iter().copied(), 6, 4, style))?
-            }
-        };
-        series
-            .label(curve.label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], style));
-    }
-    draw_legend(chart, SeriesLabelPosition::UpperRight)
 }
 
 #[cfg(test)]
