@@ -1,5 +1,5 @@
 //! The figures, tables and error measures of the simulation, bench and stress reports, written
-//! once: one font registration and palette ([`render`]), one markdown [`Table`], one number
+//! once: one font registration and palette ([`mod@render`]), one markdown [`Table`], one number
 //! format ([`sci`], [`ulps`]), one ulp and one normwise relative error ([`measure`]).
 //!
 //! Three kinds of figure, each drawn on any plotters backend ([`Draw`]) and written as SVG and

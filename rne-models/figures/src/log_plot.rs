@@ -1,6 +1,6 @@
 //! The report's figures: errors on a logarithmic vertical axis against a logarithmic or linear
 //! horizontal one, as scattered points, lines and dashed reference lines (such as ε·cond),
-//! written as SVG and PNG by [`render`](crate::render).
+//! written as SVG and PNG by [`render`](crate::render()).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

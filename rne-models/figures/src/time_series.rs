@@ -3,7 +3,7 @@
 //! A [`Figure`] is a title over panels stacked vertically, each panel a set of curves against
 //! time. It knows nothing about robots: the scenarios build figures from their records.
 //!
-//! [`render`](crate::render) writes it as SVG and PNG.
+//! [`render`](crate::render()) writes it as SVG and PNG.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -5,7 +5,7 @@
 //! point with an optional horizontal and vertical range drawn as a bar (an interquartile range
 //! of times, or the span from the median to the largest error). Values that a logarithmic axis
 //! cannot show (zero, negative, not finite) are drawn at the panel's floor and the panel's note
-//! says so. [`render`](crate::render) writes a chart as SVG and PNG.
+//! says so. [`render`](crate::render()) writes a chart as SVG and PNG.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -52,7 +52,7 @@ pub struct Point {
 pub struct Series {
     /// The legend entry.
     pub label: String,
-    /// Index into [`PALETTE`](crate::PALETTE).
+    /// Index into [`crate::PALETTE`].
     pub colour: usize,
     /// The points.
     pub points: Vec<Point>,

@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::interpreted::Interpreted;
 use crate::state::StateRef;
 
-/// The largest number of joints [`RuntimeModel::visit`] instantiates code for.
+/// The largest number of joints [`Interpreted::visit`] instantiates code for.
 pub const MAX_DOF: usize = 8;
 
 /// The kernels the numeric reference computes: every kernel but the Christoffel matrix (it
