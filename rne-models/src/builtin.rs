@@ -1,4 +1,4 @@
-//! The built-in robots: their spec files (embedded in the binary) and generated kernels.
+//! The built-in robots: their spec files (embedded in the crate) and generated modules.
 
 use std::path::Path;
 
@@ -6,16 +6,19 @@ use rne_symbolic::spec::{load_robot, parse_robot, LoadOptions, RobotFormat, Spec
 use rne_symbolic::RobotModel;
 
 use crate::generated;
-use crate::impl_kernels;
-use crate::kernels::Kernels;
+use crate::visit::Visitor;
 
-impl_kernels!(PlanarElbow, generated::planar_elbow);
-impl_kernels!(Irb140ThreeDof, generated::irb140_3dof);
-impl_kernels!(Puma560, generated::puma560);
-impl_kernels!(Ur5, generated::ur5);
-impl_kernels!(Panda, generated::panda);
-impl_kernels!(PandaArm, generated::panda_arm);
-impl_kernels!(Irb140, generated::irb140);
+/// Which generated module a built-in robot has.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Module {
+    PlanarElbow,
+    Irb140ThreeDof,
+    Puma560,
+    Ur5,
+    Panda,
+    PandaArm,
+    Irb140,
+}
 
 /// A robot that ships with rne.
 pub struct BuiltinRobot {
@@ -27,8 +30,23 @@ pub struct BuiltinRobot {
     pub source: &'static str,
     /// One line about it.
     pub description: &'static str,
-    /// Its generated kernels.
-    pub kernels: &'static (dyn Kernels + Sync),
+    /// Its generated module, for [`BuiltinRobot::visit`].
+    module: Module,
+}
+
+impl BuiltinRobot {
+    /// Runs `visitor` on the robot's generated `Model` (every kernel, `f64`).
+    pub fn visit<V: Visitor>(&self, visitor: V) -> V::Output {
+        match self.module {
+            Module::PlanarElbow => visitor.visit(generated::planar_elbow::Model),
+            Module::Irb140ThreeDof => visitor.visit(generated::irb140_3dof::Model),
+            Module::Puma560 => visitor.visit(generated::puma560::Model),
+            Module::Ur5 => visitor.visit(generated::ur5::Model),
+            Module::Panda => visitor.visit(generated::panda::Model),
+            Module::PandaArm => visitor.visit(generated::panda_arm::Model),
+            Module::Irb140 => visitor.visit(generated::irb140::Model),
+        }
+    }
 }
 
 /// Every built-in robot.
@@ -38,49 +56,49 @@ pub static BUILTIN_ROBOTS: &[BuiltinRobot] = &[
         file: "robots/planar-elbow.toml",
         source: include_str!("../robots/planar-elbow.toml"),
         description: "planar elbow manipulator, thesis chapter 4 and table 6.1",
-        kernels: &PlanarElbow,
+        module: Module::PlanarElbow,
     },
     BuiltinRobot {
         name: "irb140-3dof",
         file: "robots/irb140-3dof.toml",
         source: include_str!("../robots/irb140-3dof.toml"),
         description: "ABB IRB 140, first three joints, thesis chapter 5 and table 6.2",
-        kernels: &Irb140ThreeDof,
+        module: Module::Irb140ThreeDof,
     },
     BuiltinRobot {
         name: "puma560",
         file: "robots/puma560.toml",
         source: include_str!("../robots/puma560.toml"),
         description: "PUMA 560, standard DH, Corke & Armstrong-Helouvry (ICRA 1994) parameters",
-        kernels: &Puma560,
+        module: Module::Puma560,
     },
     BuiltinRobot {
         name: "ur5",
         file: "robots/ur5.urdf",
         source: include_str!("../robots/ur5.urdf"),
         description: "Universal Robots UR5, ros-industrial description",
-        kernels: &Ur5,
+        module: Module::Ur5,
     },
     BuiltinRobot {
         name: "panda",
         file: "robots/panda.urdf",
         source: include_str!("../robots/panda.urdf"),
         description: "Franka Emika Panda with hand and two fingers (9 joints, a tree), Gaz et al. 2019",
-        kernels: &Panda,
+        module: Module::Panda,
     },
     BuiltinRobot {
         name: "panda-arm",
         file: "robots/panda-arm.urdf",
         source: include_str!("../robots/panda-arm.urdf"),
         description: "Franka Emika Panda arm to the flange, no hand (7 joints), Gaz et al. 2019",
-        kernels: &PandaArm,
+        module: Module::PandaArm,
     },
     BuiltinRobot {
         name: "irb140",
         file: "robots/irb140.toml",
         source: include_str!("../robots/irb140.toml"),
         description: "ABB IRB 140, six joints: thesis chapter 5 and ABB's wrist geometry (wrist inertials estimated)",
-        kernels: &Irb140,
+        module: Module::Irb140,
     },
 ];
 

@@ -1,14 +1,14 @@
-//! Built-in robots, simulations and the `rne` command; the independent numeric reference is the
-//! `rne-reference` crate.
+//! The built-in robots: their spec files (`robots/`, embedded in the crate), the modules
+//! `derive_dynamics!` generates from them ([`generated`]), and [`Visitor`], which runs code
+//! written once over [`rne_codegen::Dynamics`] on a robot named at run time.
+//!
+//! Simulation, benchmarks, stress tests and the `rne` command are crates of their own below
+//! `rne-models/`; this crate holds only what is compiled from the robot files.
 #![deny(missing_docs)]
 
-pub mod accuracy;
-pub mod bench;
 pub mod builtin;
-pub mod cli;
-pub mod corpus;
 pub mod generated;
-pub mod interpreted;
-pub mod kernels;
-pub mod sim;
-pub mod stress;
+mod visit;
+
+pub use builtin::{builtin, BuiltinRobot, RobotSource, BUILTIN_ROBOTS};
+pub use visit::Visitor;

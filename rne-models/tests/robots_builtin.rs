@@ -6,13 +6,56 @@
 
 mod robots_common;
 
-use rne_models::builtin::{builtin, RobotSource, BUILTIN_ROBOTS};
+use rne_codegen::Dynamics;
+use rne_models::{builtin, RobotSource, Visitor, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
-use robots_common::{assert_close, kernels, reference, rng, state, uniform, Symbolic};
+use rne_symbolic::RobotModel;
+use robots_common::{assert_close, kernels, reference, rng, state, uniform, Dof, Symbolic};
 
 const STATES: usize = 200;
 const TOLERANCE: f64 = 1e-12;
+
+/// The three evaluations of one built-in robot, on its generated `Model`.
+struct Agree<'a> {
+    name: &'a str,
+    model: &'a RobotModel,
+}
+
+impl Visitor for Agree<'_> {
+    type Output = ();
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, generated: D) {
+        let (name, model) = (self.name, self.model);
+        assert_eq!(D::JOINTS, model.joint_names(), "{name}");
+        assert_eq!(N, model.dof(), "{name}");
+        let symbolic = Symbolic::new(model);
+        let mut numeric = Reference::new(&model.to_numeric());
+        let mut rng = rng(0x0b07_5001);
+        for _ in 0..STATES {
+            let (q, qd, qdd) = state(&mut rng, N);
+            let g = numeric.gravity_torques(&q).unwrap();
+            let tau = uniform(&mut rng, N, g.amax().max(10.0));
+            let expected = reference(&mut numeric, &q, &qd, &qdd, &tau);
+            let from_kernels = kernels(&generated, &q, &qd, &qdd, &tau);
+            let from_graph = symbolic.eval(&q, &qd, &qdd, &tau);
+            assert_close(
+                name,
+                "kernels vs reference",
+                from_kernels.errors(&expected),
+                TOLERANCE,
+                &q,
+            );
+            assert_close(
+                name,
+                "symbolic vs reference",
+                from_graph.errors(&expected),
+                TOLERANCE,
+                &q,
+            );
+        }
+    }
+}
 
 #[test]
 fn kernels_symbolic_dynamics_and_reference_agree_on_every_builtin_robot() {
@@ -20,39 +63,10 @@ fn kernels_symbolic_dynamics_and_reference_agree_on_every_builtin_robot() {
         let model = RobotSource::Builtin(robot)
             .load(&LoadOptions::default())
             .unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(
-            robot.kernels.joints(),
-            model.joint_names(),
-            "{}",
-            robot.name
-        );
-        assert_eq!(robot.kernels.dof(), model.dof(), "{}", robot.name);
-        let symbolic = Symbolic::new(&model);
-        let mut numeric = Reference::new(&model.to_numeric());
-        let mut rng = rng(0x0b07_5001);
-        let n = model.dof();
-        for _ in 0..STATES {
-            let (q, qd, qdd) = state(&mut rng, n);
-            let g = numeric.gravity_torques(&q).unwrap();
-            let tau = uniform(&mut rng, n, g.amax().max(10.0));
-            let expected = reference(&mut numeric, &q, &qd, &qdd, &tau);
-            let from_kernels = kernels(robot.kernels, &q, &qd, &qdd, &tau);
-            let from_graph = symbolic.eval(&q, &qd, &qdd, &tau);
-            assert_close(
-                robot.name,
-                "kernels vs reference",
-                from_kernels.errors(&expected),
-                TOLERANCE,
-                &q,
-            );
-            assert_close(
-                robot.name,
-                "symbolic vs reference",
-                from_graph.errors(&expected),
-                TOLERANCE,
-                &q,
-            );
-        }
+        robot.visit(Agree {
+            name: robot.name,
+            model: &model,
+        });
     }
 }
 
@@ -67,7 +81,7 @@ fn the_new_robots_are_registered() {
     ] {
         let robot = builtin(name).unwrap_or_else(|| panic!("{name} is not built in"));
         assert_eq!(robot.file, file);
-        assert_eq!(robot.kernels.dof(), dof, "{name}");
+        assert_eq!(robot.visit(Dof), dof, "{name}");
     }
 }
 
@@ -75,11 +89,11 @@ fn the_new_robots_are_registered() {
 fn the_panda_fingers_share_no_inertia() {
     // Both fingers hang off the hand: M couples them with nothing in common, M[7][8] = 0
     // exactly (the generated LDLᵀ keeps the zero).
-    let panda = builtin("panda").unwrap().kernels;
+    assert!(builtin("panda").is_some());
     let mut rng = rng(0x0b07_5002);
     for _ in 0..100 {
-        let q = uniform(&mut rng, 9, 3.0);
-        let m = panda.mass_matrix(&q).unwrap();
+        let q: [f64; 9] = uniform(&mut rng, 9, 3.0).try_into().unwrap();
+        let m = rne_models::generated::panda::mass_matrix(&q);
         assert_eq!(m[7][8], 0.0);
         assert_eq!(m[8][7], 0.0);
         // Each finger carries its own 0.015 kg along its axis.

@@ -4,7 +4,7 @@
 
 mod robots_common;
 
-use rne_models::builtin::{builtin, RobotSource};
+use rne_models::{builtin, RobotSource};
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 use robots_common::Symbolic;
@@ -54,10 +54,9 @@ fn assert_check_value(what: &str, tau: &[f64]) {
 
 #[test]
 fn generated_kernels_reproduce_the_published_torques() {
-    let puma = builtin("puma560").unwrap();
     assert_check_value(
         "kernels",
-        &puma.kernels.inverse_dynamics(&Q, &QD, &QDD).unwrap(),
+        &rne_models::generated::puma560::inverse_dynamics(&Q, &QD, &QDD),
     );
 }
 

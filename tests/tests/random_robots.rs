@@ -7,10 +7,10 @@ mod common;
 
 use std::fmt::Write;
 
-use common::{mat_vec, rel_err, rel_err_floor};
+use common::{mat_vec, rel_err, rel_err_floor, rows};
 use proptest::prelude::*;
-use rne_models::interpreted::Interpreted;
-use rne_models::kernels::Kernels;
+use rne_codegen::Kernel;
+use rne_interpreted::{Interpreted, StateRef};
 use rne_reference::Reference;
 use rne_symbolic::spec::{parse_str, LoadOptions};
 
@@ -151,14 +151,14 @@ proptest! {
             let g_ref: Vec<f64> = reference.gravity_torques(q).unwrap().data.into();
             let floor = m_ref.iter().chain(&g_ref).fold(0.0f64, |m, x| m.max(x.abs()));
             let err = |a: &[f64], b: &[f64]| rel_err_floor(a, b, floor);
-            let tau = symbolic.inverse_dynamics(q, qd, qdd).unwrap();
+            let tau = symbolic.evaluate(Kernel::InverseDynamics, StateRef { q, qd, qdd, tau: &[] }).unwrap();
             let tau_ref: Vec<f64> = reference.inverse_dynamics(q, qd, qdd).unwrap().data.into();
             prop_assert!(err(&tau, &tau_ref) < 1e-12, "tau {:?} vs {:?}", tau, tau_ref);
-            let m = symbolic.mass_matrix(q).unwrap();
+            let m = rows(symbolic.evaluate(Kernel::MassMatrix, StateRef { q, qd: &[], qdd: &[], tau: &[] }).unwrap(), n);
             prop_assert!(err(&m.concat(), &m_ref) < 1e-12, "M");
-            let g = symbolic.gravity_torques(q).unwrap();
+            let g = symbolic.evaluate(Kernel::GravityTorques, StateRef { q, qd: &[], qdd: &[], tau: &[] }).unwrap();
             prop_assert!(err(&g, &g_ref) < 1e-12, "g");
-            let c = symbolic.coriolis_matrix(q, qd).unwrap();
+            let c = rows(symbolic.evaluate(Kernel::CoriolisMatrix, StateRef { q, qd, qdd: &[], tau: &[] }).unwrap(), n);
             let c_qd = mat_vec(&c, qd);
             let c_qd_ref: Vec<f64> = weightless.bias_torques(q, qd).unwrap().data.into();
             prop_assert!(err(&c_qd, &c_qd_ref) < 1e-12, "C qd");
@@ -187,8 +187,8 @@ proptest! {
             // Forward dynamics inverts inverse dynamics, to the accuracy the data allow: the
             // rounding in τ and in the bias (relative 1e-16 of their size) moves q̈ by up to
             // that size over the smallest eigenvalue of M.
-            let back = symbolic.forward_dynamics(q, qd, &tau).unwrap();
-            let bias = symbolic.bias_torques(q, qd).unwrap();
+            let back = symbolic.evaluate(Kernel::ForwardDynamics, StateRef { q, qd, qdd: &[], tau: &tau }).unwrap();
+            let bias = symbolic.evaluate(Kernel::BiasTorques, StateRef { q, qd, qdd: &[], tau: &[] }).unwrap();
             let lambda_min = nalgebra::DMatrix::from_row_slice(n, n, &m.concat()).symmetric_eigenvalues().min();
             let size = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             let bound = 1e-12 * (size(qdd) + (size(&tau) + size(&bias)) / lambda_min);
@@ -226,7 +226,17 @@ fn forward_dynamics_of_three_coaxial_joints_with_a_dense_mass_matrix() {
         .into();
     assert!(
         rel_err(
-            &symbolic.forward_dynamics(&q, &qd, &tau).unwrap(),
+            &symbolic
+                .evaluate(
+                    Kernel::ForwardDynamics,
+                    StateRef {
+                        q: &q,
+                        qd: &qd,
+                        qdd: &[],
+                        tau: &tau
+                    }
+                )
+                .unwrap(),
             &expected
         ) < 1e-13
     );

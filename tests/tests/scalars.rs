@@ -7,20 +7,20 @@ use rne_codegen::DoubleDouble;
 
 rne_codegen::derive_dynamics! {
     mod double {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
     }
 }
 
 rne_codegen::derive_dynamics! {
     mod single {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         scalar: f32,
     }
 }
 
 rne_codegen::derive_dynamics! {
     mod generic {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         scalar: generic,
     }
 }

@@ -10,14 +10,14 @@ use rne_symbolic::spec::{load_file, LoadOptions};
 rne_codegen::derive_dynamics! {
     /// Every kernel of the IRB 140's first three joints.
     mod full {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
     }
 }
 
 rne_codegen::derive_dynamics! {
     /// Without gravity.
     mod weightless {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         gravity: [0.0, 0.0, 0.0],
     }
 }
@@ -25,7 +25,7 @@ rne_codegen::derive_dynamics! {
 rne_codegen::derive_dynamics! {
     /// Joints 1 and 2 locked, as in the thesis's section 6.3.3.
     mod wrist_pendulum {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         lock: { q1: 0.3, q2: -0.5 },
     }
 }
@@ -33,7 +33,7 @@ rne_codegen::derive_dynamics! {
 rne_codegen::derive_dynamics! {
     /// A static scene: the joints move slowly enough that q̇ = 0.
     mod at_rest {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         velocities: zero,
     }
 }
@@ -41,7 +41,7 @@ rne_codegen::derive_dynamics! {
 rne_codegen::derive_dynamics! {
     /// Parameters read at run time.
     mod tunable {
-        robot: "../rne-models/robots/irb140-3dof.toml",
+        robot: "fixtures/robots/irb140-3dof.toml",
         outputs: [inverse_dynamics, mass_matrix, forward_dynamics],
         parameters: runtime,
     }
@@ -49,7 +49,7 @@ rne_codegen::derive_dynamics! {
 
 const SPEC: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../rne-models/robots/irb140-3dof.toml"
+    "/fixtures/robots/irb140-3dof.toml"
 );
 
 #[test]

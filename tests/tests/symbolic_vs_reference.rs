@@ -5,7 +5,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
+use rne_models::{RobotSource, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::expr::Id;
 use rne_symbolic::model::{Base, Mimic};

@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rne_models::kernels::Kernels;
+use rne_codegen::{Dynamics, Kernel};
+use rne_interpreted::{evaluate, StateRef};
+use rne_models::Visitor;
 use rne_reference::Reference;
 use rne_symbolic::spec::{self, LoadOptions};
 use rne_symbolic::{Id, RobotModel, Symbol, SymbolicDynamics};
@@ -168,22 +170,34 @@ pub fn reference(
     }
 }
 
-/// The generated kernels' evaluation.
-pub fn kernels(
-    kernels: &dyn Kernels,
+/// A generated `Model`'s evaluation.
+pub fn kernels<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
+    model: &D,
     q: &[f64],
     qd: &[f64],
     qdd: &[f64],
     tau: &[f64],
 ) -> Evaluation {
+    let state = StateRef { q, qd, qdd, tau };
+    let value = |kernel| evaluate(model, kernel, state).unwrap();
     Evaluation {
-        tau: kernels.inverse_dynamics(q, qd, qdd).unwrap(),
-        mass_matrix: kernels.mass_matrix(q).unwrap().concat(),
-        gravity: kernels.gravity_torques(q).unwrap(),
-        bias: kernels.bias_torques(q, qd).unwrap(),
-        qdd: kernels.forward_dynamics(q, qd, tau).unwrap(),
-        kinetic: kernels.kinetic_energy(q, qd).unwrap(),
-        potential: kernels.potential_energy(q).unwrap(),
+        tau: value(Kernel::InverseDynamics),
+        mass_matrix: value(Kernel::MassMatrix),
+        gravity: value(Kernel::GravityTorques),
+        bias: value(Kernel::BiasTorques),
+        qdd: value(Kernel::ForwardDynamics),
+        kinetic: value(Kernel::KineticEnergy)[0],
+        potential: value(Kernel::PotentialEnergy)[0],
+    }
+}
+
+/// The number of joints of a built-in robot's generated `Model`.
+pub struct Dof;
+
+impl Visitor for Dof {
+    type Output = usize;
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, _: D) -> usize {
+        N
     }
 }
 

@@ -389,7 +389,7 @@ impl SymbolicDynamics {
     }
 
     /// The geometric Jacobian of each selected frame: 6 × NV, rows [v; ω] of the frame origin
-    /// in world axes ([`kinematics`]), the coefficients of v in the frame's velocity.
+    /// in world axes (the `kinematics` module), the coefficients of v in the frame's velocity.
     pub fn frame_jacobians(&mut self, selected: &[usize]) -> Vec<Matrix> {
         let nv = self.layout().nv();
         let v: Vec<Id> = (0..nv)
@@ -501,7 +501,7 @@ impl SymbolicDynamics {
             .collect()
     }
 
-    /// q̈ = FD(q, q̇, u) by the articulated-body algorithm ([`aba`]), linear in the number of
+    /// q̈ = FD(q, q̇, u) by the articulated-body algorithm (the `aba` module), linear in the number of
     /// links; `None` for a floating base or mimic couplings (use [`Self::forward_dynamics`]).
     pub fn forward_dynamics_articulated(&mut self) -> Option<Vec<Id>> {
         let qd = self.velocity_symbols(Symbol::Velocity);

@@ -1,0 +1,438 @@
+//! The benchmark report: markdown tables and work-precision charts, written as
+//! `bench-report.md` and `bench-*.svg` / `bench-*.png`.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use rne_codegen::Kernel;
+
+use super::error::BenchError;
+use super::implementation::Implementation;
+use super::integrators::{Family, IntegratorStudy, REFERENCE_TOLERANCE};
+use super::kernels::RobotKernels;
+use super::pinocchio::{self, PinocchioTimes, ALGORITHMS};
+use super::robots::{BENCHED, SEED};
+use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
+use super::scenes::{RobotScenes, SceneKernel};
+use super::Effort;
+use rne_figures::work_precision::{Chart, Marker, Panel, Point, Series};
+use rne_figures::{render, sci, ulps, FigureError, Formats};
+
+/// Inverse-dynamics operation counts published for built-in robots (ROBOTS.md): robot,
+/// multiplications, additions, source.
+pub const PUBLISHED: [(&str, usize, usize, &str); 2] = [
+    ("puma560", 410, 343, "SymPyBotics"),
+    ("panda-arm", 437, 414, "SymPyBotics"),
+];
+
+/// Everything `rne bench` measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// How much was measured.
+    pub effort: Effort,
+    /// Kernel work-precision, one entry per robot.
+    pub kernels: Vec<RobotKernels>,
+    /// Scene savings, one entry per robot.
+    pub scenes: Vec<RobotScenes>,
+    /// Integrator work-precision, one entry per problem.
+    pub integrators: Vec<IntegratorStudy>,
+    /// Pinocchio's times on the URDF robots, when its script was given.
+    pub pinocchio: Vec<PinocchioTimes>,
+    /// Wall-clock time of the whole run.
+    pub elapsed: Duration,
+}
+
+/// The file name of the report.
+pub const REPORT_FILE: &str = "bench-report.md";
+
+/// The marker of a kernel in the charts.
+fn kernel_marker(kernel: Kernel) -> Marker {
+    match kernel {
+        Kernel::MassMatrix => Marker::Square,
+        Kernel::BiasTorques => Marker::Triangle,
+        Kernel::ForwardDynamics => Marker::Cross,
+        _ => Marker::Circle,
+    }
+}
+
+/// A time in ns with three significant digits.
+fn ns(t: f64) -> String {
+    if !t.is_finite() {
+        "—".into()
+    } else if t >= 100.0 {
+        format!("{t:.0}")
+    } else if t >= 10.0 {
+        format!("{t:.1}")
+    } else {
+        format!("{t:.2}")
+    }
+}
+
+/// A ratio.
+fn ratio(r: f64) -> String {
+    if r.is_finite() {
+        format!("{r:.2}×")
+    } else {
+        "—".into()
+    }
+}
+
+/// The command that produces a report with `effort`.
+fn command(effort: Effort) -> &'static str {
+    match effort {
+        Effort::Quick => "cargo run --release -p rne-cli --bin rne -- bench --quick",
+        Effort::Full => "cargo run --release -p rne-cli --bin rne -- bench",
+    }
+}
+
+/// The processor, as `/proc/cpuinfo` names it (Linux), and the number of hardware threads.
+fn machine() -> String {
+    let model = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_owned())
+        })
+        .unwrap_or_else(|| "unknown processor".into());
+    let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!("{model}, {threads} hardware threads")
+}
+
+impl Report {
+    /// The report as markdown; figures are linked by their PNG file names.
+    pub fn markdown(&self) -> String {
+        let mut md = String::new();
+        let effort = self.effort;
+        let plan = effort.kernel_plan();
+        let _ = writeln!(md, "# rne bench: run time against error\n");
+        let _ = writeln!(
+            md,
+            "`{}` on {} ({} build), {:.1} s. Kernels: {} seeded states per robot (ChaCha8, seed \
+             {SEED:#x}; |q| ≤ π, |q̇| ≤ {QD_BOUND}, |q̈| ≤ {QDD_BOUND}, |τ| ≤ max({TAU_FLOOR}, \
+             ‖g(q)‖∞)) for the errors, the first {} cycled through for the times; {} \
+             interleaved rounds of batches of at least {} µs per implementation. Times are \
+             medians over rounds with the interquartile range; ratios are medians of per-round \
+             ratios, measured in this run. Errors are normwise relative, ‖a − x‖∞ / ‖x‖∞, and \
+             in ulps of ‖x‖∞ in the implementation's format, against the double-double value x \
+             of the same program.\n",
+            command(effort),
+            machine(),
+            if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            },
+            self.elapsed.as_secs_f64(),
+            effort.samples(),
+            effort.pool(),
+            plan.rounds,
+            plan.batch.as_micros(),
+        );
+        self.pinocchio_table(&mut md);
+        self.kernel_tables(&mut md);
+        self.scene_table(&mut md);
+        self.published_table(&mut md);
+        self.integrator_tables(&mut md);
+        md
+    }
+
+    /// Writes [`REPORT_FILE`] and every chart (SVG and PNG) to `dir`, created if missing, and
+    /// returns the paths written.
+    pub fn write(&self, dir: &Path) -> Result<Vec<PathBuf>, BenchError> {
+        std::fs::create_dir_all(dir).map_err(FigureError::io(dir))?;
+        let mut written = Vec::new();
+        for chart in self.charts() {
+            written.extend(render(&chart, dir, Formats::BOTH)?);
+        }
+        let report = dir.join(REPORT_FILE);
+        std::fs::write(&report, self.markdown()).map_err(FigureError::io(&report))?;
+        written.push(report);
+        Ok(written)
+    }
+
+    /// The charts: one per robot, one per integrator study.
+    pub fn charts(&self) -> Vec<Chart> {
+        let mut charts: Vec<Chart> = self.kernels.iter().map(kernel_chart).collect();
+        charts.extend(self.integrators.iter().map(integrator_chart));
+        charts
+    }
+
+    fn pinocchio_table(&self, md: &mut String) {
+        if self.pinocchio.is_empty() {
+            return;
+        }
+        let calls = self.pinocchio[0].calls;
+        let _ = writeln!(
+            md,
+            "## Beside Pinocchio\n\nPinocchio 4.1.0's algorithms timed by \
+             `../shared/tools/pinocchio/run.sh ROBOT.urdf {calls}` (header-only C++, -O3 \
+             -march=native, seeded states; mean over {calls} calls) on the same URDF as the \
+             built-in robot, three times during this run (before, between and after rne's \
+             timings of that robot), median kept; rne's time is the generated f64 kernel's median \
+             from the tables below. Speed-up = Pinocchio's time / rne's.\n\n\
+             | robot | Pinocchio | ns/call | rne kernel | ns/call | speed-up |\n|---|---|---:|---|---:|---:|"
+        );
+        for times in &self.pinocchio {
+            let Some(robot) = self.kernels.iter().find(|k| k.robot == times.robot) else {
+                continue;
+            };
+            let speedups = pinocchio::speedups(times, robot);
+            for (i, (algorithm, kernel)) in ALGORITHMS.iter().enumerate() {
+                let ours = times.ns[i] / speedups[i];
+                let _ = writeln!(
+                    md,
+                    "| {} | {algorithm} | {} | {} | {} | {} |",
+                    times.robot,
+                    ns(times.ns[i]),
+                    kernel.name(),
+                    ns(ours),
+                    ratio(speedups[i]),
+                );
+            }
+        }
+        let _ = writeln!(md);
+    }
+
+    fn kernel_tables(&self, md: &mut String) {
+        let _ = writeln!(md, "## Kernels\n");
+        for robot in &self.kernels {
+            let _ = writeln!(md, "### {} ({} joints)\n", robot.robot, robot.dof);
+            let _ = writeln!(
+                md,
+                "![{0}: time per call against error](bench-{0}.png)\n",
+                robot.robot
+            );
+            let _ = writeln!(
+                md,
+                "| kernel | implementation | ns/call | IQR | × generated f64 | max rel. error \
+                 | median rel. error | max ulps | median ulps |\n|---|---|---:|---:|---:|---:|---:|---:|---:|"
+            );
+            for row in &robot.rows {
+                let (q1, q3) = row.timing.quartiles();
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} | {} |",
+                    row.kernel.name(),
+                    row.implementation.label(),
+                    ns(row.timing.median()),
+                    ns(q1),
+                    ns(q3),
+                    ratio(row.relative_time),
+                    sci(row.errors.max_relative),
+                    sci(row.errors.median_relative),
+                    ulps(row.errors.max_ulps),
+                    ulps(row.errors.median_ulps),
+                );
+            }
+            let _ = writeln!(md);
+        }
+    }
+
+    fn scene_table(&self, md: &mut String) {
+        let _ = writeln!(
+            md,
+            "## Scene savings: inverse dynamics\n\nOperations of the emitted program (mul, add, \
+             cost in additions: div and sqrt 4, sin or cos 5) and ns per call, timed together; \
+             × full is the median per-round ratio to the full kernel.\n\n\
+             | robot | scene | mul | add | cost | ns/call | × full |\n|---|---|---:|---:|---:|---:|---:|"
+        );
+        for robot in &self.scenes {
+            for row in &robot.rows {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {} | {} | {} | {} |",
+                    robot.robot,
+                    row.scene.label(),
+                    row.ops.mul,
+                    row.ops.add,
+                    row.ops.cost(),
+                    ns(row.timing.median()),
+                    ratio(row.relative_time),
+                );
+            }
+        }
+        let _ = writeln!(md);
+    }
+
+    fn published_table(&self, md: &mut String) {
+        let _ = writeln!(
+            md,
+            "## Operation counts beside published ones\n\nInverse dynamics with numeric \
+             parameters (ROBOTS.md); rne's counts are those of `rne stats`.\n\n\
+             | robot | rne mul | rne add | published mul | published add | source |\n|---|---:|---:|---:|---:|---|"
+        );
+        for (robot, mul, add, source) in PUBLISHED {
+            let ours = self
+                .scenes
+                .iter()
+                .find(|s| s.robot == robot)
+                .and_then(|s| s.rows.iter().find(|r| r.scene == SceneKernel::Full));
+            if let Some(row) = ours {
+                let _ = writeln!(
+                    md,
+                    "| {robot} | {} | {} | {mul} | {add} | {source} |",
+                    row.ops.mul, row.ops.add
+                );
+            }
+        }
+        let _ = writeln!(md);
+    }
+
+    fn integrator_tables(&self, md: &mut String) {
+        let _ = writeln!(md, "## Integrators\n");
+        for study in &self.integrators {
+            let _ = writeln!(
+                md,
+                "### {}, {} s\n\n![{0}](bench-{}.png)\n\nReference: Dormand–Prince at rtol = atol = \
+                 {REFERENCE_TOLERANCE:.0e}; its distance to a Gauss–Legendre run with a 100 \
+                 times finer step is {}, its energy drift {} J. Final-state error: max |Δq| \
+                 (rad), |Δq̇| (rad/s) at {} s; energy drift: max |E(t) − E(0)| (J) on a 0.01 s \
+                 grid.\n",
+                study.title,
+                study.duration,
+                study.name,
+                sci(study.reference_error),
+                sci(study.reference_drift),
+                study.duration,
+            );
+            let _ = writeln!(
+                md,
+                "| method | parameter | steps | evaluations | time to solution (ms) | IQR (ms) \
+                 | final-state error | energy drift (J) |\n|---|---|---:|---:|---:|---:|---:|---:|"
+            );
+            for row in &study.rows {
+                let (q1, q3) = row.timing.quartiles();
+                let ms = |t: f64| format!("{:.3}", t * 1e-6);
+                let _ = writeln!(
+                    md,
+                    "| {} | {} {:.0e} | {} | {} | {} | {}–{} | {} | {} |",
+                    row.family.label(),
+                    row.family.parameter_name(),
+                    row.parameter,
+                    row.stats.steps,
+                    row.stats.evaluations,
+                    ms(row.timing.median()),
+                    ms(q1),
+                    ms(q3),
+                    sci(row.final_error),
+                    sci(row.energy_drift),
+                );
+            }
+            let _ = writeln!(md);
+        }
+    }
+}
+
+/// Errors at or below this are drawn at it on the kernel charts.
+const ERROR_FLOOR: f64 = 1e-18;
+
+/// The work-precision chart of one robot: a point per implementation and kernel at (median
+/// time, largest error), with the interquartile range of the time and a bar down to the median
+/// error.
+fn kernel_chart(robot: &RobotKernels) -> Chart {
+    let series = Implementation::ALL
+        .iter()
+        .enumerate()
+        .filter_map(|(colour, &implementation)| {
+            let points: Vec<Point> = robot
+                .rows
+                .iter()
+                .filter(|r| r.implementation == implementation)
+                .map(|r| Point {
+                    x: r.timing.median(),
+                    y: r.errors.max_relative,
+                    x_bar: Some(r.timing.quartiles()),
+                    y_bar: Some((r.errors.median_relative, r.errors.max_relative)),
+                    marker: kernel_marker(r.kernel),
+                })
+                .collect();
+            (!points.is_empty()).then(|| Series {
+                label: implementation.label().to_owned(),
+                colour,
+                points,
+                joined: false,
+            })
+        })
+        .collect();
+    let kernel_names = [
+        "inverse dynamics",
+        "mass matrix",
+        "bias torques",
+        "forward dynamics",
+    ];
+    Chart {
+        file: format!("bench-{}", robot.robot),
+        title: format!(
+            "{} ({} joints): time per call against error",
+            robot.robot, robot.dof
+        ),
+        panels: vec![Panel {
+            x_label: "ns per call (median, bar: interquartile range)".into(),
+            y_label: format!(
+                "relative error (max, bar from median; ≤ {ERROR_FLOOR:.0e} drawn at it)"
+            ),
+            series,
+            marker_legend: BENCHED
+                .iter()
+                .zip(kernel_names)
+                .map(|(&k, name)| (kernel_marker(k), name.to_owned()))
+                .collect(),
+            y_floor: ERROR_FLOOR,
+        }],
+    }
+}
+
+/// The work-precision chart of one integrator study: time to solution against final-state
+/// error (left) and against energy drift (right), a line per integrator family.
+fn integrator_chart(study: &IntegratorStudy) -> Chart {
+    let series = |value: fn(&super::integrators::IntegratorRow) -> f64| -> Vec<Series> {
+        Family::ALL
+            .iter()
+            .enumerate()
+            .map(|(colour, &family)| Series {
+                label: family.label().to_owned(),
+                colour,
+                points: study
+                    .rows
+                    .iter()
+                    .filter(|r| r.family == family)
+                    .map(|r| {
+                        let (q1, q3) = r.timing.quartiles();
+                        Point {
+                            x: r.timing.median() * 1e-6,
+                            y: value(r),
+                            x_bar: Some((q1 * 1e-6, q3 * 1e-6)),
+                            y_bar: None,
+                            marker: Marker::Circle,
+                        }
+                    })
+                    .collect(),
+                joined: true,
+            })
+            .collect()
+    };
+    let floor = 1e-16;
+    Chart {
+        file: format!("bench-{}", study.name),
+        title: format!("{}, {} s", study.title, study.duration),
+        panels: vec![
+            Panel {
+                x_label: "time to solution (ms)".into(),
+                y_label: "final-state error (rad, rad/s)".into(),
+                series: series(|r| r.final_error),
+                marker_legend: Vec::new(),
+                y_floor: floor,
+            },
+            Panel {
+                x_label: "time to solution (ms)".into(),
+                y_label: "energy drift (J)".into(),
+                series: series(|r| r.energy_drift),
+                marker_legend: Vec::new(),
+                y_floor: floor,
+            },
+        ],
+    }
+}

@@ -1,0 +1,116 @@
+//! `rne bench --quick` end to end: every robot, kernel and implementation measured, errors of
+//! the right size for each format, integrators ordered by accuracy, and the report and its
+//! figures written.
+
+use std::collections::BTreeSet;
+
+use rne_bench::integrators::Family;
+use rne_bench::robots::BENCHED;
+use rne_bench::{self as bench, Effort, Implementation};
+use rne_models::BUILTIN_ROBOTS;
+
+#[test]
+fn quick_bench_measures_every_robot_and_writes_its_report() {
+    let report = bench::run(Effort::Quick, None, |_| {}).expect("the quick bench runs");
+
+    assert_eq!(report.kernels.len(), BUILTIN_ROBOTS.len());
+    for robot in &report.kernels {
+        for kernel in BENCHED {
+            let rows: Vec<_> = robot.rows.iter().filter(|r| r.kernel == kernel).collect();
+            let implementations: BTreeSet<Implementation> =
+                rows.iter().map(|r| r.implementation).collect();
+            for always in [
+                Implementation::Generated,
+                Implementation::Single,
+                Implementation::Interpreted,
+                Implementation::Reference,
+            ] {
+                assert!(
+                    implementations.contains(&always),
+                    "{} {}: no {:?} row",
+                    robot.robot,
+                    kernel.name(),
+                    always
+                );
+            }
+            for row in &rows {
+                let what = format!(
+                    "{} {} {}",
+                    robot.robot,
+                    kernel.name(),
+                    row.implementation.label()
+                );
+                assert!(row.timing.median() > 0.0, "{what}: no time");
+                let bound = match row.implementation {
+                    Implementation::Single => 1e-4,
+                    _ => 1e-13,
+                };
+                assert!(
+                    row.errors.max_relative <= bound,
+                    "{what}: max relative error {:e} above {bound:e}",
+                    row.errors.max_relative
+                );
+            }
+            let generated = rows
+                .iter()
+                .find(|r| r.implementation == Implementation::Generated)
+                .expect("generated row");
+            let interpreted = rows
+                .iter()
+                .find(|r| r.implementation == Implementation::Interpreted)
+                .expect("interpreted row");
+            assert_eq!(
+                generated.errors,
+                interpreted.errors,
+                "{} {}: the interpreted program is the emitted one, bit for bit",
+                robot.robot,
+                kernel.name()
+            );
+            let single = rows
+                .iter()
+                .find(|r| r.implementation == Implementation::Single)
+                .expect("f32 row");
+            assert!(
+                single.errors.median_relative > 1e3 * generated.errors.median_relative,
+                "{} {}: f32 should be visibly less accurate than f64",
+                robot.robot,
+                kernel.name()
+            );
+        }
+    }
+
+    assert_eq!(report.integrators.len(), 2);
+    for study in &report.integrators {
+        for family in Family::ALL {
+            let errors: Vec<f64> = study
+                .rows
+                .iter()
+                .filter(|r| r.family == family && family != Family::Dopri5)
+                .map(|r| r.final_error)
+                .collect();
+            assert!(
+                errors.windows(2).all(|w| w[1] < w[0]),
+                "{} {}: a finer step must be more accurate: {errors:?}",
+                study.name,
+                family.label()
+            );
+        }
+    }
+
+    let dir = std::env::temp_dir().join(format!("rne-bench-report-{}", std::process::id()));
+    let written = report.write(&dir).expect("the report is written");
+    let markdown = std::fs::read_to_string(dir.join("bench-report.md")).expect("report");
+    for robot in BUILTIN_ROBOTS {
+        assert!(markdown.contains(&format!("### {} (", robot.name)));
+        let png = std::fs::read(dir.join(format!("bench-{}.png", robot.name))).expect("figure");
+        assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 10_000);
+    }
+    assert!(markdown.contains("## Scene savings"));
+    assert!(markdown.contains("| puma560 | "));
+    assert_eq!(
+        written.len(),
+        2 * (BUILTIN_ROBOTS.len() + 2) + 1,
+        "SVG and PNG per chart, and the report"
+    );
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -1,0 +1,117 @@
+//! The robot a command names (DESIGN §5: "MODEL is a built-in name or a path to a `.toml` or
+//! `.urdf` file"), the model options every such command takes (`--floating-base`,
+//! `--mimic free`, `--strict`), and the warnings of reading it, printed to stderr.
+
+use clap::{Args, ValueEnum};
+use rne_codegen::{MimicMode, Scene};
+use rne_symbolic::model::Base;
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::RobotModel;
+
+use super::CliError;
+use rne_models::RobotSource;
+
+/// How mimic joints are treated (the macro's `mimic:` setting).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum MimicOption {
+    /// URDF semantics: a follower has no variable, `q_f = multiplier · q_leader + offset`.
+    #[default]
+    Constrained,
+    /// Every follower is a joint of its own (Pinocchio's default when loading a URDF).
+    Free,
+}
+
+/// Model options shared by every command that takes a MODEL.
+#[derive(Debug, Default, Args)]
+pub struct ModelOptions {
+    /// Strict validation: every warning about the robot file (a broken triangle inequality, a
+    /// negligible negative inertia, a joint that moves no mass) is an error.
+    #[arg(long)]
+    pub strict: bool,
+    /// A free-flyer root (the macro's `base: floating`): q = [x, y, z, qx, qy, qz, qw, joints],
+    /// v = [base linear and angular velocity in the base frame, joint rates].
+    #[arg(long)]
+    pub floating_base: bool,
+    /// Mimic joints follow their leaders (`constrained`, URDF semantics) or are joints of their
+    /// own (`free`).
+    #[arg(long, value_enum, default_value_t = MimicOption::Constrained)]
+    pub mimic: MimicOption,
+}
+
+impl ModelOptions {
+    /// The reader's options: these, with parameters folded or kept as `symbolic_parameters`
+    /// says.
+    pub fn load_options(&self, symbolic_parameters: bool) -> LoadOptions {
+        LoadOptions {
+            symbolic_parameters,
+            strict: self.strict,
+        }
+    }
+
+    /// Whether the model is the one the robot file describes, as the built-in robots' kernels
+    /// were generated (no base override, mimic joints constrained).
+    pub fn keeps_the_file_model(&self) -> bool {
+        !self.floating_base && self.mimic == MimicOption::Constrained
+    }
+
+    /// The codegen scene's mimic mode for these options.
+    pub fn mimic_mode(&self) -> MimicMode {
+        match self.mimic {
+            MimicOption::Constrained => MimicMode::Constrained,
+            MimicOption::Free => MimicMode::Free,
+        }
+    }
+
+    /// A default scene for a model loaded with these options: the model already has its base
+    /// and its mimic joints as asked, and generation must keep them.
+    pub fn scene(&self) -> Scene {
+        Scene {
+            mimic: self.mimic_mode(),
+            ..Scene::default()
+        }
+    }
+
+    /// Reads `source`, printing each warning to stderr as `warning: <file>:<line>: ...`, then
+    /// applies the options ([`ModelOptions::apply`]).
+    pub fn load(
+        &self,
+        source: &RobotSource,
+        symbolic_parameters: bool,
+    ) -> Result<RobotModel, CliError> {
+        let model = self.read(source, symbolic_parameters)?;
+        self.apply(source, model)
+    }
+
+    /// Reads `source` as its file describes the robot (mimic followers with their own joint
+    /// names, the file's base), printing each warning to stderr.
+    pub fn read(
+        &self,
+        source: &RobotSource,
+        symbolic_parameters: bool,
+    ) -> Result<RobotModel, CliError> {
+        let model = source.load(&self.load_options(symbolic_parameters))?;
+        for warning in &model.warnings {
+            eprintln!("warning: {warning}");
+        }
+        Ok(model)
+    }
+
+    /// Sets the base (`--floating-base`) and constrains mimic followers (unless `--mimic
+    /// free`). A robot with a fixed base and no moving joint is an error.
+    pub fn apply(
+        &self,
+        source: &RobotSource,
+        mut model: RobotModel,
+    ) -> Result<RobotModel, CliError> {
+        let in_model =
+            |e: &dyn std::fmt::Display| CliError::Model(format!("{}: {e}", source.display_name()));
+        if self.floating_base {
+            model.set_base(Base::Floating);
+        }
+        if self.mimic == MimicOption::Constrained {
+            model.constrain_mimic_joints().map_err(|e| in_model(&e))?;
+        }
+        model.check_moves().map_err(|e| in_model(&e))?;
+        Ok(model)
+    }
+}

@@ -1,0 +1,105 @@
+//! Argument parsing shared by the subcommands, and the command's error type.
+
+use rne_codegen::{Kernel, Scene};
+
+/// Why a command failed; printed as `error: ...` with a non-zero exit code. Every library
+/// error is kept as the source of its variant, so that the message says what failed (a bad
+/// argument, a model, a simulation, a file that could not be written) and why.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The robot file could not be read.
+    #[error(transparent)]
+    Spec(#[from] rne_symbolic::spec::SpecError),
+    /// Code generation failed.
+    #[error(transparent)]
+    Codegen(#[from] rne_codegen::CodegenError),
+    /// A model could not be evaluated at the given state (a state of the wrong length, a
+    /// kernel the engine does not have).
+    #[error(transparent)]
+    Evaluation(#[from] rne_interpreted::Error),
+    /// The numeric reference rejected the model or the state.
+    #[error("numeric reference: {0}")]
+    Reference(#[from] rne_reference::ReferenceError),
+    /// A scenario could not be run or written.
+    #[error(transparent)]
+    Scenario(#[from] rne_scenarios::ScenarioError),
+    /// A stress case could not be run or its report written.
+    #[error(transparent)]
+    Stress(#[from] rne_stress::StressError),
+    /// A benchmark could not be run or its report written.
+    #[error(transparent)]
+    Bench(#[from] rne_bench::BenchError),
+    /// A built-in robot's kernels disagree with the numeric reference.
+    #[error("errors above {tolerance:e}: {}", failures.join(", "))]
+    Disagreement {
+        /// The largest relative error accepted.
+        tolerance: f64,
+        /// The robot and quantity of each error above it.
+        failures: Vec<String>,
+    },
+    /// The robot read cannot be used as the model options ask (a mimic loop, nothing moves).
+    #[error("{0}")]
+    Model(String),
+    /// A malformed argument.
+    #[error("{0}")]
+    Argument(String),
+    /// Writing the output failed.
+    #[error("cannot write output: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Parses `1.5,-2,0` into numbers.
+pub fn parse_list(name: &str, text: &str) -> Result<Vec<f64>, CliError> {
+    text.split(',')
+        .map(|item| {
+            let item = item.trim();
+            item.parse::<f64>()
+                .map_err(|_| CliError::Argument(format!("--{name}: `{item}` is not a number")))
+        })
+        .collect()
+}
+
+/// Parses `q1=0,q2=1.5` into locked joints.
+pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
+    text.split(',')
+        .map(|item| {
+            let (name, value) = item.split_once('=').ok_or_else(|| {
+                CliError::Argument(format!("--lock: `{item}` is not `joint=value`"))
+            })?;
+            let value = value
+                .trim()
+                .parse::<f64>()
+                .map_err(|_| CliError::Argument(format!("--lock: `{value}` is not a number")))?;
+            Ok((name.trim().to_owned(), value))
+        })
+        .collect()
+}
+
+/// The scene described by the `--outputs`, `--gravity` and `--lock` options.
+pub fn scene(
+    outputs: Option<&str>,
+    gravity: Option<&str>,
+    lock: Option<&str>,
+) -> Result<Scene, CliError> {
+    let mut scene = Scene::default();
+    if let Some(outputs) = outputs {
+        scene.outputs = outputs
+            .split(',')
+            .map(|name| {
+                let name = name.trim();
+                name.parse::<Kernel>()
+                    .map_err(|e| CliError::Argument(format!("unknown output `{name}`; {e}")))
+            })
+            .collect::<Result<_, _>>()?;
+    }
+    if let Some(gravity) = gravity {
+        let g = parse_list("gravity", gravity)?;
+        scene.gravity = Some(g.try_into().map_err(|g: Vec<f64>| {
+            CliError::Argument(format!("--gravity needs 3 values, got {}", g.len()))
+        })?);
+    }
+    if let Some(lock) = lock {
+        scene.lock = parse_locks(lock)?;
+    }
+    Ok(scene)
+}

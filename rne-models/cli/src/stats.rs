@@ -1,0 +1,105 @@
+//! `rne stats MODEL`: operation counts and generation time per kernel.
+
+use std::io::Write;
+
+use clap::Args;
+use rne_codegen::{generate, Kernel, Scene};
+
+use super::model::ModelOptions;
+use super::CliError;
+use rne_models::RobotSource;
+
+/// Arguments of `rne stats`.
+#[derive(Debug, Args)]
+pub struct StatsArgs {
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
+    pub model: String,
+    /// Model options.
+    #[command(flatten)]
+    pub options: ModelOptions,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Generates every kernel of DESIGN.md §4 and reports its cost.
+pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let source = RobotSource::resolve(&args.model);
+    let model = args.options.load(&source, false)?;
+    let scene = Scene {
+        outputs: Kernel::ALL.to_vec(),
+        ..args.options.scene()
+    };
+    let module = generate(&model, &scene, &source.display_name())?;
+    if args.json {
+        let kernels: Vec<serde_json::Value> = module
+            .kernels
+            .iter()
+            .map(|k| {
+                serde_json::json!({
+                    "kernel": k.kernel.name(),
+                    "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
+                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "sign": k.ops.sign,
+                    "cost": k.ops.cost(),
+                    "generation_ms": k.generation_time.as_secs_f64() * 1e3,
+                })
+            })
+            .collect();
+        let report = serde_json::json!({
+            "model": source.display_name(),
+            "dof": module.ndof,
+            "kernels": kernels,
+            "generation_ms": module.generation_time.as_secs_f64() * 1e3,
+            "forward_dynamics_choice": module.forward_dynamics_choice.as_ref().map(|c| serde_json::json!({
+                "aba": {"mul": c.aba.mul, "add": c.aba.add, "cost": c.aba.cost()},
+                "ldlt": {"mul": c.ldlt.mul, "add": c.ldlt.add, "cost": c.ldlt.cost()},
+                "chosen": format!("{:?}", c.chosen).to_lowercase(),
+            })),
+        });
+        writeln!(out, "{report}")?;
+        return Ok(());
+    }
+    writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
+    writeln!(
+        out,
+        "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10}",
+        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "sign", "cost", "gen (ms)"
+    )?;
+    for k in &module.kernels {
+        let o = k.ops;
+        writeln!(
+            out,
+            "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10.3}",
+            k.kernel.name(),
+            o.mul,
+            o.add,
+            o.div,
+            o.neg,
+            o.sin,
+            o.cos,
+            o.sqrt,
+            o.sign,
+            o.cost(),
+            k.generation_time.as_secs_f64() * 1e3
+        )?;
+    }
+    if let Some(choice) = &module.forward_dynamics_choice {
+        writeln!(
+            out,
+            "forward_dynamics: articulated-body {} mul {} add (cost {}), M + LDLT {} mul {} add (cost {}); emitted: {:?}",
+            choice.aba.mul,
+            choice.aba.add,
+            choice.aba.cost(),
+            choice.ldlt.mul,
+            choice.ldlt.add,
+            choice.ldlt.cost(),
+            choice.chosen
+        )?;
+    }
+    writeln!(
+        out,
+        "total generation time: {:.3} ms",
+        module.generation_time.as_secs_f64() * 1e3
+    )?;
+    Ok(())
+}

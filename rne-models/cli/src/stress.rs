@@ -1,0 +1,50 @@
+//! `rne stress [--quick] [--out DIR]`: the numerical stability report of the generated `f64`
+//! kernels (DESIGN.md §5), written as markdown with SVG and PNG figures.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+
+use super::CliError;
+use rne_stress::{self as stress, Effort};
+
+/// Arguments of `rne stress`.
+#[derive(Debug, Args)]
+pub struct StressArgs {
+    /// Small samples and 10 s chaotic runs: a check in seconds instead of the full report.
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for report.md and the figures (created if missing).
+    #[arg(long, default_value = "out/stress")]
+    pub out: PathBuf,
+    /// No progress lines on stderr.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs every stress case, writes the report and prints it.
+pub fn run(args: &StressArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    let effort = if args.quick {
+        Effort::Quick
+    } else {
+        Effort::Full
+    };
+    let start = Instant::now();
+    let report = stress::run(effort, |case| {
+        if !args.quiet {
+            eprintln!("[{:7.1} s] {case}", start.elapsed().as_secs_f64());
+        }
+    })?;
+    let written = report.write(&args.out)?;
+    write!(out, "{}", report.markdown())?;
+    writeln!(
+        out,
+        "\nwrote {} files to {} in {:.1} s",
+        written.len(),
+        args.out.display(),
+        start.elapsed().as_secs_f64()
+    )?;
+    Ok(())
+}

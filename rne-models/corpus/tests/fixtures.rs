@@ -1,0 +1,99 @@
+//! Small URDFs as robots are published (mimic chains, a follower before its leader, a mimic on
+//! a fixed joint, continuous joints, odd names, stray elements, slightly wrong inertias, a body
+//! without joints), against Pinocchio 4.1's values committed beside them: CI checks rne
+//! against Pinocchio without Python. Regenerate the values with
+//! `python tools/corpus/pinocchio_values.py rne-models/corpus/tests/fixtures --states 3 --out
+//! rne-models/corpus/tests/fixtures/pinocchio.json` (Pinocchio from
+//! `../shared/tools/pinocchio/setup.sh`).
+
+use std::path::PathBuf;
+
+use rne_corpus::{check_robot, CaseReport, PinocchioValues, RobotReport};
+
+/// The bar: every error at most 1e-10 of the robot's torque scale.
+const TOLERANCE: f64 = 1e-10;
+
+fn reports() -> Vec<RobotReport> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    let text = std::fs::read_to_string(dir.join("pinocchio.json")).unwrap();
+    let values: PinocchioValues = serde_json::from_str(&text).unwrap();
+    assert_eq!(values.pinocchio, "4.1.0");
+    values
+        .robots
+        .iter()
+        .map(|robot| check_robot(&dir, robot))
+        .collect()
+}
+
+fn compared<'a>(report: &'a RobotReport, case: &'a CaseReport) -> &'a rne_corpus::Comparison {
+    match case {
+        CaseReport::Compared(c) => c,
+        other => panic!("{}: {other:?}", report.file),
+    }
+}
+
+#[test]
+fn every_fixture_agrees_with_pinocchio_on_id_m_g_bias_and_fd_on_both_bases() {
+    let reports = reports();
+    let files: Vec<&str> = reports.iter().map(|r| r.file.as_str()).collect();
+    assert_eq!(
+        files,
+        [
+            "arm_mimic_chain.urdf",
+            "brick.urdf",
+            "hand_mimic.urdf",
+            "quadruped.urdf"
+        ]
+    );
+    for report in &reports {
+        assert!(report.load.is_ok(), "{}: {:?}", report.file, report.load);
+        let cases = [("fixed", &report.fixed), ("floating", &report.floating)];
+        for (base, case) in cases {
+            if report.file == "brick.urdf" && base == "fixed" {
+                assert!(matches!(case, CaseReport::NothingMoves), "{case:?}");
+                continue;
+            }
+            let c = compared(report, case);
+            assert_eq!(c.forward_skipped, None, "{} {base}", report.file);
+            for (engine, errors) in [("symbolic", &c.symbolic), ("numeric", &c.numeric)] {
+                let (error, what) = errors.max();
+                assert!(
+                    error <= TOLERANCE,
+                    "{} {base} {engine}: {what} differs from Pinocchio by {error:e}",
+                    report.file
+                );
+                assert!(errors.forward.is_some());
+            }
+        }
+    }
+}
+
+/// The cases the fixtures were written for reached the comparison as intended.
+#[test]
+fn the_fixtures_exercise_mimic_both_ways_floating_bases_and_warnings() {
+    let reports = reports();
+    let by_name = |name: &str| reports.iter().find(|r| r.file == name).unwrap();
+    let arm = by_name("arm_mimic_chain.urdf");
+    assert_eq!(
+        compared(arm, &arm.fixed).mimic,
+        "projected",
+        "the follower before its leader: Pinocchio's mimic=True refuses it"
+    );
+    assert_eq!(
+        arm.load.as_ref().unwrap().dof,
+        4,
+        "two followers constrained"
+    );
+    let hand = by_name("hand_mimic.urdf");
+    assert_eq!(compared(hand, &hand.fixed).mimic, "pinocchio");
+    let warnings = &hand.load.as_ref().unwrap().warnings;
+    assert!(warnings.contains(&"triangle inequality"), "{warnings:?}");
+    assert!(
+        warnings.contains(&"negligible negative inertia"),
+        "{warnings:?}"
+    );
+    let quadruped = by_name("quadruped.urdf");
+    assert_eq!(compared(quadruped, &quadruped.floating).nv, 6 + 8);
+    let brick = by_name("brick.urdf");
+    assert_eq!(compared(brick, &brick.floating).nv, 6);
+}

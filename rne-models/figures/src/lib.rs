@@ -1,0 +1,25 @@
+//! The figures, tables and error measures of the simulation, bench and stress reports, written
+//! once: one font registration and palette ([`mod@render`]), one markdown [`Table`], one number
+//! format ([`sci`], [`ulps`]), one ulp and one normwise relative error ([`measure`]).
+//!
+//! Three kinds of figure, each drawn on any plotters backend ([`Draw`]) and written as SVG and
+//! PNG by [`render()`]:
+//! - [`time_series`]: panels of curves against time (the simulations);
+//! - [`work_precision`]: cost against error on log-log axes with ranges (the benchmarks);
+//! - [`log_plot`]: errors on a log axis against a parameter (the stress cases).
+#![deny(missing_docs)]
+
+mod error;
+mod format;
+pub mod log_plot;
+pub mod measure;
+pub mod render;
+mod table;
+pub mod time_series;
+pub mod work_precision;
+
+pub use error::FigureError;
+pub use format::{sci, ulps};
+pub use measure::{relative_error, ulp, Deviation, Format};
+pub use render::{render, Draw, Formats, Mark, PALETTE};
+pub use table::Table;

@@ -1,0 +1,43 @@
+//! What `rne stress --quick --out DIR` writes: every case runs, the report has a section, a
+//! table and an explanation per case, and the figures are written as SVG and PNG.
+
+use rne_stress::Effort;
+
+#[test]
+fn quick_stress_report_is_written() {
+    let dir = std::env::temp_dir().join(format!("rne-stress-{}", std::process::id()));
+    let written = rne_stress::run(Effort::Quick, |_| {})
+        .unwrap()
+        .write(&dir)
+        .unwrap();
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(written.contains(&dir.join("report.md")));
+    for section in 0..=8 {
+        assert!(
+            report.contains(&format!("\n## {section}. ")),
+            "section {section}"
+        );
+    }
+    assert!(!report.contains("NaN |"), "a table has NaN entries");
+    let robots = rne_models::BUILTIN_ROBOTS.len();
+    assert_eq!(
+        report.matches(" | all |").count(),
+        robots,
+        "compiled kernels = graph"
+    );
+    assert!(report.contains("| 0 | 0 |"), "non-finite table");
+    for figure in [
+        "stress-conditioning",
+        "stress-chaos-energy",
+        "stress-chaos-divergence",
+        "stress-joint-count",
+    ] {
+        for ext in ["svg", "png"] {
+            let path = dir.join(format!("{figure}.{ext}"));
+            let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+            assert!(size > 1000, "{} is missing or empty", path.display());
+        }
+        assert!(report.contains(&format!("({figure}.svg)")));
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
