@@ -26,8 +26,7 @@ fn scratch(name: &str, text: &str) -> String {
 /// The built-in Panda with its second finger a `<mimic>` of the first, as franka_description
 /// publishes it, in a file of its own for each test (tests run in parallel).
 fn panda_with_mimic_fingers(test: &str) -> String {
-    let text =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/panda.urdf")).unwrap();
+    let text = rne_models::builtin("panda").unwrap().source;
     let joint = r#"<joint name="panda_finger_joint2" type="prismatic">"#;
     assert!(text.contains(joint));
     let text = text.replace(

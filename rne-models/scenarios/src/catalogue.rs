@@ -12,6 +12,7 @@ use super::control::{elbow_pd_scenario, irb140_pd_scenario, lyapunov_scenario};
 use super::free_runs::{
     damped_pendulum, double_pendulum, irb140_pendulum_scenario, open_loop_scenario, release_energy,
 };
+use super::friction_run::damped_by_friction_scenario;
 /// How to run a scenario.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RunOptions {
@@ -27,6 +28,7 @@ enum Experiment {
     DoublePendulum,
     ReleaseEnergy,
     Damped,
+    DampedByFriction,
     ElbowPd(usize),
     Irb140Pendulum,
     Irb140Pd(usize),
@@ -76,6 +78,13 @@ pub static SCENARIOS: &[Scenario] = &[
         figures: "6.10",
         description: "damping Kd = (1.5, 1.5) from q = 0, 40 s, to (-pi/2, 0)",
         experiment: Experiment::Damped,
+    },
+    Scenario {
+        name: "damped-pendulum-friction",
+        figures: "6.10",
+        description:
+            "the damped run with Kd = 1.5 as viscous joint friction in the spec, against it",
+        experiment: Experiment::DampedByFriction,
     },
     Scenario {
         name: "elbow-pd-1",
@@ -149,6 +158,7 @@ impl Scenario {
             Experiment::DoublePendulum => double_pendulum(self.name, options),
             Experiment::ReleaseEnergy => release_energy(self.name, options),
             Experiment::Damped => damped_pendulum(self.name, options),
+            Experiment::DampedByFriction => damped_by_friction_scenario(self.name, options),
             Experiment::ElbowPd(k) => elbow_pd_scenario(self.name, k, options),
             Experiment::Irb140Pendulum => irb140_pendulum_scenario(self.name, options),
             Experiment::Irb140Pd(k) => irb140_pd_scenario(self.name, k, options),

@@ -10,6 +10,7 @@ use super::parameters::{
 use rne_models::generated::planar_elbow::{self, Model as PlanarElbow};
 use rne_models::generated::scenes::irb140_joint3::Model as Irb140Joint3;
 use rne_models::generated::scenes::irb140_weightless::Model as Irb140Weightless;
+use rne_models::generated::scenes::planar_elbow_viscous::Model as PlanarElbowViscous;
 use rne_models::generated::scenes::planar_elbow_weightless::Model as PlanarElbowWeightless;
 use rne_sim::{
     simulate, ConstantTorque, Controller, Damping, Integrator, Pd, Record, SimError, State,
@@ -62,6 +63,22 @@ pub fn damped<I: Integrator<2>>(integrator: &I, times: &[f64]) -> Result<Record<
     simulate(
         &PlanarElbow,
         &damping,
+        integrator,
+        &State::at_rest([0.0, 0.0]),
+        times,
+    )
+}
+
+/// The damped double pendulum of figure 6.10 with the damping in the model instead of the
+/// controller: the planar elbow whose spec gives both joints viscous friction fv = 1.5, no
+/// input, released from q = 0. Its equation M q̈ + C q̇ + g + fv q̇ = 0 is (6.31).
+pub fn damped_by_friction<I: Integrator<2>>(
+    integrator: &I,
+    times: &[f64],
+) -> Result<Record<2>, SimError> {
+    simulate(
+        &PlanarElbowViscous,
+        &ZeroInput,
         integrator,
         &State::at_rest([0.0, 0.0]),
         times,

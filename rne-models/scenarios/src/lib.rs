@@ -32,6 +32,7 @@ mod error;
 pub mod experiments;
 mod figures;
 mod free_runs;
+mod friction_run;
 pub mod measures;
 mod outcome;
 pub mod parameters;
