@@ -189,7 +189,10 @@ pub fn generate(
             _ => None,
         };
         let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
-        let program = built.program;
+        let program = match scene.fma {
+            true => built.program.fuse_multiply_add(),
+            false => built.program,
+        };
         let ctx = EmitContext {
             symbols: built.dynamics.model.graph.symbols(),
             scalar: scene.scalar,
