@@ -359,10 +359,14 @@ impl SymbolicDynamics {
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
     /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x taken at that q̈ ([`derivatives`]).
+    ///
+    /// M⁻¹ and q̈ are built before the derivatives, so that the nodes of M⁻¹ come in the
+    /// order [`Self::mass_matrix_inverse`] alone creates them in: the third output rounds
+    /// exactly as that kernel does.
     pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
-        let (dq, dv) = self.inverse_dynamics_derivatives();
-        let qdd = self.forward_dynamics();
         let inverse = self.mass_matrix_inverse();
+        let qdd = self.forward_dynamics();
+        let (dq, dv) = self.inverse_dynamics_derivatives();
         let g = &mut self.model.graph;
         let at_fd = |g: &mut ExprGraph, d: &[Vec<Id>]| -> Vec<Vec<Id>> {
             let flat: Vec<Id> = d.concat();
