@@ -78,6 +78,12 @@ impl Builder {
         self
     }
 
+    /// Fused multiply-add in the kernels (the macro's `fma: true`; [`Scene::fma`]).
+    pub fn fma(mut self, fused: bool) -> Builder {
+        self.scene.fma = fused;
+        self
+    }
+
     /// Joint friction included in the inverse and forward dynamics and the regressor (the
     /// macro's `friction: include`).
     pub fn friction(mut self, include: bool) -> Builder {

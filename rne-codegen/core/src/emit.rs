@@ -204,7 +204,33 @@ impl Emitter<'_> {
             Instr::Cos(a) => self.call("cos", a),
             Instr::Sqrt(a) => self.call("sqrt", a),
             Instr::Sign(a) => self.call("sign", a),
+            Instr::MulAdd(a, b, c) => self.mul_add(a, b, c, false, false),
+            Instr::MulSub(a, b, c) => self.mul_add(a, b, c, false, true),
+            Instr::NegMulAdd(a, b, c) => self.mul_add(a, b, c, true, false),
         }
+    }
+
+    /// `Real::mul_add(a, b, c)`, with `a` or `c` negated (`fma: true`; the negations fold
+    /// into the fused instruction's variants).
+    fn mul_add(
+        &self,
+        a: Operand,
+        b: Operand,
+        c: Operand,
+        negate_a: bool,
+        negate_c: bool,
+    ) -> (TokenStream, Precedence) {
+        let signed = |o: Operand, negate: bool| {
+            if negate {
+                let o = self.at_least(o, Precedence::Unary);
+                quote!(-#o)
+            } else {
+                self.operand(o).0
+            }
+        };
+        let (a, b, c) = (signed(a, negate_a), self.operand(b).0, signed(c, negate_c));
+        let real = self.real();
+        (quote!(#real::mul_add(#a, #b, #c)), Precedence::Atom)
     }
 
     /// The sines and cosines of the joint angles the kernel uses (a mass matrix never needs

@@ -96,7 +96,20 @@ pub fn build_kernel_with(
 ) -> BuiltKernel {
     let mut dynamics = dynamics.clone();
     let roots = build_outputs(kernel, &mut dynamics, setup);
-    let outputs = distribute_constants(&mut dynamics.model.graph, &roots);
+    let nv = dynamics.layout().nv();
+    let graph = &mut dynamics.model.graph;
+    let outputs = match kernel {
+        // M⁻¹, the last NV² outputs, is rewritten on its own first, as the
+        // `mass_matrix_inverse` kernel is: which sums are opened depends on the other outputs
+        // using them, and the third output must round exactly as that kernel does.
+        Kernel::ForwardDynamicsDerivatives => {
+            let split = roots.len() - nv * nv;
+            let inverse = distribute_constants(graph, &roots[split..]);
+            let derivatives = distribute_constants(graph, &roots[..split]);
+            [derivatives, inverse].concat()
+        }
+        _ => distribute_constants(graph, &roots),
+    };
     let program = Program::lower(&dynamics.model.graph, &outputs);
     BuiltKernel {
         dynamics,
@@ -189,7 +202,10 @@ pub fn generate(
             _ => None,
         };
         let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
-        let program = built.program;
+        let program = match scene.fma {
+            true => built.program.fuse_multiply_add(),
+            false => built.program,
+        };
         let ctx = EmitContext {
             symbols: built.dynamics.model.graph.symbols(),
             scalar: scene.scalar,

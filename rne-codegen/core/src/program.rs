@@ -4,7 +4,8 @@
 //! constants folded) into SSA instructions in topological order, absorbing negations into
 //! subtractions: `a + (−b)` becomes `a − b`, and a negation is only computed when something
 //! other than an addition uses it. Only the nodes the outputs need are lowered (dead-code
-//! elimination).
+//! elimination). [`Program::fuse_multiply_add`] then optionally fuses products into the sums
+//! that use them (the `fma: true` scene setting).
 
 use std::collections::HashMap;
 
@@ -42,6 +43,12 @@ pub enum Instr {
     Sqrt(Operand),
     /// `sign a`.
     Sign(Operand),
+    /// `a · b + c`, through the runtime's `Real::mul_add`.
+    MulAdd(Operand, Operand, Operand),
+    /// `a · b − c`, as `mul_add(a, b, −c)`.
+    MulSub(Operand, Operand, Operand),
+    /// `c − a · b`, as `mul_add(−a, b, c)`.
+    NegMulAdd(Operand, Operand, Operand),
 }
 
 impl Instr {
@@ -51,6 +58,9 @@ impl Instr {
             Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) | Instr::Div(a, b) => vec![a, b],
             Instr::Neg(a) | Instr::Sin(a) | Instr::Cos(a) | Instr::Sqrt(a) | Instr::Sign(a) => {
                 vec![a]
+            }
+            Instr::MulAdd(a, b, c) | Instr::MulSub(a, b, c) | Instr::NegMulAdd(a, b, c) => {
+                vec![a, b, c]
             }
         }
     }
@@ -119,6 +129,78 @@ impl Program {
         program
     }
 
+    /// The program with each addition or subtraction that has an operand computed by a
+    /// multiplication used nowhere else fused with it: `a·b + c`, `a·b − c` and `c − a·b` become
+    /// one [`Instr::MulAdd`], [`Instr::MulSub`] or [`Instr::NegMulAdd`] (when both operands are
+    /// such products, the one computed later is fused, the earlier being likelier ready).
+    /// Operation counts do not change (a fused pair counts as a multiplication and an
+    /// addition); rounding does where the target fuses ([`Real::mul_add`]).
+    pub fn fuse_multiply_add(&self) -> Program {
+        let uses = self.use_counts();
+        let single_product = |o: Operand| match o {
+            Operand::Temp(t) if uses[t as usize] == 1 => match self.instrs[t as usize] {
+                Instr::Mul(a, b) => Some((t, a, b)),
+                _ => None,
+            },
+            _ => None,
+        };
+        let later =
+            |x: Option<(u32, Operand, Operand)>, y: Option<(u32, Operand, Operand)>| match (x, y) {
+                (Some(p), Some(q)) if p.0 > q.0 => (Some(p), None),
+                (Some(_), Some(q)) => (None, Some(q)),
+                other => other,
+            };
+        let mut fused: Vec<Option<Instr>> = self.instrs.iter().map(|&i| Some(i)).collect();
+        for (k, instr) in self.instrs.iter().enumerate() {
+            let replacement = match *instr {
+                Instr::Add(x, y) => match later(single_product(x), single_product(y)) {
+                    (Some((t, a, b)), _) => Some((t, Instr::MulAdd(a, b, y))),
+                    (_, Some((t, a, b))) => Some((t, Instr::MulAdd(a, b, x))),
+                    _ => None,
+                },
+                Instr::Sub(x, y) => match later(single_product(x), single_product(y)) {
+                    (Some((t, a, b)), _) => Some((t, Instr::MulSub(a, b, y))),
+                    (_, Some((t, a, b))) => Some((t, Instr::NegMulAdd(a, b, x))),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some((t, instr)) = replacement {
+                fused[t as usize] = None;
+                fused[k] = Some(instr);
+            }
+        }
+        // Renumber the temporaries past the removed products.
+        let mut index: Vec<u32> = Vec::with_capacity(fused.len());
+        let mut program = Program::default();
+        let renumber = |o: Operand, index: &[u32]| match o {
+            Operand::Temp(t) => Operand::Temp(index[t as usize]),
+            other => other,
+        };
+        for instr in fused {
+            index.push(program.instrs.len() as u32);
+            if let Some(instr) = instr {
+                let r = |o| renumber(o, &index);
+                program.instrs.push(match instr {
+                    Instr::Add(a, b) => Instr::Add(r(a), r(b)),
+                    Instr::Sub(a, b) => Instr::Sub(r(a), r(b)),
+                    Instr::Mul(a, b) => Instr::Mul(r(a), r(b)),
+                    Instr::Div(a, b) => Instr::Div(r(a), r(b)),
+                    Instr::Neg(a) => Instr::Neg(r(a)),
+                    Instr::Sin(a) => Instr::Sin(r(a)),
+                    Instr::Cos(a) => Instr::Cos(r(a)),
+                    Instr::Sqrt(a) => Instr::Sqrt(r(a)),
+                    Instr::Sign(a) => Instr::Sign(r(a)),
+                    Instr::MulAdd(a, b, c) => Instr::MulAdd(r(a), r(b), r(c)),
+                    Instr::MulSub(a, b, c) => Instr::MulSub(r(a), r(b), r(c)),
+                    Instr::NegMulAdd(a, b, c) => Instr::NegMulAdd(r(a), r(b), r(c)),
+                });
+            }
+        }
+        program.outputs = self.outputs.iter().map(|&o| renumber(o, &index)).collect();
+        program
+    }
+
     fn push(&mut self, instr: Instr) -> Operand {
         self.instrs.push(instr);
         Operand::Temp(self.instrs.len() as u32 - 1)
@@ -137,6 +219,10 @@ impl Program {
                 Instr::Cos(_) => count.cos += 1,
                 Instr::Sqrt(_) => count.sqrt += 1,
                 Instr::Sign(_) => count.sign += 1,
+                Instr::MulAdd(..) | Instr::MulSub(..) | Instr::NegMulAdd(..) => {
+                    count.mul += 1;
+                    count.add += 1;
+                }
             }
         }
         count
@@ -179,9 +265,90 @@ impl Program {
                 Instr::Cos(a) => v(a).cos(),
                 Instr::Sqrt(a) => v(a).sqrt(),
                 Instr::Sign(a) => v(a).sign(),
+                Instr::MulAdd(a, b, c) => v(a).mul_add(v(b), v(c)),
+                Instr::MulSub(a, b, c) => v(a).mul_add(v(b), -v(c)),
+                Instr::NegMulAdd(a, b, c) => (-v(a)).mul_add(v(b), v(c)),
             };
             temps.push(x);
         }
         self.outputs.iter().map(|&o| value(o, &temps)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Instr, Operand, Program};
+    use rne_symbolic::{ExprGraph, Symbol, SymbolTable};
+
+    fn lowered(text: &str) -> Program {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y", "z"]));
+        let root = g.parse_sexpr(text).unwrap();
+        Program::lower(&g, &[root])
+    }
+
+    fn at(point: [f64; 3]) -> impl Fn(Symbol) -> f64 {
+        move |s| match s {
+            Symbol::Position(k) => point[k as usize],
+            _ => f64::NAN,
+        }
+    }
+
+    /// `a·b + c`, `a·b − c` and `c − a·b` each become one fused instruction; counts stay.
+    #[test]
+    fn sums_of_single_use_products_fuse() {
+        let x = Operand::Input(Symbol::Position(0));
+        let y = Operand::Input(Symbol::Position(1));
+        let z = Operand::Input(Symbol::Position(2));
+        for (text, expected) in [
+            ("(+ (* x y) z)", Instr::MulAdd(x, y, z)),
+            ("(- (* x y) z)", Instr::MulSub(x, y, z)),
+            ("(- z (* x y))", Instr::NegMulAdd(x, y, z)),
+        ] {
+            let program = lowered(text);
+            let fused = program.fuse_multiply_add();
+            assert_eq!(fused.instrs, vec![expected], "{text}");
+            assert_eq!(fused.outputs, vec![Operand::Temp(0)]);
+            assert_eq!(fused.op_count(), program.op_count(), "{text}");
+        }
+    }
+
+    /// A product that something else also uses stays a product (fusing it would compute it
+    /// twice), temporaries are renumbered past the fused ones, and the value is kept (bit for
+    /// bit where the target does not fuse, to rounding where it does).
+    #[test]
+    fn shared_products_stay_and_values_are_kept() {
+        let text = "(+ (* (+ (* x y) z) (* x y)) (- (* y z) (* z z)))";
+        let program = lowered(text);
+        let fused = program.fuse_multiply_add();
+        let products = |p: &Program| {
+            p.instrs
+                .iter()
+                .filter(|i| matches!(i, Instr::Mul(..)))
+                .count()
+        };
+        let fused_count = fused
+            .instrs
+            .iter()
+            .filter(|i| {
+                matches!(
+                    i,
+                    Instr::MulAdd(..) | Instr::MulSub(..) | Instr::NegMulAdd(..)
+                )
+            })
+            .count();
+        assert_eq!(products(&fused) + fused_count, products(&program));
+        assert_eq!(fused.op_count(), program.op_count());
+        assert!(fused.instrs.iter().any(|i| matches!(i, Instr::MulAdd(..))));
+        for (k, instr) in fused.instrs.iter().enumerate() {
+            for operand in instr.operands() {
+                if let Operand::Temp(t) = operand {
+                    assert!((t as usize) < k, "{instr:?} reads a later temporary");
+                }
+            }
+        }
+        for point in [[0.3, -1.2, 2.5], [1.0, 2.0, -0.5]] {
+            let (a, b) = (program.eval(at(point))[0], fused.eval(at(point))[0]);
+            assert!((a - b).abs() <= 4.0 * f64::EPSILON * a.abs(), "{a} vs {b}");
+        }
     }
 }

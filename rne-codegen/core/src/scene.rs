@@ -67,6 +67,11 @@ pub struct Scene {
     /// Strict validation (`validation: strict`): every warning about the robot file is an
     /// error (DESIGN.md §2).
     pub strict: bool,
+    /// Fused multiply-add (`fma: true`): a product used only by a sum is computed with the
+    /// sum by the runtime's `Real::mul_add`, one rounding instead of two and one instruction
+    /// where the target has FMA (e.g. `-C target-cpu=native`); elsewhere the same two
+    /// operations as without.
+    pub fma: bool,
 }
 
 /// The algorithm of the `forward_dynamics` kernel.
@@ -111,6 +116,7 @@ impl Default for Scene {
             friction: false,
             forward_dynamics: ForwardDynamicsMethod::Auto,
             strict: false,
+            fma: false,
         }
     }
 }

@@ -120,8 +120,9 @@ impl Parse for Setting {
                 brace,
                 entries.into_iter().map(|e| (e.key, e.value)).collect(),
             )
-        } else if input.peek(Ident) {
-            Value::Ident(input.parse()?)
+        } else if input.peek(Ident::peek_any) {
+            // `true` and `false` (of `fma`) are keywords, hence `peek_any` and `parse_any`.
+            Value::Ident(Ident::parse_any(input)?)
         } else {
             return Err(input.error("expected a string, a name, `[..]` or `{..}`"));
         };

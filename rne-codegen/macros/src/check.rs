@@ -28,7 +28,7 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 14] = [
+const KEYS: [&str; 15] = [
     "robot",
     "outputs",
     "gravity",
@@ -42,6 +42,7 @@ const KEYS: [&str; 14] = [
     "parameters",
     "scalar",
     "validation",
+    "fma",
     "crate",
 ];
 
@@ -242,6 +243,14 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     ),
                 ),
             },
+            ("fma", Value::Ident(fused)) => match fused.to_string().as_str() {
+                "true" => scene.fma = true,
+                "false" => scene.fma = false,
+                other => errors.push(
+                    fused.span(),
+                    format!("unknown fma `{other}`; expected `true` or `false`"),
+                ),
+            },
             ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
             (key, value) => errors.push(value_span(value), expected_shape(key)),
         }
@@ -291,6 +300,7 @@ fn expected_shape(key: &str) -> String {
         "frames" => "expected a list of link names: `frames: [tool0, \"camera-link\"]`".into(),
         "parameters" => "expected `constant` or `runtime`".into(),
         "validation" => "expected `warn` or `strict`".into(),
+        "fma" => "expected `true` or `false`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }

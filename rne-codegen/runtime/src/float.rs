@@ -29,6 +29,39 @@ pub fn sqrt(x: f64) -> f64 {
     }
 }
 
+/// `x · y + z`: rounded once, by the fused multiply-add instruction, on x86-64 with the `fma`
+/// target feature (bit for bit `f64::mul_add` there); elsewhere a product and a sum, each
+/// rounded ([`Real::mul_add`](crate::Real::mul_add)).
+#[inline]
+pub fn mul_add(x: f64, y: f64, z: f64) -> f64 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_fmadd_sd, _mm_set_sd};
+        // SAFETY: the intrinsic needs FMA, which this block is compiled only with; the
+        // intrinsics touch no memory.
+        unsafe { _mm_cvtsd_f64(_mm_fmadd_sd(_mm_set_sd(x), _mm_set_sd(y), _mm_set_sd(z))) }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+    {
+        x * y + z
+    }
+}
+
+/// [`mul_add`] in `f32`.
+#[inline]
+pub fn mul_add_f32(x: f32, y: f32, z: f32) -> f32 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        use core::arch::x86_64::{_mm_cvtss_f32, _mm_fmadd_ss, _mm_set_ss};
+        // SAFETY: as in `mul_add`.
+        unsafe { _mm_cvtss_f32(_mm_fmadd_ss(_mm_set_ss(x), _mm_set_ss(y), _mm_set_ss(z))) }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+    {
+        x * y + z
+    }
+}
+
 /// Correctly rounded square root in integer arithmetic (the fallback of [`sqrt`] on targets
 /// without a square-root instruction the runtime knows of).
 ///
@@ -214,6 +247,23 @@ mod tests {
         for x in edge_values().into_iter().chain(random_values(300_000)) {
             assert!(same(sqrt(x), x.sqrt()), "sqrt({x:e})");
             assert!(same(sqrt_software(x), x.sqrt()), "sqrt_software({x:e})");
+        }
+    }
+
+    /// With the `fma` target feature, one rounding: `f64::mul_add`'s bits; without, the
+    /// product and the sum each rounded.
+    #[test]
+    fn mul_add_is_fused_exactly_where_the_target_has_fma() {
+        let fused = cfg!(all(target_arch = "x86_64", target_feature = "fma"));
+        let values: std::vec::Vec<f64> = random_values(30_000).collect();
+        for w in values.windows(3) {
+            let (x, y, z) = (w[0], w[1], w[2]);
+            let expected = if fused { x.mul_add(y, z) } else { x * y + z };
+            assert!(same(mul_add(x, y, z), expected), "{x:e}·{y:e} + {z:e}");
+            let (a, b, c) = (x as f32, y as f32, z as f32);
+            let expected = if fused { a.mul_add(b, c) } else { a * b + c };
+            let got = mul_add_f32(a, b, c);
+            assert!(got.to_bits() == expected.to_bits() || got.is_nan() && expected.is_nan());
         }
     }
 

@@ -41,6 +41,15 @@ pub trait Real:
         let pairs = x.map(Self::sin_cos);
         (pairs.map(|p| p.0), pairs.map(|p| p.1))
     }
+    /// `self · a + b`: what kernels generated with `fma: true` compute their products and
+    /// sums with. Rounded once (one fused instruction) where the scalar type has fused
+    /// multiply-add on the target — `f64`, `f32` and the lanes on x86-64 with the `fma`
+    /// target feature (`-C target-cpu=native` on any x86-64 since 2013, or
+    /// `-C target-feature=+fma`) — else a product and a sum, never slower than the two.
+    #[inline]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        self * a + b
+    }
     /// Sine.
     fn sin(self) -> Self {
         self.sin_cos().0
@@ -97,6 +106,10 @@ impl Real for f64 {
     fn sqrt(self) -> f64 {
         crate::float::sqrt(self)
     }
+    #[inline]
+    fn mul_add(self, a: f64, b: f64) -> f64 {
+        crate::float::mul_add(self, a, b)
+    }
     /// The sign bit cleared.
     #[inline]
     fn abs(self) -> f64 {
@@ -137,6 +150,10 @@ impl Real for f32 {
     #[inline]
     fn sqrt(self) -> f32 {
         crate::float::sqrt(f64::from(self)) as f32
+    }
+    #[inline]
+    fn mul_add(self, a: f32, b: f32) -> f32 {
+        crate::float::mul_add_f32(self, a, b)
     }
     /// The sign bit cleared.
     #[inline]

@@ -2,6 +2,17 @@
 //! ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹, by symbolic differentiation of the expression graph (exact, with
 //! the subexpressions of τ and of its derivatives shared by hash-consing).
 //!
+//! The graph of τ is the Newton–Euler recursion itself, so differentiating it differentiates
+//! the recursion: a forward sweep along q_j ([`Sweep::Forward`]) propagates ∂ω_i/∂q_j,
+//! ∂α_i/∂q_j, ∂a_i/∂q_j out from joint j and ∂f_i/∂q_j back to the base, and builds nothing
+//! for the links before j, whose motion does not depend on q_j (∂(·)_i/∂q_j = 0 for j not an
+//! ancestor of i, as in Carpentier & Mansard's analytical derivatives, cited below). A
+//! reverse sweep ([`Sweep::Reverse`]) propagates the adjoint of one τ_i back through the
+//! forces of the links after i and the motion of every link, and builds all 2·NV partials of
+//! τ_i at once. Which costs fewer operations depends on the robot (forward for UR5, reverse
+//! for the Panda arm, whose full inertias make each forward sweep nearly a whole recursion),
+//! so both are built and the cheaper kept.
+//!
 //! Derivatives with respect to q are taken in the tangent space, NV columns: a joint
 //! column is ∂/∂q_j; a free-flyer's six columns are the derivatives along the perturbation
 //! `q ⊕ δ` of Pinocchio's `integrate`, `p ← p + R δ_v` and `R ← R Exp(δ_ω)` (δ in the base
@@ -17,29 +28,66 @@ use crate::motion::quaternion_rotation;
 
 use super::ldlt::LtdlFactor;
 
-/// The tangent-space Jacobian of `outputs` with respect to the configuration: row i, column k
-/// is the derivative of `outputs[i]` along tangent direction k (NV columns).
-pub fn configuration_jacobian(
+/// How the partial derivatives of a kernel's outputs are built in the graph.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Sweep {
+    /// One forward sweep per symbol ([`Differentiator`]): the derivative of the recursion
+    /// propagated from the joint a symbol belongs to outwards, every output sharing it.
+    Forward,
+    /// One reverse sweep per output ([`ExprGraph::gradient`]): the adjoint of one torque
+    /// propagated back through the recursion, every symbol sharing it.
+    Reverse,
+}
+
+/// `(∂outputs/∂q, ∂outputs/∂q̇)`, each `outputs.len()` × NV, row i the derivatives of
+/// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`.
+pub fn state_jacobians(
     g: &mut ExprGraph,
     outputs: &[Id],
     layout: StateLayout,
-) -> Vec<Vec<Id>> {
-    let position = |k: usize| Symbol::Position(k as u16);
-    // ∂output/∂(position symbol c) for every symbol c of q.
-    let partials: Vec<Vec<Id>> = (0..layout.nq())
-        .map(|c| {
-            let mut d = Differentiator::new(position(c));
-            outputs.iter().map(|&o| d.derivative(g, o)).collect()
-        })
+    sweep: Sweep,
+) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
+    let symbols: Vec<Symbol> = (0..layout.nq())
+        .map(|c| Symbol::Position(c as u16))
+        .chain((0..layout.nv()).map(|k| Symbol::Velocity(k as u16)))
         .collect();
+    // partials[s][i] = ∂outputs[i]/∂symbols[s].
+    let partials: Vec<Vec<Id>> = match sweep {
+        Sweep::Forward => symbols
+            .iter()
+            .map(|&s| {
+                let mut d = Differentiator::new(s);
+                outputs.iter().map(|&o| d.derivative(g, o)).collect()
+            })
+            .collect(),
+        Sweep::Reverse => {
+            let rows: Vec<Vec<Id>> = outputs.iter().map(|&o| g.gradient(o, &symbols)).collect();
+            transpose(&rows, symbols.len())
+        }
+    };
+    let (positions, velocities) = partials.split_at(layout.nq());
+    let dq = tangent_jacobian(g, positions, layout, outputs.len());
+    (dq, transpose(velocities, outputs.len()))
+}
+
+/// The tangent-space Jacobian from the partials with respect to the configuration symbols
+/// (`partials[c][i]` = ∂output_i/∂q_c): row i, column k the derivative of output i along
+/// tangent direction k (NV columns).
+fn tangent_jacobian(
+    g: &mut ExprGraph,
+    partials: &[Vec<Id>],
+    layout: StateLayout,
+    n: usize,
+) -> Vec<Vec<Id>> {
     let mut columns: Vec<Vec<Id>> = Vec::with_capacity(layout.nv());
     if layout.floating {
+        let position = |k: usize| Symbol::Position(k as u16);
         let quaternion: [Id; 4] = std::array::from_fn(|c| g.symbol(position(3 + c)));
         let rotation = quaternion_rotation(g, quaternion);
         // Linear: ∂/∂δ_v,a = Σ_c ∂/∂p_c R_ca.
         for a in 0..3 {
             let weights: Vec<(usize, Id)> = (0..3).map(|c| (c, rotation[c][a])).collect();
-            columns.push(combine(g, &partials, &weights, outputs.len()));
+            columns.push(combine(g, partials, &weights, n));
         }
         // Angular: ∂quat/∂δ_a = ½ (w e_a + v × e_a, −v_a) with quat = (v, w).
         let [x, y, z, w] = quaternion;
@@ -58,13 +106,13 @@ pub fn configuration_jacobian(
             [(3, hy), (4, nhx), (5, hw), (6, nhz)],
         ];
         for direction in directions {
-            columns.push(combine(g, &partials, &direction, outputs.len()));
+            columns.push(combine(g, partials, &direction, n));
         }
     }
     for j in 0..layout.ndof {
         columns.push(partials[layout.q_offset() + j].clone());
     }
-    transpose(&columns, outputs.len())
+    transpose(&columns, n)
 }
 
 /// Σ_c weight_c · partials[c], entry by entry.

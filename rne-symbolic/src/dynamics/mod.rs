@@ -330,25 +330,43 @@ impl SymbolicDynamics {
 
     /// (∂τ/∂q, ∂τ/∂q̇), NV × NV each, row i the derivatives of τ_i; ∂/∂q in the tangent space
     /// ([`derivatives`]). ∂τ/∂q̈ is M.
+    ///
+    /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), each
+    /// in a copy of the graph; the one of lower [`OpCount::cost`](crate::OpCount::cost) is kept.
     pub fn inverse_dynamics_derivatives(&mut self) -> (Matrix, Matrix) {
         if let Some(d) = &self.inverse_dynamics_derivatives {
             return d.clone();
         }
         let tau = self.inverse_dynamics();
         let layout = self.layout();
-        let g = &mut self.model.graph;
-        let dq = derivatives::configuration_jacobian(g, &tau, layout);
-        let dv = derivatives::symbol_jacobian(g, &tau, layout.nv(), Symbol::Velocity);
+        let build = |sweep| {
+            let mut g = self.model.graph.clone();
+            let (dq, dv) = derivatives::state_jacobians(&mut g, &tau, layout, sweep);
+            let cost = g.op_count(&[dq.concat(), dv.concat()].concat()).cost();
+            (cost, g, dq, dv)
+        };
+        let forward = build(derivatives::Sweep::Forward);
+        let reverse = build(derivatives::Sweep::Reverse);
+        let (_, graph, dq, dv) = if reverse.0 < forward.0 {
+            reverse
+        } else {
+            forward
+        };
+        self.model.graph = graph;
         self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
         (dq, dv)
     }
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
     /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x taken at that q̈ ([`derivatives`]).
+    ///
+    /// M⁻¹ and q̈ are built before the derivatives, so that the nodes of M⁻¹ come in the
+    /// order [`Self::mass_matrix_inverse`] alone creates them in: the third output rounds
+    /// exactly as that kernel does.
     pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
-        let (dq, dv) = self.inverse_dynamics_derivatives();
-        let qdd = self.forward_dynamics();
         let inverse = self.mass_matrix_inverse();
+        let qdd = self.forward_dynamics();
+        let (dq, dv) = self.inverse_dynamics_derivatives();
         let g = &mut self.model.graph;
         let at_fd = |g: &mut ExprGraph, d: &[Vec<Id>]| -> Vec<Vec<Id>> {
             let flat: Vec<Id> = d.concat();

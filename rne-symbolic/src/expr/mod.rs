@@ -1,6 +1,7 @@
 //! The expression graph: a hash-consed DAG of scalar expressions with simplifying
 //! constructors, evaluation, differentiation, operation counts and s-expression text.
 
+mod adjoint;
 mod count;
 mod derivative;
 mod eval;

@@ -81,5 +81,10 @@ impl Real for F32x8 {
     fn sqrt(self) -> F32x8 {
         F32x8(self.0.sqrt())
     }
+    /// `wide`'s `mul_add`: fused where the target has FMA, as the scalar's.
+    #[inline(always)]
+    fn mul_add(self, a: F32x8, b: F32x8) -> F32x8 {
+        F32x8(self.0.mul_add(a.0, b.0))
+    }
     lane_sign!();
 }

@@ -8,6 +8,7 @@ rne_codegen::derive_dynamics! {
         lock: { q2: 0.5 },
         parameters: constant,
         scalar: f64,
+        fma: true,
     }
 }
 

@@ -1,0 +1,156 @@
+//! Reverse-mode (adjoint) symbolic differentiation: the gradient of one expression with
+//! respect to many symbols in one backward sweep over the graph (Griewank & Walther,
+//! *Evaluating Derivatives*, 2nd ed., SIAM 2008, §3.2, "the reverse mode").
+//!
+//! [`Differentiator`](super::Differentiator) is the forward mode: one sweep per symbol,
+//! every output's derivative sharing it. The reverse mode is one sweep per output, every
+//! symbol's derivative sharing it. For n outputs and m symbols the first builds m sweeps and
+//! the second n; which is cheaper depends on how much of the graph each sweep touches, so the
+//! dynamics build both and keep the cheaper ([`crate::dynamics::derivatives`]).
+
+use super::graph::ExprGraph;
+use super::node::{Id, Node, Symbol};
+
+impl ExprGraph {
+    /// `[∂expr/∂wrt₀, ∂expr/∂wrt₁, …]`, zero where `expr` does not depend on the symbol.
+    ///
+    /// Adjoints flow from `expr` to the symbols through the nodes that depend on one of `wrt`
+    /// (others have no derivative to carry): for `a + b` the adjoint ā passes to both, for
+    /// `a·b` as `ā·b` and `ā·a`, for `a/b` as `ā/b` and `−ā·(a/b)/b`, for `sin a` as
+    /// `ā·cos a`, for `cos a` as `−ā·sin a`, for `sqrt a` as `ā/(2 sqrt a)`; `sign` is flat.
+    /// A node's contributions are summed in the order its users are visited (decreasing
+    /// id), so the result depends on the graph alone.
+    pub fn gradient(&mut self, expr: Id, wrt: &[Symbol]) -> Vec<Id> {
+        let nodes = self.reachable(&[expr]);
+        let mut depends = vec![false; expr.index() + 1];
+        for &id in &nodes {
+            depends[id.index()] = match self.node(id) {
+                Node::Symbol(s) => wrt.contains(&s),
+                node => node.children().any(|c| depends[c.index()]),
+            };
+        }
+        let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); expr.index() + 1];
+        if depends[expr.index()] {
+            let one = self.one();
+            contributions[expr.index()].push(one);
+        }
+        let zero = self.zero();
+        let mut gradient = vec![zero; wrt.len()];
+        for &id in nodes.iter().rev() {
+            if !depends[id.index()] {
+                continue;
+            }
+            let terms = std::mem::take(&mut contributions[id.index()]);
+            let adjoint = self.sum(terms);
+            let mut pass = |child: Id, value: Id| {
+                if depends[child.index()] {
+                    contributions[child.index()].push(value);
+                }
+            };
+            match self.node(id) {
+                Node::Const(_) | Node::Sign(_) => {}
+                Node::Symbol(s) => {
+                    let k = wrt.iter().position(|&w| w == s).expect("a symbol of wrt");
+                    gradient[k] = adjoint;
+                }
+                Node::Add(a, b) => {
+                    pass(a, adjoint);
+                    pass(b, adjoint);
+                }
+                Node::Neg(a) => pass(a, self.neg(adjoint)),
+                Node::Mul(a, b) => {
+                    if depends[a.index()] {
+                        pass(a, self.mul(adjoint, b));
+                    }
+                    if depends[b.index()] {
+                        pass(b, self.mul(adjoint, a));
+                    }
+                }
+                Node::Div(a, b) => {
+                    if depends[a.index()] {
+                        pass(a, self.div(adjoint, b));
+                    }
+                    if depends[b.index()] {
+                        let scaled = self.mul(adjoint, id);
+                        let quotient = self.div(scaled, b);
+                        pass(b, self.neg(quotient));
+                    }
+                }
+                Node::Sin(a) => {
+                    let c = self.cos(a);
+                    pass(a, self.mul(adjoint, c));
+                }
+                Node::Cos(a) => {
+                    let s = self.sin(a);
+                    let product = self.mul(adjoint, s);
+                    pass(a, self.neg(product));
+                }
+                Node::Sqrt(a) => {
+                    let two = self.constant(2.0);
+                    let denominator = self.mul(two, id);
+                    pass(a, self.div(adjoint, denominator));
+                }
+            }
+        }
+        gradient
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Differentiator, SymbolTable};
+    use super::*;
+
+    /// The reverse mode builds, for every symbol, an expression of the same value as the
+    /// forward mode's derivative.
+    #[test]
+    fn the_gradient_equals_the_forward_derivatives() {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y", "z"]));
+        let cases = [
+            "(* (sin x) (cos y))",
+            "(+ (* x (* x y)) (- (sqrt (+ z 3))))",
+            "(/ (* (cos (* x z)) y) (+ 2 (* y y)))",
+            "(+ (* (sign x) y) (* 3 (- z)))",
+        ];
+        let wrt = [0, 1, 2].map(Symbol::Position);
+        let point = [0.7, -1.3, 0.4];
+        let value = |s: Symbol| match s {
+            Symbol::Position(k) => point[k as usize],
+            _ => f64::NAN,
+        };
+        for text in cases {
+            let expr = g.parse_sexpr(text).unwrap();
+            let reverse = g.gradient(expr, &wrt);
+            for (k, &symbol) in wrt.iter().enumerate() {
+                let forward = Differentiator::new(symbol).derivative(&mut g, expr);
+                let values = g.eval::<f64>(&[reverse[k], forward], value);
+                assert!(
+                    (values[0] - values[1]).abs() <= 1e-14 * values[1].abs().max(1.0),
+                    "∂{text}/∂{symbol:?}: reverse {} forward {}",
+                    values[0],
+                    values[1]
+                );
+            }
+        }
+    }
+
+    /// Symbols the expression does not depend on, and those left out of `wrt`, get nothing:
+    /// a constant zero, and no adjoint node is built for them.
+    #[test]
+    fn absent_symbols_have_zero_gradient_and_cost_nothing() {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y", "z"]));
+        let expr = g.parse_sexpr("(+ (* (sin x) (cos y)) (* y y))").unwrap();
+        g.zero();
+        let before = g.len();
+        let gradient = g.gradient(expr, &[Symbol::Position(2)]);
+        assert!(g.is_zero(gradient[0]));
+        assert_eq!(g.len(), before, "nothing depends on z: no node is built");
+        let only_x = g.gradient(expr, &[Symbol::Position(0)]);
+        let cos_y = g.parse_sexpr("(cos y)").unwrap();
+        let cos_x = g.parse_sexpr("(cos x)").unwrap();
+        assert_eq!(
+            g.node(only_x[0]),
+            Node::Mul(cos_y.min(cos_x), cos_y.max(cos_x))
+        );
+    }
+}
