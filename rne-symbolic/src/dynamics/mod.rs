@@ -6,6 +6,7 @@ mod aba_frames;
 mod articulated_inertia;
 pub mod base_parameters;
 mod christoffel;
+mod coriolis;
 mod crba;
 pub mod derivatives;
 mod energy;
@@ -253,17 +254,31 @@ impl SymbolicDynamics {
         b
     }
 
-    /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric.
+    /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric, by the O(N d) recursion
+    /// of Echeandia and Wensing (2021) ([`coriolis`]).
     pub fn coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         if let Some(c) = &self.coriolis_matrix {
             return c.clone();
         }
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let zeros = self.zeros();
+        let motion = self.motion(qd, zeros);
+        let c = coriolis::coriolis_matrix(&mut self.model, &motion);
+        self.coriolis_matrix = Some(c.clone());
+        c
+    }
+
+    /// The same C from its definition, C_ij = Σ_k Γ_ijk q̇_k with the O(n³) Christoffel symbols
+    /// of ∂M/∂q: an oracle for [`Self::coriolis_matrix`], on a fixed base only (the base
+    /// velocities of a floating base are not the rates of coordinates).
+    ///
+    /// # Panics
+    /// On a floating base.
+    pub fn christoffel_coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         let m = self.mass_matrix();
         let qd = self.velocity_symbols(Symbol::Velocity);
         let positions = self.rate_positions();
-        let c = christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd, &positions);
-        self.coriolis_matrix = Some(c.clone());
-        c
+        christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd, &positions)
     }
 
     /// Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k.
@@ -524,3 +539,6 @@ mod mimic_tests;
 
 #[cfg(test)]
 mod derivative_tests;
+
+#[cfg(test)]
+mod coriolis_tests;
