@@ -49,6 +49,7 @@ mod module;
 mod program;
 mod scene;
 mod shape;
+mod split;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use emit::{argument, emit_kernel, return_type, EmitContext};

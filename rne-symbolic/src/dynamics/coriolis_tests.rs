@@ -85,7 +85,7 @@ fn the_recursive_coriolis_matrix_is_the_christoffel_one() {
     ] {
         let mut d = SymbolicDynamics::new(&model);
         let nv = d.layout().nv();
-        let recursive = d.coriolis_matrix().concat();
+        let recursive = d.recursive_coriolis_matrix().concat();
         let christoffel = d.christoffel_coriolis_matrix().concat();
         for k in 0..25 {
             let (q, v, _) = state(k, nv);

@@ -29,6 +29,10 @@ pub type Matrix = Vec<Vec<Id>>;
 /// states stack at least twice as many equations as there are parameters.
 pub const BASE_PARAMETER_SAMPLES: usize = 40;
 
+/// The largest number of joint variables for which [`SymbolicDynamics::coriolis_matrix`] also
+/// tries the Christoffel symbols (O(n³) of them: 1728 at 12, built in milliseconds).
+pub const CHRISTOFFEL_UP_TO: usize = 12;
+
 /// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
 ///
 /// Each quantity is built the first time it is asked for, into [`SymbolicDynamics::model`]'s
@@ -255,17 +259,33 @@ impl SymbolicDynamics {
     }
 
     /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric, by the O(N d) recursion
-    /// of Echeandia and Wensing (2021) ([`coriolis`]).
+    /// of Echeandia and Wensing (2021) ([`coriolis`]). On a fixed base with at most
+    /// [`CHRISTOFFEL_UP_TO`] joint variables the same matrix is also built from its Christoffel
+    /// symbols ([`Self::christoffel_coriolis_matrix`]), and the construction with fewer
+    /// operations is kept: on small arms the symbols, shared through the graph, are cheaper.
     pub fn coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         if let Some(c) = &self.coriolis_matrix {
             return c.clone();
         }
+        let mut c = self.recursive_coriolis_matrix();
+        if !self.layout().floating && self.layout().nv() <= CHRISTOFFEL_UP_TO {
+            let christoffel = self.christoffel_coriolis_matrix();
+            let g = &self.model.graph;
+            if g.op_count(&christoffel.concat()).cost() < g.op_count(&c.concat()).cost() {
+                c = christoffel;
+            }
+        }
+        self.coriolis_matrix = Some(c.clone());
+        c
+    }
+
+    /// The Christoffel C(q, q̇) by the recursion of Echeandia and Wensing (2021)
+    /// ([`coriolis`]), whatever the model's size.
+    pub fn recursive_coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         let qd = self.velocity_symbols(Symbol::Velocity);
         let zeros = self.zeros();
         let motion = self.motion(qd, zeros);
-        let c = coriolis::coriolis_matrix(&mut self.model, &motion);
-        self.coriolis_matrix = Some(c.clone());
-        c
+        coriolis::coriolis_matrix(&mut self.model, &motion)
     }
 
     /// The same C from its definition, C_ij = Σ_k Γ_ijk q̇_k with the O(n³) Christoffel symbols
