@@ -267,9 +267,12 @@ impl SymbolicDynamics {
         if let Some(c) = &self.coriolis_matrix {
             return c.clone();
         }
+        // The symbols first, so that a model keeping them gets the graph (and the emitted
+        // code) it had before the recursion existed.
+        let christoffel = (!self.layout().floating && self.layout().nv() <= CHRISTOFFEL_UP_TO)
+            .then(|| self.christoffel_coriolis_matrix());
         let mut c = self.recursive_coriolis_matrix();
-        if !self.layout().floating && self.layout().nv() <= CHRISTOFFEL_UP_TO {
-            let christoffel = self.christoffel_coriolis_matrix();
+        if let Some(christoffel) = christoffel {
             let g = &self.model.graph;
             if g.op_count(&christoffel.concat()).cost() < g.op_count(&c.concat()).cost() {
                 c = christoffel;
