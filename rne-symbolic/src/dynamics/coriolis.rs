@@ -33,8 +33,8 @@
 //! `U = I^C_j Ṡ_j + S_j ×* h^C_j`.
 //!
 //! On a floating base the free-flyer's six columns are its body axes and its velocity the
-//! body-frame twist, so the same sum gives the C of Pinocchio's `computeCoriolisMatrix`: C v
-//! is the bias less gravity and Ṁ − 2C is skew; as the base velocities are not the rates of
+//! body-frame twist, and the same sum gives a C for which C v is the bias less gravity and
+//! Ṁ − 2C is skew; as the base velocities are not the rates of
 //! coordinates, C(v) w − C(w) v is then `M [v_b × w_b; 0]` rather than zero (the base rows
 //! of a torsion-free connection in the body frame). With mimic joints the follower's column
 //! enters with its multiplier (C ← Jᵀ C J, J constant).
