@@ -22,6 +22,7 @@ use crate::kernel::{Dims, Input, Kernel};
 use crate::program::{Instr, Operand, Program};
 use crate::scene::{ParameterMode, ScalarType};
 use crate::shape::Layout;
+use crate::split::{self, SplitPlan, Statement};
 
 /// What the emitter needs besides the program.
 #[derive(Clone, Copy, Debug)]
@@ -314,7 +315,9 @@ pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
     quote!(#arg: &[#t; #len])
 }
 
-/// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`.
+/// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`:
+/// one straight-line function, or for a large program a function calling its parts in turn
+/// ([`crate::split`]).
 pub fn emit_kernel(
     kernel: Kernel,
     program: &Program,
@@ -329,7 +332,7 @@ pub fn emit_kernel(
         trig: BTreeMap::new(),
         reads_standard: kernel.inputs().contains(&Input::Standard),
     };
-    let mut body = Vec::new();
+    let mut prologue = vec![false; program.instrs.len()];
     let mut next = 0usize;
     for (t, &instr) in program.instrs.iter().enumerate() {
         if let Instr::Sin(Operand::Input(Symbol::Position(k)))
@@ -340,14 +343,12 @@ pub fn emit_kernel(
                 Instr::Sin(_) => entry.0 = true,
                 _ => entry.1 = true,
             }
+            prologue[t] = true;
             continue;
         }
         if uses[t] >= 2 {
-            let (value, _) = emitter.instr(instr);
-            let name = format_ident!("t{}", next);
+            emitter.names[t] = Some(format_ident!("t{}", next));
             next += 1;
-            body.push(quote!(let #name = #value;));
-            emitter.names[t] = Some(name);
         }
     }
     let trig = emitter.trig_bindings();
@@ -357,21 +358,34 @@ pub fn emit_kernel(
         program.outputs.len(),
         "`{kernel}` computes one output per scalar of its result"
     );
-    let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o).0);
-    let result = layout.value_tokens(&mut outputs);
+    let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
+    let (body, result) = match split::plan(program, &named, &prologue) {
+        None => {
+            let lets = (0..program.instrs.len())
+                .filter(|&t| named[t])
+                .map(|t| emitter.binding(t));
+            let body = quote!(#(#lets)*);
+            let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o).0);
+            (body, layout.value_tokens(&mut outputs))
+        }
+        Some(plan) => {
+            let body = emitter.parts(kernel, &plan);
+            let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
+                Operand::Temp(_) => {
+                    let k = Literal::usize_unsuffixed(k);
+                    quote!(slots[#k])
+                }
+                _ => emitter.operand(o).0,
+            });
+            (body, layout.value_tokens(&mut outputs))
+        }
+    };
 
     let t = emitter.scalar_type();
     let name = Ident::new(kernel.name(), Span::call_site());
     let doc = kernel.summary();
-    let real = emitter.real();
-    let generics = match ctx.scalar {
-        ScalarType::Generic => quote!(<T: #real>),
-        _ => quote!(),
-    };
-    let params = match ctx.parameters {
-        ParameterMode::Runtime => quote!(p: &Params,),
-        ParameterMode::Constant => quote!(),
-    };
+    let generics = emitter.generics();
+    let params = emitter.params();
     let args = kernel.inputs().iter().map(|&input| argument(input, &t));
     let ret = layout.type_tokens(&t);
     quote! {
@@ -380,8 +394,119 @@ pub fn emit_kernel(
         #[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]
         pub fn #name #generics (#params #(#args),*) -> #ret {
             #trig
-            #(#body)*
+            #body
             #result
+        }
+    }
+}
+
+impl Emitter<'_> {
+    /// `let t = …;` of named instruction `t`.
+    fn binding(&self, t: usize) -> TokenStream {
+        let (value, _) = self.instr(self.program.instrs[t]);
+        let name = &self.names[t];
+        quote!(let #name = #value;)
+    }
+
+    /// The name a named or prologue value is bound to.
+    fn value_name(&self, t: usize) -> Ident {
+        match &self.names[t] {
+            Some(name) => name.clone(),
+            None => self
+                .joint_trig(self.program.instrs[t])
+                .expect("a named or prologue value"),
+        }
+    }
+
+    /// `<T: Real>` for a generic kernel.
+    fn generics(&self) -> TokenStream {
+        let real = self.real();
+        match self.ctx.scalar {
+            ScalarType::Generic => quote!(<T: #real>),
+            _ => quote!(),
+        }
+    }
+
+    /// `p: &Params,` with runtime parameters.
+    fn params(&self) -> TokenStream {
+        match self.ctx.parameters {
+            ParameterMode::Runtime => quote!(p: &Params,),
+            ParameterMode::Constant => quote!(),
+        }
+    }
+
+    /// The body of a split kernel: the slot array, the prologue's values stored in it, and a
+    /// call of each part, every part a function in a module of its own.
+    fn parts(&self, kernel: Kernel, plan: &SplitPlan) -> TokenStream {
+        let t = self.scalar_type();
+        let generics = self.generics();
+        let params = self.params();
+        let len = Literal::usize_unsuffixed(plan.len);
+        let slot = |value: usize| Literal::usize_unsuffixed(plan.slots[&value]);
+        let args: Vec<TokenStream> = kernel
+            .inputs()
+            .iter()
+            .map(|&input| argument(input, &t))
+            .collect();
+        let inputs: Vec<Ident> = kernel
+            .inputs()
+            .iter()
+            .map(|input| Ident::new(input.name(), Span::call_site()))
+            .collect();
+        let param = match self.ctx.parameters {
+            ParameterMode::Runtime => quote!(p,),
+            ParameterMode::Constant => quote!(),
+        };
+        let zero = match self.ctx.scalar {
+            ScalarType::Generic => self.constant(0.0).0,
+            _ => quote!(0.0),
+        };
+        let stored = plan
+            .slots
+            .keys()
+            .filter(|&&value| self.names[value].is_none())
+            .map(|&value| {
+                let (name, slot) = (self.value_name(value), slot(value));
+                quote!(slots[#slot] = #name;)
+            });
+        let parts = plan.parts.iter().enumerate().map(|(p, statements)| {
+            let module = format_ident!("part{}", p);
+            let imports = plan.imports[p].iter().map(|&value| {
+                let (name, slot) = (self.value_name(value), slot(value));
+                quote!(let #name = slots[#slot];)
+            });
+            let statements = statements.iter().map(|&statement| match statement {
+                Statement::Let(i) => {
+                    let binding = self.binding(i);
+                    let store = plan.slots.get(&i).map(|&s| {
+                        let (name, s) = (&self.names[i], Literal::usize_unsuffixed(s));
+                        quote!(slots[#s] = #name;)
+                    });
+                    quote!(#binding #store)
+                }
+                Statement::Output { output, instr } => {
+                    let value = self.operand(Operand::Temp(instr as u32)).0;
+                    let output = Literal::usize_unsuffixed(output);
+                    quote!(slots[#output] = #value;)
+                }
+            });
+            quote! {
+                mod #module {
+                    use super::*;
+                    #[inline(never)]
+                    #[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]
+                    pub(super) fn run #generics (#params #(#args,)* slots: &mut [#t; #len]) {
+                        #(#imports)*
+                        #(#statements)*
+                    }
+                }
+                #module::run(#param #(#inputs,)* &mut slots);
+            }
+        });
+        quote! {
+            let mut slots = [#zero; #len];
+            #(#stored)*
+            #(#parts)*
         }
     }
 }

@@ -34,6 +34,10 @@
 //!   trees (log₂ n deep instead of n − 1) ([`distribute_constants`]).
 //! - **Negations** are absorbed into subtractions and computed only when something other
 //!   than an addition uses them.
+//! - **Large kernels** (over 15 000 instructions, `split.rs`) are emitted as a chain of
+//!   `#[inline(never)]` parts of about 1 000 instructions in modules of their own, passing
+//!   values through a slot array: rustc and LLVM compile them several times faster than one
+//!   huge function, and in parallel; the arithmetic is unchanged.
 //! - **Cost model**: [`rne_symbolic::OpCount::cost`] weighs the operations; `rne stats`
 //!   reports counts and cost per kernel.
 #![deny(missing_docs)]
@@ -49,6 +53,7 @@ mod module;
 mod program;
 mod scene;
 mod shape;
+mod split;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use emit::{argument, emit_kernel, return_type, EmitContext};

@@ -9,15 +9,15 @@
 //! operations: the recursion evaluates every link's inertial terms once per column.
 
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
-use crate::model::{JointKind, RobotModel};
+use crate::model::{JointKind, Link, RobotModel};
 use crate::motion::{JointMotion, LinkPlacement};
 
 /// Mass, first moment h = m c and inertia about the body origin, in body-frame axes.
 #[derive(Copy, Clone, Debug)]
-struct Composite {
-    mass: Id,
-    first_moment: Vec3,
-    inertia: Mat3,
+pub(super) struct Composite {
+    pub(super) mass: Id,
+    pub(super) first_moment: Vec3,
+    pub(super) inertia: Mat3,
 }
 
 /// `R I Rᵀ` of a symmetric `I` through a placement's two factors, keeping the result
@@ -72,7 +72,11 @@ pub(super) fn about_origin(g: &mut ExprGraph, m: Id, c: Vec3, inertia: &Mat3) ->
 /// The composite `child` (in its own frame) expressed in its parent's frame and origin:
 /// `h' = R h + m s`, `I' = R I Rᵀ + m (|s|² 1 − s sᵀ) + 2 (s·h_r) 1 − s h_rᵀ − h_r sᵀ`
 /// with `h_r = R h` (the parallel-axis theorem for a body whose COM is not at its origin).
-fn to_parent(g: &mut ExprGraph, child: &Composite, placement: &LinkPlacement) -> Composite {
+pub(super) fn to_parent(
+    g: &mut ExprGraph,
+    child: &Composite,
+    placement: &LinkPlacement,
+) -> Composite {
     let s = placement.attachment;
     let h_r = placement.to_parent(g, child.first_moment);
     let ms = g.vscale(child.mass, s);
@@ -156,21 +160,14 @@ pub(super) fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
         .collect()
 }
 
-/// M(q) of `model` at `motion`'s positions (row-major, symmetric: one `Id` per pair; NV × NV).
-///
-/// Entry (a, b) is `S_bᵀ I^c_i S_a` for column a of link i and column b of link i or of one of
-/// its ancestors. With mimic joints several links share a variable, and the entries of their
-/// coordinates are summed with the multipliers (M ← Jᵀ M J); armature adds `I_a m²` to the
-/// variable's diagonal entry.
-pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
-    let n = model.links.len();
-    let nv = model.state_layout().nv();
-    let columns = columns(model);
-    let g = &mut model.graph;
-    let links = &model.links;
-    let placements = LinkPlacement::all(g, links, motion);
-
-    // Composite bodies, leaves first (children come after their parent).
+/// The composite body of every link (the link and everything it carries), in its body frame,
+/// accumulated leaves first: children come after their parent (Featherstone, RBDA §6.2).
+pub(super) fn composite_bodies(
+    g: &mut ExprGraph,
+    links: &[Link],
+    placements: &[LinkPlacement],
+) -> Vec<Composite> {
+    let n = links.len();
     let mut composites: Vec<Composite> = links
         .iter()
         .map(|link| {
@@ -203,6 +200,23 @@ pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>>
             };
         }
     }
+    composites
+}
+
+/// M(q) of `model` at `motion`'s positions (row-major, symmetric: one `Id` per pair; NV × NV).
+///
+/// Entry (a, b) is `S_bᵀ I^c_i S_a` for column a of link i and column b of link i or of one of
+/// its ancestors. With mimic joints several links share a variable, and the entries of their
+/// coordinates are summed with the multipliers (M ← Jᵀ M J); armature adds `I_a m²` to the
+/// variable's diagonal entry.
+pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
+    let n = model.links.len();
+    let nv = model.state_layout().nv();
+    let columns = columns(model);
+    let g = &mut model.graph;
+    let links = &model.links;
+    let placements = LinkPlacement::all(g, links, motion);
+    let composites = composite_bodies(g, links, &placements);
 
     // Columns: the momentum (n, f) of composite i for a unit rate of each of its columns,
     // carried down and projected on the columns of i and of every ancestor. `terms[a][b]`

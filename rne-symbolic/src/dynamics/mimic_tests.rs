@@ -8,7 +8,7 @@ use crate::spec::{parse_str, LoadOptions};
 
 /// A gripper: a revolute wrist, a prismatic finger, and a second finger (a revolute joint)
 /// whose coordinate follows the first finger's: `q_f2 = −2 q_f1 + 0.3` when constrained.
-fn gripper(constrained: bool) -> RobotModel {
+pub(super) fn gripper(constrained: bool) -> RobotModel {
     let text = r#"
 name = "gripper"
 [[link]]

@@ -6,6 +6,7 @@ mod aba_frames;
 mod articulated_inertia;
 pub mod base_parameters;
 mod christoffel;
+mod coriolis;
 mod crba;
 pub mod derivatives;
 mod energy;
@@ -27,6 +28,10 @@ pub type Matrix = Vec<Vec<Id>>;
 /// gives NV equations, and a body has at most 10 + 4 parameters per joint variable, so 40
 /// states stack at least twice as many equations as there are parameters.
 pub const BASE_PARAMETER_SAMPLES: usize = 40;
+
+/// The largest number of joint variables for which [`SymbolicDynamics::coriolis_matrix`] also
+/// tries the Christoffel symbols (O(n³) of them: 1728 at 12, built in milliseconds).
+pub const CHRISTOFFEL_UP_TO: usize = 12;
 
 /// The dynamics of a robot, M(q) q̈ + C(q, q̇) q̇ + g(q) = u (3.1), as expressions.
 ///
@@ -253,17 +258,50 @@ impl SymbolicDynamics {
         b
     }
 
-    /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric.
+    /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric, by the O(N d) recursion
+    /// of Echeandia and Wensing (2021) ([`coriolis`]). On a fixed base with at most
+    /// [`CHRISTOFFEL_UP_TO`] joint variables the same matrix is also built from its Christoffel
+    /// symbols ([`Self::christoffel_coriolis_matrix`]), and the construction with fewer
+    /// operations is kept: on small arms the symbols, shared through the graph, are cheaper.
     pub fn coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         if let Some(c) = &self.coriolis_matrix {
             return c.clone();
         }
+        // The symbols first, so that a model keeping them gets the graph (and the emitted
+        // code) it had before the recursion existed.
+        let christoffel = (!self.layout().floating && self.layout().nv() <= CHRISTOFFEL_UP_TO)
+            .then(|| self.christoffel_coriolis_matrix());
+        let mut c = self.recursive_coriolis_matrix();
+        if let Some(christoffel) = christoffel {
+            let g = &self.model.graph;
+            if g.op_count(&christoffel.concat()).cost() < g.op_count(&c.concat()).cost() {
+                c = christoffel;
+            }
+        }
+        self.coriolis_matrix = Some(c.clone());
+        c
+    }
+
+    /// The Christoffel C(q, q̇) by the recursion of Echeandia and Wensing (2021)
+    /// ([`coriolis`]), whatever the model's size.
+    pub fn recursive_coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let zeros = self.zeros();
+        let motion = self.motion(qd, zeros);
+        coriolis::coriolis_matrix(&mut self.model, &motion)
+    }
+
+    /// The same C from its definition, C_ij = Σ_k Γ_ijk q̇_k with the O(n³) Christoffel symbols
+    /// of ∂M/∂q: an oracle for [`Self::coriolis_matrix`], on a fixed base only (the base
+    /// velocities of a floating base are not the rates of coordinates).
+    ///
+    /// # Panics
+    /// On a floating base.
+    pub fn christoffel_coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         let m = self.mass_matrix();
         let qd = self.velocity_symbols(Symbol::Velocity);
         let positions = self.rate_positions();
-        let c = christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd, &positions);
-        self.coriolis_matrix = Some(c.clone());
-        c
+        christoffel::coriolis_matrix(&mut self.model.graph, &m, &qd, &positions)
     }
 
     /// Ṁ(q, q̇) = Σ_k ∂M/∂q_k q̇_k.
@@ -542,3 +580,6 @@ mod mimic_tests;
 
 #[cfg(test)]
 mod derivative_tests;
+
+#[cfg(test)]
+mod coriolis_tests;
