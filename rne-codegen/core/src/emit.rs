@@ -343,7 +343,7 @@ pub fn emit_kernel(
         _ => quote!(),
     };
     let params = match ctx.parameters {
-        ParameterMode::Runtime => quote!(p: &Params,),
+        ParameterMode::Runtime | ParameterMode::Base => quote!(p: &Params,),
         ParameterMode::Constant => quote!(),
     };
     let args = kernel.inputs().iter().map(|&input| argument(input, &t));

@@ -12,6 +12,8 @@ use crate::expr::{ExprGraph, Id, Mat3, Vec3};
 use crate::model::{JointKind, RobotModel};
 use crate::motion::{JointMotion, LinkPlacement};
 
+use super::inertial_parameters::BodyParameters;
+
 /// Mass, first moment h = m c and inertia about the body origin, in body-frame axes.
 #[derive(Copy, Clone, Debug)]
 struct Composite {
@@ -161,8 +163,13 @@ pub(super) fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
 /// Entry (a, b) is `S_bᵀ I^c_i S_a` for column a of link i and column b of link i or of one of
 /// its ancestors. With mimic joints several links share a variable, and the entries of their
 /// coordinates are summed with the multipliers (M ← Jᵀ M J); armature adds `I_a m²` to the
-/// variable's diagonal entry.
-pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
+/// variable's diagonal entry. The bodies' inertias are the links' unless `bodies` gives them
+/// (one per link, [`BodyParameters`]).
+pub fn mass_matrix(
+    model: &mut RobotModel,
+    motion: &JointMotion,
+    bodies: Option<&[BodyParameters]>,
+) -> Vec<Vec<Id>> {
     let n = model.links.len();
     let nv = model.state_layout().nv();
     let columns = columns(model);
@@ -173,12 +180,16 @@ pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>>
     // Composite bodies, leaves first (children come after their parent).
     let mut composites: Vec<Composite> = links
         .iter()
-        .map(|link| {
-            let (first_moment, inertia) = about_origin(g, link.mass, link.com, &link.inertia);
+        .enumerate()
+        .map(|(i, link)| {
+            let body = match bodies {
+                Some(bodies) => bodies[i],
+                None => BodyParameters::of_link(g, link),
+            };
             Composite {
-                mass: link.mass,
-                first_moment,
-                inertia,
+                mass: body.mass,
+                first_moment: body.first_moment,
+                inertia: body.inertia,
             }
         })
         .collect();
