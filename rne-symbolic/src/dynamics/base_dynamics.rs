@@ -76,6 +76,39 @@ impl SymbolicDynamics {
         self
     }
 
+    /// The dynamics as functions of every standard parameter: parameter k is the symbol
+    /// `Parameter(k)`, named by the identifier made from [`Self::parameter_names`]`[k]`
+    /// ([`identifiers`]) with the model's value — the runtime counterpart of the regressor's
+    /// π, against which [`Self::in_base_parameters`] is measured.
+    ///
+    /// # Panics
+    /// When the model keeps parameters symbolic, or when something was built already.
+    pub fn in_standard_parameters(&self) -> SymbolicDynamics {
+        assert!(
+            self.model.graph.symbols().parameters().is_empty(),
+            "standard parameters replace numeric ones"
+        );
+        let mut scratch = self.clone();
+        let standard = scratch.standard_parameters();
+        let values = scratch.model.graph.eval::<f64>(&standard, |_| f64::NAN);
+        let names = identifiers(&self.parameter_names());
+        let mut dynamics = self.clone();
+        let g = &mut dynamics.model.graph;
+        let symbols: Vec<Id> = names
+            .iter()
+            .map(|name| {
+                let symbol = g.symbols_mut().push_parameter(name.clone());
+                g.symbol(symbol)
+            })
+            .collect();
+        dynamics.model.parameters = names
+            .into_iter()
+            .zip(values)
+            .map(|(name, value)| Parameter { name, value })
+            .collect();
+        dynamics.with_standard_parameters(&symbols)
+    }
+
     /// The dynamics as functions of the base parameters alone (`parameters: base`): base
     /// parameter b is the symbol `Parameter(b)`, named in the graph's symbol table and in
     /// [`crate::RobotModel::parameters`] by a Rust identifier made from its name
