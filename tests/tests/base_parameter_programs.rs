@@ -126,8 +126,9 @@ fn a_floating_quadrupeds_base_parameter_kernels_equal_its_constant_kernels() {
 }
 
 /// Inverse dynamics with base parameters costs fewer operations than with every standard
-/// parameter at run time, and more than with constants; the costs of the four modes are
-/// printed (`-- --nocapture`) for docs/identification.md.
+/// parameter at run time; the costs of the four modes are printed (`-- --nocapture`) for
+/// docs/identification.md. (Against constants it depends: regrouping takes parameters out of
+/// the recursion that folding cannot, and the Panda's base-parameter kernel is the cheaper.)
 #[test]
 fn base_parameter_inverse_dynamics_costs_less_than_runtime_parameters() {
     let cost = |dynamics: &SymbolicDynamics| {
@@ -165,8 +166,8 @@ fn base_parameter_inverse_dynamics_costs_less_than_runtime_parameters() {
              standard {standard_cost}, base {base_cost}"
         );
         assert!(
-            constant_cost < base_cost && base_cost < standard_cost,
-            "{name}: constant {constant_cost}, base {base_cost}, standard {standard_cost}"
+            base_cost < standard_cost,
+            "{name}: base {base_cost}, standard {standard_cost}"
         );
         // The spec's named parameters are fewer: the IRB 140 names 45 (masses, box edges and
         // lengths; its inertias follow from them), PUMA 560 and Panda none (runtime = constant).

@@ -142,5 +142,13 @@ fn a_floating_base_is_identified_from_a_noisy_excitation() {
     }
     let predicted = predict(&mut reference, &base, &estimate.values, &fresh).expect("predicted");
     let fit = fit(&predicted, &fresh);
+    println!(
+        "quadruped (floating): {} base of {} standard parameters, condition number {:.1}, \
+         prediction RMS error {:.3} %",
+        base.len(),
+        base.standard_len(),
+        estimate.condition,
+        100.0 * fit.overall
+    );
     assert!(fit.overall <= 0.02, "RMS error {:.3} %", 100.0 * fit.overall);
 }
