@@ -223,8 +223,16 @@ fn a_floating_base_is_excited_and_identified_through_the_command() {
     let header = std::fs::read_to_string(&path).expect("written");
     let header = header.lines().next().expect("a header");
     assert!(header.contains("q15") && header.contains("tau14") && !header.contains("qd15"));
-    let json = rne(&["identify", robot, "--floating-base", file, "--json", "--validate", file])
-        .expect("identified");
+    let json = rne(&[
+        "identify",
+        robot,
+        "--floating-base",
+        file,
+        "--json",
+        "--validate",
+        file,
+    ])
+    .expect("identified");
     let json: serde_json::Value = serde_json::from_str(&json).expect("one JSON object");
     for p in json["base_parameters"].as_array().expect("a list") {
         let (estimate, model) = (

@@ -171,7 +171,10 @@ fn base_parameter_inverse_dynamics_costs_less_than_runtime_parameters() {
         );
         // The spec's named parameters are fewer: the IRB 140 names 45 (masses, box edges and
         // lengths; its inertias follow from them), PUMA 560 and Panda none (runtime = constant).
-        assert!(runtime_cost <= standard_cost, "{name}: runtime {runtime_cost}");
+        assert!(
+            runtime_cost <= standard_cost,
+            "{name}: runtime {runtime_cost}"
+        );
     }
 }
 
@@ -194,10 +197,18 @@ fn standard_parameters_along_the_undetermined_directions_change_nothing() {
             moved[d] += x;
         }
         for (&i, row) in base.independent.iter().zip(&base.k) {
-            moved[i] -= row.iter().zip(&delta_dependent).map(|(k, x)| k * x).sum::<f64>();
+            moved[i] -= row
+                .iter()
+                .zip(&delta_dependent)
+                .map(|(k, x)| k * x)
+                .sum::<f64>();
         }
         let (before, after) = (base.of(&pi), base.of(&moved));
-        assert!(rel_err(&after, &before) < 1e-12, "{}: π_b moved", robot.name);
+        assert!(
+            rel_err(&after, &before) < 1e-12,
+            "{}: π_b moved",
+            robot.name
+        );
         let mut other = constant.clone();
         let g = &mut other.model.graph;
         let standard: Vec<_> = moved.iter().map(|&x| g.constant(x)).collect();

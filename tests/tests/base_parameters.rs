@@ -108,8 +108,14 @@ fn the_fields_are_the_thesiss_groups_and_default_to_the_spec() {
         from_standard.link2_mcy,
         from_standard.link2_Izz,
     ];
-    assert!(rel_err(&fields, &mapped) < 1e-15, "from_standard = base_parameters");
-    assert!(rel_err(&fields, &thesis.map(|(v, _)| v)) < 1e-15, "from_standard(π̄) = default");
+    assert!(
+        rel_err(&fields, &mapped) < 1e-15,
+        "from_standard = base_parameters"
+    );
+    assert!(
+        rel_err(&fields, &thesis.map(|(v, _)| v)) < 1e-15,
+        "from_standard(π̄) = default"
+    );
 }
 
 #[test]
@@ -168,7 +174,11 @@ fn at_their_defaults_the_base_parameter_kernels_equal_the_constant_kernels() {
         close(dq.as_flattened(), eq.as_flattened(), "∂τ/∂q");
         close(dv.as_flattened(), ev.as_flattened(), "∂τ/∂q̇");
         let y_b = elbow_base::base_regressor(&p, &q, &qd, &qdd);
-        close(y_b.as_flattened(), elbow::base_regressor(&q, &qd, &qdd).as_flattened(), "Y_b");
+        close(
+            y_b.as_flattened(),
+            elbow::base_regressor(&q, &qd, &qdd).as_flattened(),
+            "Y_b",
+        );
         let other = elbow_base::Params {
             link2_Izz: 7.0,
             ..elbow_base::Params::default()
@@ -199,7 +209,10 @@ fn from_standard_gives_the_dynamics_of_any_masses_and_inertias() {
     let mut reference = Reference::new(&model);
     for (q, qd, qdd) in states(43, 200) {
         let tau = reference.inverse_dynamics(&q, &qd, &qdd).expect("sizes");
-        let e = rel_err(&elbow_base::inverse_dynamics(&p, &q, &qd, &qdd), tau.as_slice());
+        let e = rel_err(
+            &elbow_base::inverse_dynamics(&p, &q, &qd, &qdd),
+            tau.as_slice(),
+        );
         assert!(e < 1e-13, "τ: {e:e}");
         let m = reference.mass_matrix(&q).expect("sizes");
         let m: Vec<f64> = m.transpose().iter().copied().collect();

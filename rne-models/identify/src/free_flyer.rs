@@ -143,9 +143,21 @@ mod tests {
     fn rotation_of(q: &[f64]) -> [[f64; 3]; 3] {
         let [x, y, z, w] = [q[3], q[4], q[5], q[6]];
         [
-            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
-            [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
-            [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - z * w),
+                2.0 * (x * z + y * w),
+            ],
+            [
+                2.0 * (x * y + z * w),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - x * w),
+            ],
+            [
+                2.0 * (x * z - y * w),
+                2.0 * (y * z + x * w),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
         ]
     }
 
@@ -173,7 +185,9 @@ mod tests {
                 std::array::from_fn(|j| (0..3).map(|m| r[m][i] * rdot[m][j]).sum())
             });
             let omega = [skew[2][1], skew[0][2], skew[1][0]];
-            let pdot: Vec<f64> = (0..3).map(|i| (after.0[i] - before.0[i]) / (2.0 * h)).collect();
+            let pdot: Vec<f64> = (0..3)
+                .map(|i| (after.0[i] - before.0[i]) / (2.0 * h))
+                .collect();
             let body = transpose_apply(&r, [pdot[0], pdot[1], pdot[2]]);
             for i in 0..3 {
                 assert!((omega[i] - v[3 + i]).abs() < 1e-8, "ω at t = {t}");
@@ -181,7 +195,11 @@ mod tests {
             }
             for i in 0..v.len() {
                 let rate = (after.1[i] - before.1[i]) / (2.0 * h);
-                assert!((rate - a[i]).abs() < 1e-7, "a[{i}] at t = {t}: {rate} vs {}", a[i]);
+                assert!(
+                    (rate - a[i]).abs() < 1e-7,
+                    "a[{i}] at t = {t}: {rate} vs {}",
+                    a[i]
+                );
             }
         }
     }

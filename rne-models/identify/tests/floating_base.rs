@@ -150,5 +150,9 @@ fn a_floating_base_is_identified_from_a_noisy_excitation() {
         estimate.condition,
         100.0 * fit.overall
     );
-    assert!(fit.overall <= 0.02, "RMS error {:.3} %", 100.0 * fit.overall);
+    assert!(
+        fit.overall <= 0.02,
+        "RMS error {:.3} %",
+        100.0 * fit.overall
+    );
 }
