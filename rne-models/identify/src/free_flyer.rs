@@ -193,12 +193,11 @@ mod tests {
                 assert!((omega[i] - v[3 + i]).abs() < 1e-8, "ω at t = {t}");
                 assert!((body[i] - v[i]).abs() < 1e-8, "v at t = {t}");
             }
-            for i in 0..v.len() {
+            for (i, &ai) in a.iter().enumerate() {
                 let rate = (after.1[i] - before.1[i]) / (2.0 * h);
                 assert!(
-                    (rate - a[i]).abs() < 1e-7,
-                    "a[{i}] at t = {t}: {rate} vs {}",
-                    a[i]
+                    (rate - ai).abs() < 1e-7,
+                    "a[{i}] at t = {t}: {rate} vs {ai}"
                 );
             }
         }
