@@ -143,6 +143,11 @@ pub fn generate(
             return Err(CodegenError::ParameterName(bad.name.clone()));
         }
     }
+    if scene.parameters == ParameterMode::Base && !model.graph.symbols().parameters().is_empty() {
+        return Err(CodegenError::SymbolicBaseParameters {
+            robot: source.to_owned(),
+        });
+    }
     let mut dynamics = SymbolicDynamics::new(&model);
     if scene.zero_velocities {
         dynamics = dynamics.at_rest();

@@ -52,6 +52,29 @@ fn planar_elbow_base_parameters() {
     ));
 }
 
+/// Base parameters are found at numeric geometry: a model read with symbolic parameters is
+/// an error naming the robot, not a panic.
+#[test]
+fn base_parameters_of_a_model_with_symbolic_parameters_are_an_error() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/planar-elbow.toml");
+    let symbolic = Scene {
+        parameters: ParameterMode::Runtime,
+        ..Scene::default()
+    };
+    let model = read_robot(&path, "planar-elbow.toml", &symbolic).expect("the robot loads");
+    let base = Scene {
+        parameters: ParameterMode::Base,
+        ..Scene::default()
+    };
+    let error = generate(&model, &base, "planar-elbow.toml").expect_err("symbolic geometry");
+    assert!(
+        error
+            .to_string()
+            .starts_with("planar-elbow.toml: `parameters: base` needs"),
+        "{error}"
+    );
+}
+
 #[test]
 fn puma560_inverse_and_forward_dynamics() {
     insta::assert_snapshot!(emitted(
