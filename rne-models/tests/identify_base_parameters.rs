@@ -127,13 +127,13 @@ fn friction_and_armature_columns_keep_count_and_rank_equal() {
 }
 
 /// PUMA 560, the 60 standard inertial parameters (10 per link; no motor inertia, no
-/// friction): 36 base parameters, the count of M. Gautier, "Numerical calculation of the base
-/// inertial parameters of robots", Journal of Robotic Systems 8(4):485–506, 1991, whose
-/// application is this robot (docs/identification.md says what of it could be checked). The
-/// same count follows from Gautier and Khalil's regrouping rules ("Direct calculation of minimum set of
-/// inertial parameters of serial robots", IEEE Trans. Robotics and Automation 6(3), 1990):
-/// each revolute link j regroups YY_j, MZ_j and M_j onto its parent (60 − 6·3 = 42), and of
-/// link 1, turning about the vertical, only ZZR_1 remains (42 − 6 = 36).
+/// friction): 36 base parameters. M. Gautier, "Numerical calculation of the base inertial
+/// parameters of robots", Journal of Robotic Systems 8(4):485–506, 1991, applies the method to
+/// this robot (its text could not be read here: docs/identification.md). The count follows
+/// from Gautier and Khalil's regrouping rules ("Direct calculation of minimum set of inertial
+/// parameters of serial robots", IEEE Trans. Robotics and Automation 6(3), 1990): each
+/// revolute link j regroups YY_j, MZ_j and M_j onto its parent (60 − 6·3 = 42), and of link 1,
+/// turning about the vertical, only ZZR_1 remains (42 − 6 = 36).
 #[test]
 fn puma560_has_the_published_36_base_parameters() {
     assert_eq!(check(&builtin("puma560"), "puma560"), 36);
