@@ -34,7 +34,8 @@
 //! `gravity: [0.0, 0.0, 0.0]` removes every gravity term, `lock: { q1: 0.0, "joint 8": 0.0 }`
 //! turns joints into constants, `velocities: zero` makes a static scene (q̇ = 0: no Coriolis
 //! or centrifugal terms), `parameters: runtime` reads the model parameters from a `Params`
-//! struct at run time, `scalar: f32 | generic` changes the scalar type (generic functions
+//! struct at run time (`parameters: base`: the base parameters, the identifiable combinations
+//! of masses and inertias, with `Params::from_standard`), `scalar: f32 | generic` changes the scalar type (generic functions
 //! take any [`Real`], e.g. [`DoubleDouble`] for ~32 digits), `base: floating` puts a
 //! free-flyer under the robot, `mimic: free` makes mimic followers joints of their own,
 //! `validation: strict` makes every warning about the robot file a compile error (by default

@@ -6,8 +6,7 @@ mod common;
 
 use common::state;
 use rne_codegen_core::{generate_from_path, Kernel, Scene};
-use rne_models::interpreted::Interpreted;
-use rne_models::kernels::Kernels;
+use rne_interpreted::{Interpreted, StateRef};
 use rne_symbolic::spec::{load_robot, LoadOptions};
 
 rne_codegen::derive_dynamics! {
@@ -64,7 +63,19 @@ fn split_kernels_equal_their_programs_bit_for_bit() {
         let (q, qd): ([f64; 20], [f64; 20]) = (q.try_into().unwrap(), qd.try_into().unwrap());
         assert_eq!(
             bits(chain::coriolis_matrix(&q, &qd).concat()),
-            bits(interpreted.coriolis_matrix(&q, &qd).unwrap().concat()),
+            bits(
+                interpreted
+                    .evaluate(
+                        Kernel::CoriolisMatrix,
+                        StateRef {
+                            q: &q,
+                            qd: &qd,
+                            qdd: &[],
+                            tau: &[]
+                        }
+                    )
+                    .unwrap()
+            ),
             "C"
         );
         let generic = chain_generic::coriolis_matrix(&chain_generic::Params::default(), &q, &qd);
@@ -75,7 +86,18 @@ fn split_kernels_equal_their_programs_bit_for_bit() {
         );
         assert_eq!(
             chain::potential_energy(&q).to_bits(),
-            interpreted.potential_energy(&q).unwrap().to_bits(),
+            interpreted
+                .evaluate(
+                    Kernel::PotentialEnergy,
+                    StateRef {
+                        q: &q,
+                        qd: &[],
+                        qdd: &[],
+                        tau: &[]
+                    }
+                )
+                .unwrap()[0]
+                .to_bits(),
             "V"
         );
     }

@@ -105,7 +105,8 @@ impl Builder {
         self
     }
 
-    /// Constant (folded) or runtime (`Params`) parameters.
+    /// Constant (folded) or runtime parameters: the spec's (`Params`), or the base parameters
+    /// (`Params` of `BASE_PARAMETERS`, the macro's `parameters: base`).
     pub fn parameters(mut self, mode: ParameterMode) -> Builder {
         self.scene.parameters = mode;
         self

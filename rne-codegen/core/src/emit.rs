@@ -427,10 +427,10 @@ impl Emitter<'_> {
         }
     }
 
-    /// `p: &Params,` with runtime parameters.
+    /// `p: &Params,` with runtime or base parameters.
     fn params(&self) -> TokenStream {
         match self.ctx.parameters {
-            ParameterMode::Runtime => quote!(p: &Params,),
+            ParameterMode::Runtime | ParameterMode::Base => quote!(p: &Params,),
             ParameterMode::Constant => quote!(),
         }
     }
@@ -454,7 +454,7 @@ impl Emitter<'_> {
             .map(|input| Ident::new(input.name(), Span::call_site()))
             .collect();
         let param = match self.ctx.parameters {
-            ParameterMode::Runtime => quote!(p,),
+            ParameterMode::Runtime | ParameterMode::Base => quote!(p,),
             ParameterMode::Constant => quote!(),
         };
         let zero = match self.ctx.scalar {

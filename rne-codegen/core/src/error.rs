@@ -28,6 +28,13 @@ pub enum CodegenError {
     /// A joint is locked twice.
     #[error("joint `{0}` is locked twice")]
     LockedTwice(String),
+    /// `parameters: base` for a model read with symbolic parameters: the base parameters are
+    /// found at numeric geometry.
+    #[error("{robot}: `parameters: base` needs the robot read with numeric parameters (its base parameters are found at its geometry)")]
+    SymbolicBaseParameters {
+        /// The robot file.
+        robot: String,
+    },
     /// The gravity vector has a NaN or infinite component.
     #[error("gravity must be finite, got {0:?}")]
     Gravity([f64; 3]),

@@ -50,6 +50,7 @@ mod linear;
 mod load;
 mod model_type;
 mod module;
+mod params;
 mod program;
 mod scene;
 mod shape;

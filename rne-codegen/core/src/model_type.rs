@@ -97,7 +97,7 @@ impl ModelType<'_> {
                 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
                 pub struct Model;
             },
-            ParameterMode::Runtime => quote! {
+            ParameterMode::Runtime | ParameterMode::Base => quote! {
                 #[doc = "This robot's dynamics with its parameters, as a value implementing the runtime's `Dynamics` trait. `Default` holds the spec's parameters."]
                 #[derive(Clone, Debug, Default, PartialEq)]
                 pub struct Model {
@@ -147,7 +147,7 @@ impl ModelType<'_> {
                     }
                 }
             },
-            ParameterMode::Runtime => quote! {
+            ParameterMode::Runtime | ParameterMode::Base => quote! {
                 #[doc = "This robot's dynamics in scalar `T` with its parameters, as a value implementing the runtime's `Dynamics` trait. `Default` holds the spec's parameters."]
                 pub struct Model<T = f64> {
                     #[doc = "The parameters every kernel reads."]
@@ -189,7 +189,7 @@ impl ModelType<'_> {
             .collect();
         let args = kernel.inputs().iter().map(|&input| argument(input, scalar));
         let params = match self.parameters {
-            ParameterMode::Runtime => quote!(&self.params,),
+            ParameterMode::Runtime | ParameterMode::Base => quote!(&self.params,),
             ParameterMode::Constant => quote!(),
         };
         let ret = return_type(kernel, scalar);

@@ -17,6 +17,13 @@ pub enum ParameterMode {
     /// Read at run time from a generated `Params` struct whose `Default` holds the spec's
     /// values; every function takes `p: &Params` first.
     Runtime,
+    /// Runtime parameters that are the base parameters (`BASE_PARAMETERS`): the identifiable
+    /// combinations of the standard ones, found at the spec's geometry. `Params::default()`
+    /// holds the base parameters of the spec's masses and inertias,
+    /// `Params::from_standard(&π)` those of any standard parameters, and every function is
+    /// an exact function of them ([`rne_symbolic::SymbolicDynamics::in_base_parameters`]);
+    /// `potential_energy` is exact up to a constant, which the base parameters do not fix.
+    Base,
 }
 
 /// The scalar type of the generated functions.

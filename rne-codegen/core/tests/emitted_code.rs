@@ -3,15 +3,21 @@
 
 use std::path::PathBuf;
 
-use rne_codegen_core::{generate, read_robot, Kernel, Scene};
+use rne_codegen_core::{generate, read_robot, Kernel, ParameterMode, Scene};
 
 /// The formatted module generated for `robots/<file>` with `outputs`.
 fn emitted(file: &str, outputs: &[Kernel]) -> String {
+    emitted_with(file, outputs, ParameterMode::Constant)
+}
+
+/// The same with `parameters`.
+fn emitted_with(file: &str, outputs: &[Kernel], parameters: ParameterMode) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/robots")
         .join(file);
     let scene = Scene {
         outputs: outputs.to_vec(),
+        parameters,
         ..Scene::default()
     };
     let model = read_robot(&path, file, &scene).expect("the robot loads");
@@ -32,6 +38,41 @@ fn planar_elbow_control_and_identification_kernels() {
         .filter(|k| !Kernel::DYNAMICS.contains(k))
         .collect();
     insta::assert_snapshot!(emitted("planar-elbow.toml", &control));
+}
+
+/// `parameters: base`: the `Params` of the six base parameters (the thesis's groups of
+/// (4.45)–(4.47), `from_standard` regrouping m2 with l1 = 0.3 and l1² = 0.09) and the
+/// dynamics as functions of them alone.
+#[test]
+fn planar_elbow_base_parameters() {
+    insta::assert_snapshot!(emitted_with(
+        "planar-elbow.toml",
+        &Kernel::DYNAMICS,
+        ParameterMode::Base
+    ));
+}
+
+/// Base parameters are found at numeric geometry: a model read with symbolic parameters is
+/// an error naming the robot, not a panic.
+#[test]
+fn base_parameters_of_a_model_with_symbolic_parameters_are_an_error() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/planar-elbow.toml");
+    let symbolic = Scene {
+        parameters: ParameterMode::Runtime,
+        ..Scene::default()
+    };
+    let model = read_robot(&path, "planar-elbow.toml", &symbolic).expect("the robot loads");
+    let base = Scene {
+        parameters: ParameterMode::Base,
+        ..Scene::default()
+    };
+    let error = generate(&model, &base, "planar-elbow.toml").expect_err("symbolic geometry");
+    assert!(
+        error
+            .to_string()
+            .starts_with("planar-elbow.toml: `parameters: base` needs"),
+        "{error}"
+    );
 }
 
 #[test]

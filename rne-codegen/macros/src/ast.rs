@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],
-//!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, parameters: constant|runtime,
+//!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, parameters: constant|runtime|base,
 //!                         scalar: f64|f32|generic, base: fixed|floating,
 //!                         mimic: constrained|free, validation: warn|strict,
 //!                         crate: ::path::to::rne_codegen }

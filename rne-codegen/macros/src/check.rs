@@ -218,9 +218,12 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
             ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
                 "constant" => scene.parameters = ParameterMode::Constant,
                 "runtime" => scene.parameters = ParameterMode::Runtime,
+                "base" => scene.parameters = ParameterMode::Base,
                 other => errors.push(
                     mode.span(),
-                    format!("unknown parameters mode `{other}`; expected `constant` or `runtime`"),
+                    format!(
+                        "unknown parameters mode `{other}`; expected `constant`, `runtime` or `base`"
+                    ),
                 ),
             },
             ("scalar", Value::Ident(scalar)) => match scalar.to_string().as_str() {
@@ -298,7 +301,7 @@ fn expected_shape(key: &str) -> String {
         "friction" => "expected `include` or `exclude`".into(),
         "forward_dynamics" => "expected `auto`, `aba` or `ldlt`".into(),
         "frames" => "expected a list of link names: `frames: [tool0, \"camera-link\"]`".into(),
-        "parameters" => "expected `constant` or `runtime`".into(),
+        "parameters" => "expected `constant`, `runtime` or `base`".into(),
         "validation" => "expected `warn` or `strict`".into(),
         "fma" => "expected `true` or `false`".into(),
         "crate" => {

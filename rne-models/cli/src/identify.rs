@@ -23,14 +23,17 @@ use rne_models::RobotSource;
 #[command(after_help = "\
 DATA is a CSV file whose first line names the columns q1..qN, qd1..qdN, qdd1..qddN, tau1..tauN \
 (N joints in the order `rne check MODEL` lists; any column order; an optional `t` is ignored; \
-lines starting with # are comments).
+lines starting with # are comments). With --floating-base: q1..q(N+7) (base position and \
+quaternion first), qd1..qd(N+6) and the others with the base's six entries first, tau1..tau6 \
+the wrench on the base; the excitation moves the base by six more Fourier series (x, y, z in m, \
+then angles about x, y', z'' in rad; the limits list them first).
 
 Examples:
   rne identify irb140 --excite excite.csv --noise 0.01 --seed 1   # trajectory + simulated torques
   rne identify irb140 --excite fresh.csv --noise 0.01 --seed 2
   rne identify irb140 excite.csv --validate fresh.csv --plot torques.svg")]
 pub struct IdentifyArgs {
-    /// A built-in robot name or a path to a .toml spec or .urdf file (fixed base).
+    /// A built-in robot name or a path to a .toml spec or .urdf file.
     pub model: String,
     /// Measurements to identify from (CSV, see below).
     #[arg(required_unless_present = "excite")]
@@ -122,12 +125,6 @@ pub fn run(args: &IdentifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut reference = Reference::try_new(&numeric)
         .map_err(failed)?
         .with_friction(true);
-    if reference.nq() != reference.nv() {
-        return Err(CliError::Argument(format!(
-            "{}: rne identify needs a fixed-base robot",
-            source.display_name()
-        )));
-    }
     let base = BaseSet::find(&mut reference).map_err(failed)?;
     let name = source.display_name();
     match (&args.excite, &args.data) {
@@ -254,12 +251,12 @@ fn estimate(
     path: &Path,
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let n = reference.nv();
-    let data = Measurements::read(path, n).map_err(failed)?;
+    let (nq, n) = (reference.nq(), reference.nv());
+    let data = Measurements::read_sized(path, nq, n).map_err(failed)?;
     let estimate = identify(reference, base, &data, !args.unweighted).map_err(failed)?;
     let validation = match &args.validate {
         Some(fresh) => {
-            let fresh_data = Measurements::read(fresh, n).map_err(failed)?;
+            let fresh_data = Measurements::read_sized(fresh, nq, n).map_err(failed)?;
             let predicted =
                 predict(reference, base, &estimate.values, &fresh_data).map_err(failed)?;
             Some((fresh.as_path(), fresh_data, predicted))

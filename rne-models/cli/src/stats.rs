@@ -2,8 +2,8 @@
 
 use std::io::Write;
 
-use clap::Args;
-use rne_codegen::{generate, Kernel, Scene};
+use clap::{Args, ValueEnum};
+use rne_codegen::{generate, Kernel, ParameterMode, Scene};
 
 use super::model::ModelOptions;
 use super::CliError;
@@ -20,14 +20,35 @@ pub struct StatsArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// How parameters enter the kernels (the macro's `parameters:`).
+    #[arg(long, value_enum, default_value_t = Parameters::Constant)]
+    pub parameters: Parameters,
+}
+
+/// The macro's `parameters:` setting.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Parameters {
+    /// Folded as numbers.
+    Constant,
+    /// The spec's named parameters, read at run time.
+    Runtime,
+    /// The base parameters, read at run time.
+    Base,
 }
 
 /// Generates every kernel of DESIGN.md §4 and reports its cost.
 pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = args.options.load(&source, false)?;
+    let model = args
+        .options
+        .load(&source, args.parameters == Parameters::Runtime)?;
     let scene = Scene {
         outputs: Kernel::ALL.to_vec(),
+        parameters: match args.parameters {
+            Parameters::Constant => ParameterMode::Constant,
+            Parameters::Runtime => ParameterMode::Runtime,
+            Parameters::Base => ParameterMode::Base,
+        },
         ..args.options.scene()
     };
     let module = generate(&model, &scene, &source.display_name())?;

@@ -193,3 +193,58 @@ fn excite_then_identify_through_the_command() {
     assert_eq!(lines[0], "b1 = m1·cx1 + 0.3·m2  # = 6.75");
     assert_eq!(lines[2], "b3 = I1zz + 0.09·m2   # = 1.807962");
 }
+
+/// `--floating-base`: the quadruped fixture on a free-flyer is excited (base and legs) and
+/// identified through the command, from data of NQ = 15 positions and NV = 14 rates and forces.
+#[test]
+fn a_floating_base_is_excited_and_identified_through_the_command() {
+    let robot = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../corpus/tests/fixtures/quadruped.urdf"
+    );
+    let dir = std::env::temp_dir().join(format!("rne-floating-{}", std::process::id()));
+    let path = dir.join("quadruped.csv");
+    let file = path.to_str().expect("utf-8 path");
+    let limits = "0.3,0.3,0.3,0.8,0.8,0.8,1.2,1.2,1.2,1.2,1.2,1.2,1.2,1.2";
+    rne(&[
+        "identify",
+        robot,
+        "--floating-base",
+        "--excite",
+        file,
+        "--iterations",
+        "10",
+        "--noise",
+        "0.001",
+        "--q-limit",
+        limits,
+    ])
+    .expect("excitation written");
+    let header = std::fs::read_to_string(&path).expect("written");
+    let header = header.lines().next().expect("a header");
+    assert!(header.contains("q15") && header.contains("tau14") && !header.contains("qd15"));
+    let json = rne(&[
+        "identify",
+        robot,
+        "--floating-base",
+        file,
+        "--json",
+        "--validate",
+        file,
+    ])
+    .expect("identified");
+    let json: serde_json::Value = serde_json::from_str(&json).expect("one JSON object");
+    for p in json["base_parameters"].as_array().expect("a list") {
+        let (estimate, model) = (
+            p["estimate"].as_f64().unwrap(),
+            p["model"].as_f64().unwrap(),
+        );
+        let sigma = p["std"].as_f64().unwrap();
+        assert!(
+            (estimate - model).abs() <= 0.02 * model.abs() + 3.0 * sigma,
+            "{p}"
+        );
+    }
+    assert!(json["validation"]["relative_rms"].as_f64().unwrap() < 0.002);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -2,6 +2,8 @@
 //!
 //! The first line names the columns: `q1 … qN`, `qd1 … qdN`, `qdd1 … qddN`, `tau1 … tauN`
 //! for the N joints in the model's joint order (`rne check MODEL` lists it), in any order, and
+//! on a floating base `q1 … q(NV+1)` and `qd1 … qdNV` (DESIGN.md §4's layout: the base's
+//! position and quaternion, its velocity, acceleration and wrench first), and
 //! optionally `t` (time, s), which identification ignores. Every other line is one sample of
 //! numbers separated by commas. Blank lines and lines starting with `#` are skipped. Errors
 //! name the file, the line and the column.
@@ -29,7 +31,9 @@ pub struct Sample {
 /// A joint trajectory of `joints` joints.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurements {
-    /// Number of joints.
+    /// Number of positions per sample (NQ: `joints`, or `joints + 1` on a floating base).
+    pub positions: usize,
+    /// Number of joints: rates, accelerations and forces per sample (NV).
     pub joints: usize,
     /// The samples in order.
     pub samples: Vec<Sample>,
@@ -39,32 +43,54 @@ pub struct Measurements {
 const SIGNALS: [&str; 4] = ["q", "qd", "qdd", "tau"];
 
 /// Where column `name` goes: `Some(None)` for time, `Some(Some((signal, joint)))` for a
-/// signal of a joint, `None` if it is not a column of N-joint data.
-fn column_of(name: &str, joints: usize) -> Option<Option<(usize, usize)>> {
+/// signal of a joint, `None` if it is not a column of data of these `sizes` (per signal).
+fn column_of(name: &str, sizes: [usize; 4]) -> Option<Option<(usize, usize)>> {
     if name == "t" {
         return Some(None);
     }
     // Longest prefix first: `qdd3` is not `qd` of joint `d3`.
     [2, 3, 1, 0].into_iter().find_map(|s| {
         let joint: usize = name.strip_prefix(SIGNALS[s])?.parse().ok()?;
-        (1..=joints)
+        (1..=sizes[s])
             .contains(&joint)
             .then_some(Some((s, joint - 1)))
     })
 }
 
 impl Measurements {
-    /// Reads the CSV file `path` of data for `joints` joints.
+    /// Reads the CSV file `path` of data for `joints` joints (a fixed base).
     pub fn read(path: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
+        Measurements::read_sized(path, joints, joints)
+    }
+
+    /// Reads the CSV file `path` of data with `positions` entries of q and `joints` of the
+    /// other signals (NQ and NV).
+    pub fn read_sized(
+        path: &Path,
+        positions: usize,
+        joints: usize,
+    ) -> Result<Measurements, IdentifyError> {
         let text = std::fs::read_to_string(path).map_err(|source| IdentifyError::Io {
             file: path.to_path_buf(),
             source,
         })?;
-        Measurements::parse(&text, path, joints)
+        Measurements::parse_sized(&text, path, positions, joints)
     }
 
     /// Parses CSV `text` (from `file`, for messages) of data for `joints` joints.
     pub fn parse(text: &str, file: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
+        Measurements::parse_sized(text, file, joints, joints)
+    }
+
+    /// Parses CSV `text` (from `file`, for messages) of data with `positions` entries of q and
+    /// `joints` of the other signals.
+    pub fn parse_sized(
+        text: &str,
+        file: &Path,
+        positions: usize,
+        joints: usize,
+    ) -> Result<Measurements, IdentifyError> {
+        let sizes = [positions, joints, joints, joints];
         let error =
             |line: usize, column: Option<(usize, String)>, message: String| IdentifyError::Data {
                 file: file.to_path_buf(),
@@ -77,7 +103,7 @@ impl Measurements {
             .enumerate()
             .map(|(k, l)| (k + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-        let expected = expected_header(joints);
+        let expected = expected_header(sizes);
         let (header_line, header) = lines.next().ok_or_else(|| {
             error(
                 1,
@@ -87,10 +113,10 @@ impl Measurements {
         })?;
         let names: Vec<&str> = header.split(',').map(str::trim).collect();
         let mut slots = Vec::with_capacity(names.len());
-        let mut seen = vec![[false; 4]; joints];
+        let mut seen: Vec<Vec<bool>> = sizes.iter().map(|&n| vec![false; n]).collect();
         for (k, name) in names.iter().enumerate() {
             let column = Some((k + 1, (*name).to_owned()));
-            let slot = column_of(name, joints).ok_or_else(|| {
+            let slot = column_of(name, sizes).ok_or_else(|| {
                 error(
                     header_line,
                     column.clone(),
@@ -98,7 +124,7 @@ impl Measurements {
                 )
             })?;
             if let Some((s, j)) = slot {
-                if std::mem::replace(&mut seen[j][s], true) {
+                if std::mem::replace(&mut seen[s][j], true) {
                     return Err(error(header_line, column, "duplicate column".into()));
                 }
             } else if slots.contains(&None) {
@@ -106,9 +132,9 @@ impl Measurements {
             }
             slots.push(slot);
         }
-        let missing: Vec<String> = (0..joints)
+        let missing: Vec<String> = (0..positions.max(joints))
             .flat_map(|j| (0..4).map(move |s| (j, s)))
-            .filter(|&(j, s)| !seen[j][s])
+            .filter(|&(j, s)| j < sizes[s] && !seen[s][j])
             .map(|(j, s)| format!("{}{}", SIGNALS[s], j + 1))
             .collect();
         if !missing.is_empty() {
@@ -130,7 +156,7 @@ impl Measurements {
             }
             let mut sample = Sample {
                 t: None,
-                q: vec![0.0; joints],
+                q: vec![0.0; positions],
                 qd: vec![0.0; joints],
                 qdd: vec![0.0; joints],
                 tau: vec![0.0; joints],
@@ -157,7 +183,11 @@ impl Measurements {
                 "no samples after the header".into(),
             ));
         }
-        Ok(Measurements { joints, samples })
+        Ok(Measurements {
+            positions,
+            joints,
+            samples,
+        })
     }
 
     /// The CSV text: a header `t, q1…, qd1…, qdd1…, tau1…` (no `t` if the first sample has no
@@ -168,8 +198,9 @@ impl Measurements {
         if timed {
             header.push("t".into());
         }
-        for signal in SIGNALS {
-            header.extend((1..=self.joints).map(|j| format!("{signal}{j}")));
+        for (s, signal) in SIGNALS.iter().enumerate() {
+            let size = if s == 0 { self.positions } else { self.joints };
+            header.extend((1..=size).map(|j| format!("{signal}{j}")));
         }
         let mut out = header.join(",");
         out.push('\n');
@@ -216,10 +247,11 @@ impl Sample {
 }
 
 /// `q1..qN, qd1..qdN, qdd1..qddN, tau1..tauN (and optionally t)`.
-fn expected_header(joints: usize) -> String {
+fn expected_header(sizes: [usize; 4]) -> String {
     let list: Vec<String> = SIGNALS
         .iter()
-        .map(|s| format!("{s}1..{s}{joints}"))
+        .zip(sizes)
+        .map(|(s, n)| format!("{s}1..{s}{n}"))
         .collect();
     format!("{} (and optionally t)", list.join(", "))
 }

@@ -22,6 +22,7 @@
 use rne_reference::Reference;
 
 use crate::base::{BaseSet, State};
+use crate::free_flyer::free_flyer_state;
 use crate::least_squares::condition_number;
 use crate::random::Random;
 use crate::IdentifyError;
@@ -136,18 +137,16 @@ pub struct Excitation {
 /// Random candidates drawn before the evolution strategy starts from the best of them.
 const INITIAL_CANDIDATES: usize = 8;
 
-/// Designs an excitation trajectory for `reference` (fixed base) and its base set.
+/// Designs an excitation trajectory for `reference` and its base set: one Fourier series per
+/// entry of v, the first six moving a floating base ([`free_flyer_state`]; their limits are
+/// those of the base's position, m, and of its three angles, rad).
 pub fn design(
     reference: &mut Reference,
     base: &BaseSet,
     design: &Design,
 ) -> Result<Excitation, IdentifyError> {
     let n = reference.nv();
-    if reference.nq() != n {
-        return Err(IdentifyError::Model(
-            "excitation trajectories are for fixed-base robots".into(),
-        ));
-    }
+    let floating = reference.nq() != n;
     let limits = &design.limits;
     for (name, values) in [
         ("position", &limits.position),
@@ -169,12 +168,16 @@ pub fn design(
     let mut random = Random::new(design.seed);
     let mut cost = |x: &[f64]| -> Result<f64, IdentifyError> {
         let trajectory = decode(x, design);
-        let states = trajectory.states(trajectory.period, design.criterion_states);
+        let states: Vec<State> = trajectory
+            .states(trajectory.period, design.criterion_states)
+            .into_iter()
+            .map(|(_, s)| if floating { free_flyer_state(&s) } else { s })
+            .collect();
         let w = base.stack(
             reference,
             states
                 .iter()
-                .map(|(_, (q, qd, qdd))| (q.as_slice(), qd.as_slice(), qdd.as_slice())),
+                .map(|(q, qd, qdd)| (q.as_slice(), qd.as_slice(), qdd.as_slice())),
         )?;
         let c = condition_number(&w);
         Ok(if c.is_finite() { c.log10() } else { f64::MAX })

@@ -19,17 +19,15 @@ pub struct Fit {
     pub overall: f64,
 }
 
-/// Checks that `data` suit `reference`: a fixed base and one column set per joint.
+/// Checks that `data` suit `reference`: NQ positions and NV rates, accelerations and forces
+/// per sample.
 fn check(reference: &Reference, data: &Measurements) -> Result<(), IdentifyError> {
-    if reference.nq() != reference.nv() {
-        return Err(IdentifyError::Model(
-            "identification from joint data needs a fixed-base robot".into(),
-        ));
-    }
-    if data.joints != reference.nv() {
+    if data.joints != reference.nv() || data.positions != reference.nq() {
         return Err(IdentifyError::Model(format!(
-            "data of {} joints for a robot of {}",
+            "data of {} positions and {} velocities for a robot of {} and {}",
+            data.positions,
             data.joints,
+            reference.nq(),
             reference.nv()
         )));
     }

@@ -17,8 +17,12 @@
 //!
 //! # Limitations
 //!
-//! Fixed-base robots only for data and excitation (the base set itself is found for floating
-//! bases too). Positions, rates and accelerations are taken as exact: the noise model is on
+//! A floating base is identified from all NV equations of each sample, the wrench on the base
+//! included (force plates, or a simulator); Ayusawa, Venture and Nakamura ("Identifiability
+//! and identification of inertial parameters using the underactuated base-link dynamics for
+//! legged multibody systems", IJRR 33(3), 2014) show that the base's six equations alone
+//! determine the same base parameters, which this crate does not exploit. Positions, rates
+//! and accelerations are taken as exact: the noise model is on
 //! the torques alone, as in Gautier and Poignet's weighted least squares.
 #![deny(missing_docs)]
 
@@ -27,6 +31,7 @@ mod data;
 mod error;
 pub mod excitation;
 mod figure;
+mod free_flyer;
 mod identification;
 pub mod least_squares;
 pub mod names;
@@ -38,6 +43,7 @@ pub use data::{Measurements, Sample};
 pub use error::IdentifyError;
 pub use excitation::{design, Design, Excitation, FourierTrajectory, Limits};
 pub use figure::torque_figure;
+pub use free_flyer::{free_flyer_state, BASE_COORDINATES};
 pub use identification::{fit, identify, predict, Fit};
 pub use least_squares::Estimate;
 pub use simulate::{simulate, Simulation};

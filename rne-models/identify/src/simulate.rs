@@ -5,6 +5,7 @@ use rne_reference::Reference;
 
 use crate::data::{Measurements, Sample};
 use crate::excitation::FourierTrajectory;
+use crate::free_flyer::free_flyer_state;
 use crate::random::Random;
 use crate::IdentifyError;
 
@@ -23,19 +24,22 @@ pub struct Simulation {
 }
 
 /// The measurements a perfect sensor of q, q̇, q̈ and a noisy torque sensor would record along
-/// `trajectory`: τ = ID(q, q̇, q̈) + noise · RMS_j(τ_j) · N(0, 1) per joint.
+/// `trajectory`: τ = ID(q, q̇, q̈) + noise · RMS_j(τ_j) · N(0, 1) per joint. On a floating
+/// base the trajectory's first six coordinates move the base ([`free_flyer_state`]) and the
+/// first six "torques" are the wrench on it, as force plates or a simulator report it.
 pub fn simulate(
     reference: &mut Reference,
     trajectory: &FourierTrajectory,
     simulation: &Simulation,
 ) -> Result<Measurements, IdentifyError> {
     let n = trajectory.joints();
-    if n != reference.nv() || reference.nq() != n {
+    if n != reference.nv() {
         return Err(IdentifyError::Model(format!(
-            "a {n}-joint trajectory for a model of {} velocities",
+            "a trajectory of {n} coordinates for a model of {} velocities",
             reference.nv()
         )));
     }
+    let floating = reference.nq() != reference.nv();
     let count = (simulation.duration * simulation.rate).round();
     if !(count >= 1.0 && simulation.noise >= 0.0) {
         return Err(IdentifyError::Model(format!(
@@ -45,7 +49,12 @@ pub fn simulate(
     let mut samples = trajectory
         .states(simulation.duration, count as usize)
         .into_iter()
-        .map(|(t, (q, qd, qdd))| {
+        .map(|(t, coordinates)| {
+            let (q, qd, qdd) = if floating {
+                free_flyer_state(&coordinates)
+            } else {
+                coordinates
+            };
             let tau = reference.inverse_dynamics(&q, &qd, &qdd)?;
             Ok(Sample {
                 t: Some(t),
@@ -67,5 +76,9 @@ pub fn simulate(
             *tau += simulation.noise * rms * random.normal();
         }
     }
-    Ok(Measurements { joints: n, samples })
+    Ok(Measurements {
+        positions: reference.nq(),
+        joints: n,
+        samples,
+    })
 }

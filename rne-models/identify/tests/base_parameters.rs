@@ -127,15 +127,28 @@ fn friction_and_armature_columns_keep_count_and_rank_equal() {
 }
 
 /// PUMA 560, the 60 standard inertial parameters (10 per link; no motor inertia, no
-/// friction): 36 base parameters, as Gautier ("Numerical calculation of the base inertial
-/// parameters of robots", J. Robotic Systems 8(4), 1991) finds for this robot. The same count
-/// follows from Gautier and Khalil's regrouping rules ("Direct calculation of minimum set of
-/// inertial parameters of serial robots", IEEE Trans. Robotics and Automation 6(3), 1990):
-/// each revolute link j regroups YY_j, MZ_j and M_j onto its parent (60 − 6·3 = 42), and of
-/// link 1, turning about the vertical, only ZZR_1 remains (42 − 6 = 36).
+/// friction): 36 base parameters. M. Gautier, "Numerical calculation of the base inertial
+/// parameters of robots", Journal of Robotic Systems 8(4):485–506, 1991, applies the method to
+/// this robot (its text could not be read here: docs/identification.md). The count follows
+/// from Gautier and Khalil's regrouping rules ("Direct calculation of minimum set of inertial
+/// parameters of serial robots", IEEE Trans. Robotics and Automation 6(3), 1990): each
+/// revolute link j regroups YY_j, MZ_j and M_j onto its parent (60 − 6·3 = 42), and of link 1,
+/// turning about the vertical, only ZZR_1 remains (42 − 6 = 36).
 #[test]
 fn puma560_has_the_published_36_base_parameters() {
     assert_eq!(check(&builtin("puma560"), "puma560"), 36);
+}
+
+/// With a rotor inertia on every joint (the model Khalil and Dombre use for the Stäubli RX-90,
+/// the PUMA's geometry) four more: I_a1 acts only as ZZR_1 does (½ x q̇1²), and I_a2 as link 2's
+/// inertia about axis 2, along which its angular velocity is q̇2 alone (axis 1 ⟂ axis 2).
+#[test]
+fn puma560_with_rotor_inertias_has_40_base_parameters() {
+    let mut model = builtin("puma560");
+    for link in model.links.iter_mut().filter(|l| l.joint.is_some()) {
+        link.armature = Some(1e-3);
+    }
+    assert_eq!(check(&model, "puma560 with rotor inertias"), 40);
 }
 
 /// The planar elbow (thesis chapter 4, frames at the link ends, so each body's standard

@@ -14,6 +14,7 @@ use crate::motion::{JointMotion, LinkPlacement};
 
 use super::aba_frames::joint_frames;
 use super::articulated_inertia::{ArticulatedInertia, Spatial};
+use super::inertial_parameters::BodyParameters;
 
 fn split(x: Spatial) -> (Vec3, Vec3) {
     ([x[0], x[1], x[2]], [x[3], x[4], x[5]])
@@ -68,12 +69,14 @@ fn force_cross(g: &mut ExprGraph, a: Spatial, b: Spatial) -> Spatial {
 }
 
 /// q̈ = FD(q, q̇, u) of `model` by the articulated-body algorithm, with u the generalised forces
-/// `u`; `None` for a floating base or mimic couplings.
+/// `u`; `None` for a floating base or mimic couplings. The bodies' inertias are the links'
+/// unless `bodies` gives them (one per link).
 pub fn forward_dynamics(
     model: &mut RobotModel,
     motion: &JointMotion,
     u: &[Id],
     gravity: Vec3,
+    bodies: Option<&[BodyParameters]>,
 ) -> Option<Vec<Id>> {
     if model.is_floating() || model.has_couplings() {
         return None;
@@ -81,7 +84,7 @@ pub fn forward_dynamics(
     let n = model.links.len();
     let g = &mut model.graph;
     let links = &model.links;
-    let frames = joint_frames(g, links, motion);
+    let frames = joint_frames(g, links, motion, bodies);
     let zero = g.zero();
 
     // Pass 1, outwards: velocities, velocity-product accelerations c, bias forces.

@@ -14,6 +14,7 @@ use crate::model::{axis_angle_rotation, JointKind, Link};
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
 use super::articulated_inertia::{ArticulatedInertia, Spatial};
+use super::inertial_parameters::BodyParameters;
 
 /// One link in its joint frame.
 pub(super) struct JointFrame {
@@ -51,11 +52,13 @@ fn axis_frame(u: [f64; 3]) -> [[f64; 3]; 3] {
     std::array::from_fn(|i| [x[i], y[i], u[i]])
 }
 
-/// Every link in its joint frame, for the motion's coordinates.
+/// Every link in its joint frame, for the motion's coordinates; the bodies' inertias are the
+/// links' unless `bodies` gives them (one per link).
 pub(super) fn joint_frames(
     g: &mut ExprGraph,
     links: &[Link],
     motion: &JointMotion,
+    bodies: Option<&[BodyParameters]>,
 ) -> Vec<JointFrame> {
     let body = LinkPlacement::all(g, links, motion);
     let zero = g.zero();
@@ -101,8 +104,19 @@ pub(super) fn joint_frames(
                 _ => None,
             };
             let q_t = transpose(&q);
-            let com = g.mat_vec(&q_t, link.com);
-            let inertia = g.similarity(&q_t, &link.inertia);
+            let inertia = match bodies {
+                Some(bodies) => {
+                    let body = &bodies[i];
+                    let first_moment = g.mat_vec(&q_t, body.first_moment);
+                    let about = g.similarity(&q_t, &body.inertia);
+                    ArticulatedInertia::from_origin(g, body.mass, first_moment, &about)
+                }
+                None => {
+                    let com = g.mat_vec(&q_t, link.com);
+                    let inertia = g.similarity(&q_t, &link.inertia);
+                    ArticulatedInertia::rigid(g, link.mass, com, &inertia)
+                }
+            };
             let subspace = coordinate.and_then(|c| match link.kind {
                 JointKind::Revolute => {
                     Some(([axis[0], axis[1], axis[2], zero, zero, zero], c.variable))
@@ -118,7 +132,7 @@ pub(super) fn joint_frames(
                     joint,
                     attachment,
                 },
-                inertia: ArticulatedInertia::rigid(g, link.mass, com, &inertia),
+                inertia,
                 subspace,
             }
         })

@@ -68,6 +68,13 @@ impl ArticulatedInertia {
     /// (RBDA (2.63)), from the COM `com` and the inertia about the COM `inertia`.
     pub fn rigid(g: &mut ExprGraph, mass: Id, com: Vec3, inertia: &Mat3) -> ArticulatedInertia {
         let (h, about) = about_origin(g, mass, com, inertia);
+        ArticulatedInertia::from_origin(g, mass, h, &about)
+    }
+
+    /// The rigid-body inertia of mass `mass`, first moment `h` and inertia `about` about the
+    /// origin (RBDA (2.63)).
+    pub fn from_origin(g: &mut ExprGraph, mass: Id, h: Vec3, about: &Mat3) -> ArticulatedInertia {
+        let about = *about;
         let z = g.zero();
         ArticulatedInertia {
             a: about,

@@ -168,6 +168,34 @@ impl BaseParameters {
     }
 }
 
+/// Rust identifiers for parameter names, deterministically: every character other than an
+/// ASCII letter, digit or `_` becomes `_` (`link2.IzzR` → `link2_IzzR`), a name that does not
+/// start with a letter or `_` gets a `p_` in front, and a name met before gets `_2`, `_3`, ...
+/// until it is new.
+pub fn identifiers(names: &[String]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::with_capacity(names.len());
+    for name in names {
+        let mut ident: String = name
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        if !ident.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_') {
+            ident.insert_str(0, "p_");
+        }
+        if ident == "_" {
+            ident = "p_".to_owned();
+        }
+        let mut unique = ident.clone();
+        let mut k = 2;
+        while out.contains(&unique) {
+            unique = format!("{ident}_{k}");
+            k += 1;
+        }
+        out.push(unique);
+    }
+    out
+}
+
 /// A random configuration: uniform joint angles in [−π, π] and a random unit quaternion.
 fn random_configuration(random: &mut SplitMix, layout: StateLayout) -> Vec<f64> {
     let mut q = Vec::with_capacity(layout.nq());

@@ -41,6 +41,7 @@
 
 use super::crba::{self, Column, Composite};
 use super::energy;
+use super::inertial_parameters::BodyParameters;
 use crate::expr::{ExprGraph, Id, Vec3};
 use crate::model::RobotModel;
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
@@ -195,14 +196,18 @@ fn sum(g: &mut ExprGraph, a: &Composite, b: &Composite) -> Composite {
 
 /// C(q, q̇) of `model` at `motion` (NV × NV, row-major), by the recursion of the module
 /// documentation.
-pub fn coriolis_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
+pub fn coriolis_matrix(
+    model: &mut RobotModel,
+    motion: &JointMotion,
+    bodies: Option<&[BodyParameters]>,
+) -> Vec<Vec<Id>> {
     let n = model.links.len();
     let nv = model.state_layout().nv();
     let columns = crba::columns(model);
     let g = &mut model.graph;
     let links = &model.links;
     let placements = LinkPlacement::all(g, links, motion);
-    let composites = crba::composite_bodies(g, links, &placements);
+    let composites = crba::composite_bodies(g, links, &placements, bodies);
     let velocities: Vec<Twist> = energy::link_velocities(g, links, motion)
         .into_iter()
         .map(|(angular, linear)| Twist { angular, linear })
@@ -212,12 +217,16 @@ pub fn coriolis_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<
     let mut momenta: Vec<Wrench> = links
         .iter()
         .zip(&velocities)
-        .map(|(link, &v)| {
-            let (first_moment, inertia) = crba::about_origin(g, link.mass, link.com, &link.inertia);
+        .enumerate()
+        .map(|(i, (link, &v))| {
+            let body = match bodies {
+                Some(bodies) => bodies[i],
+                None => BodyParameters::of_link(g, link),
+            };
             let body = Composite {
-                mass: link.mass,
-                first_moment,
-                inertia,
+                mass: body.mass,
+                first_moment: body.first_moment,
+                inertia: body.inertia,
             };
             apply(g, &body, v)
         })

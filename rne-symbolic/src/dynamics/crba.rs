@@ -12,6 +12,8 @@ use crate::expr::{ExprGraph, Id, Mat3, Vec3};
 use crate::model::{JointKind, Link, RobotModel};
 use crate::motion::{JointMotion, LinkPlacement};
 
+use super::inertial_parameters::BodyParameters;
+
 /// Mass, first moment h = m c and inertia about the body origin, in body-frame axes.
 #[derive(Copy, Clone, Debug)]
 pub(super) struct Composite {
@@ -161,21 +163,28 @@ pub(super) fn columns(model: &mut RobotModel) -> Vec<Vec<Column>> {
 }
 
 /// The composite body of every link (the link and everything it carries), in its body frame,
-/// accumulated leaves first: children come after their parent (Featherstone, RBDA §6.2).
+/// accumulated leaves first: children come after their parent (Featherstone, RBDA §6.2). The
+/// bodies' inertias are the links' unless `bodies` gives them (one per link,
+/// [`BodyParameters`]).
 pub(super) fn composite_bodies(
     g: &mut ExprGraph,
     links: &[Link],
     placements: &[LinkPlacement],
+    bodies: Option<&[BodyParameters]>,
 ) -> Vec<Composite> {
     let n = links.len();
     let mut composites: Vec<Composite> = links
         .iter()
-        .map(|link| {
-            let (first_moment, inertia) = about_origin(g, link.mass, link.com, &link.inertia);
+        .enumerate()
+        .map(|(i, link)| {
+            let body = match bodies {
+                Some(bodies) => bodies[i],
+                None => BodyParameters::of_link(g, link),
+            };
             Composite {
-                mass: link.mass,
-                first_moment,
-                inertia,
+                mass: body.mass,
+                first_moment: body.first_moment,
+                inertia: body.inertia,
             }
         })
         .collect();
@@ -208,15 +217,20 @@ pub(super) fn composite_bodies(
 /// Entry (a, b) is `S_bᵀ I^c_i S_a` for column a of link i and column b of link i or of one of
 /// its ancestors. With mimic joints several links share a variable, and the entries of their
 /// coordinates are summed with the multipliers (M ← Jᵀ M J); armature adds `I_a m²` to the
-/// variable's diagonal entry.
-pub fn mass_matrix(model: &mut RobotModel, motion: &JointMotion) -> Vec<Vec<Id>> {
+/// variable's diagonal entry. The bodies' inertias are the links' unless `bodies` gives them
+/// (one per link, [`BodyParameters`]).
+pub fn mass_matrix(
+    model: &mut RobotModel,
+    motion: &JointMotion,
+    bodies: Option<&[BodyParameters]>,
+) -> Vec<Vec<Id>> {
     let n = model.links.len();
     let nv = model.state_layout().nv();
     let columns = columns(model);
     let g = &mut model.graph;
     let links = &model.links;
     let placements = LinkPlacement::all(g, links, motion);
-    let composites = composite_bodies(g, links, &placements);
+    let composites = composite_bodies(g, links, &placements, bodies);
 
     // Columns: the momentum (n, f) of composite i for a unit rate of each of its columns,
     // carried down and projected on the columns of i and of every ancestor. `terms[a][b]`

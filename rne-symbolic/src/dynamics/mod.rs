@@ -4,6 +4,7 @@
 mod aba;
 mod aba_frames;
 mod articulated_inertia;
+mod base_dynamics;
 pub mod base_parameters;
 mod christoffel;
 mod coriolis;
@@ -11,6 +12,7 @@ mod crba;
 pub mod derivatives;
 mod energy;
 pub mod friction;
+pub mod inertial_parameters;
 mod kinematics;
 mod ldlt;
 pub mod regressor;
@@ -20,6 +22,7 @@ use crate::model::{Frame, RobotModel, StateLayout};
 use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
 use base_parameters::BaseParameters;
+use inertial_parameters::BodyParameters;
 
 /// A matrix of expressions, row-major.
 pub type Matrix = Vec<Vec<Id>>;
@@ -55,6 +58,9 @@ pub struct SymbolicDynamics {
     mass_matrix_inverse: Option<Vec<Vec<Id>>>,
     inverse_dynamics_derivatives: Option<(Matrix, Matrix)>,
     frames: Vec<Frame>,
+    /// The bodies' standard parameters when they replace the links' inertias
+    /// ([`Self::with_standard_parameters`]).
+    bodies: Option<Vec<BodyParameters>>,
 }
 
 impl SymbolicDynamics {
@@ -77,6 +83,7 @@ impl SymbolicDynamics {
             forward_dynamics: None,
             mass_matrix_inverse: None,
             inverse_dynamics_derivatives: None,
+            bodies: None,
         }
     }
 
@@ -167,7 +174,12 @@ impl SymbolicDynamics {
 
     fn run(&mut self, qd: Vec<Id>, qdd: Vec<Id>, gravity: Vec3) -> NewtonEuler {
         let motion = self.motion(qd, qdd);
-        newton_euler(&mut self.model, &motion, gravity)
+        match &self.bodies {
+            Some(bodies) => {
+                inertial_parameters::inverse_dynamics(&mut self.model, &motion, gravity, bodies)
+            }
+            None => newton_euler(&mut self.model, &motion, gravity),
+        }
     }
 
     fn full(&mut self) -> &NewtonEuler {
@@ -230,7 +242,7 @@ impl SymbolicDynamics {
         }
         let zeros = self.zeros();
         let motion = self.motion(zeros.clone(), zeros);
-        let m = crba::mass_matrix(&mut self.model, &motion);
+        let m = crba::mass_matrix(&mut self.model, &motion, self.bodies.as_deref());
         self.mass_matrix = Some(m.clone());
         m
     }
@@ -288,7 +300,7 @@ impl SymbolicDynamics {
         let qd = self.velocity_symbols(Symbol::Velocity);
         let zeros = self.zeros();
         let motion = self.motion(qd, zeros);
-        coriolis::coriolis_matrix(&mut self.model, &motion)
+        coriolis::coriolis_matrix(&mut self.model, &motion, self.bodies.as_deref())
     }
 
     /// The same C from its definition, C_ij = Σ_k Γ_ijk q̇_k with the O(n³) Christoffel symbols
@@ -320,7 +332,10 @@ impl SymbolicDynamics {
         let qd = self.velocity_symbols(Symbol::Velocity);
         let zeros = self.zeros();
         let motion = self.motion(qd, zeros);
-        let t = energy::kinetic_energy(&mut self.model, &motion);
+        let t = match &self.bodies {
+            Some(bodies) => inertial_parameters::kinetic_energy(&mut self.model, &motion, bodies),
+            None => energy::kinetic_energy(&mut self.model, &motion),
+        };
         self.kinetic_energy = Some(t);
         t
     }
@@ -332,7 +347,10 @@ impl SymbolicDynamics {
         }
         let zeros = self.zeros();
         let motion = self.motion(zeros.clone(), zeros);
-        let v = energy::potential_energy(&mut self.model, &motion);
+        let v = match &self.bodies {
+            Some(bodies) => inertial_parameters::potential_energy(&mut self.model, &motion, bodies),
+            None => energy::potential_energy(&mut self.model, &motion),
+        };
         self.potential_energy = Some(v);
         v
     }
@@ -535,14 +553,16 @@ impl SymbolicDynamics {
             .iter()
             .map(|column| match *column {
                 regressor::RegressorColumn::Body { link, parameter } => {
-                    let l = &self.model.links[link];
-                    let (h, inertia) = crba::about_origin(g, l.mass, l.com, &l.inertia);
+                    let body = match &self.bodies {
+                        Some(bodies) => bodies[link],
+                        None => BodyParameters::of_link(g, &self.model.links[link]),
+                    };
                     match parameter {
-                        0 => l.mass,
-                        1..=3 => h[parameter - 1],
+                        0 => body.mass,
+                        1..=3 => body.first_moment[parameter - 1],
                         p => {
                             let (a, b) = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)][p - 4];
-                            inertia[a][b]
+                            body.inertia[a][b]
                         }
                     }
                 }
@@ -565,7 +585,8 @@ impl SymbolicDynamics {
         let zeros = self.zeros();
         let motion = self.motion(qd, zeros);
         let gravity = self.model.gravity;
-        aba::forward_dynamics(&mut self.model, &motion, &u, gravity)
+        let bodies = self.bodies.as_deref();
+        aba::forward_dynamics(&mut self.model, &motion, &u, gravity, bodies)
     }
 }
 
