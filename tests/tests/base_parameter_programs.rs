@@ -71,7 +71,7 @@ fn builtin(name: &str) -> RobotModel {
 fn quadruped() -> RobotModel {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../rne-models/tests/fixtures/corpus/quadruped.urdf"
+        "/../rne-models/corpus/tests/fixtures/quadruped.urdf"
     );
     let text = std::fs::read_to_string(path).expect("the fixture exists");
     let mut model = parse_robot(&text, path, RobotFormat::Urdf, &LoadOptions::default())
