@@ -9,7 +9,9 @@
 //   jdqd_fk_ns        the same quantity from forwardKinematics(q, v, 0) and
 //                     getClassicalAcceleration(LOCAL_WORLD_ALIGNED) of every joint
 //   regressor_ns      computeJointTorqueRegressor
-//   jdqd_maxdiff      max abs difference of the two J-dot q-dot ways over the states
+//   jdqd_maxdiff      max abs difference of the two J-dot q-dot ways over the states: not 0,
+//                     the time-variation product is not the classical acceleration of the
+//                     origin; jdqd_fk_ns is (what rne's frame_jacobian_dot_qd returns)
 // Input: the text model of dump.py (one line per joint: KIND [axis] parent R p mass com I).
 // States: std::mt19937(42), q = 3 U(-1, 1), v and a = U(-1, 1), 1024 of them cycled through;
 // each figure is the median over `reps` repetitions interleaved across the algorithms.

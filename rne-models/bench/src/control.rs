@@ -8,7 +8,7 @@
 //! double-double value of the same optimised programs, built here by
 //! [`Interpreted::with_kernels`] with the module's (default) scene.
 
-use rne_codegen::{Dynamics, Identification, Kernel, Kinematics};
+use rne_codegen::{Identification, Kernel, Kinematics};
 use rne_interpreted::Interpreted;
 use rne_models::generated::variants;
 
@@ -85,9 +85,13 @@ where
         out.clear();
         let (s, m) = (self.inputs.get(k), &self.model);
         match self.kernel {
-            Kernel::FrameJacobians => {
-                out.extend(m.frame_jacobians(&s.q).into_iter().flatten().flatten().flatten())
-            }
+            Kernel::FrameJacobians => out.extend(
+                m.frame_jacobians(&s.q)
+                    .into_iter()
+                    .flatten()
+                    .flatten()
+                    .flatten(),
+            ),
             Kernel::FrameJacobianDotQd => out.extend(
                 m.frame_jacobian_dot_qd(&s.q, &s.qd)
                     .into_iter()
@@ -138,7 +142,13 @@ where
                     Box::new(Calls::new(model, kernel, inputs.clone(), pool))
                 };
             let implementation = Implementation::Generated;
-            (kernel, Candidate { implementation, calls })
+            (
+                kernel,
+                Candidate {
+                    implementation,
+                    calls,
+                },
+            )
         })
         .collect())
 }

@@ -11,7 +11,7 @@
 //!   generated function on a pre-packed input: the floor) and `cg_X_maxdiff` (its largest
 //!   difference from the plain algorithm);
 //! - `tools/pinocchio/run_extra.sh ROBOT.urdf CALLS` of this repository (when present):
-//!   `jacobians_ns`, `jacobians_all_ns`, `jdqd_ns`, `regressor_ns`.
+//!   `jacobians_ns`, `jacobians_all_ns`, `jdqd_ns`, `jdqd_fk_ns`, `regressor_ns`.
 //!
 //! Each prints lines `name value`. For each robot every script runs [`RUNS`] times (`run_cg.sh`
 //! in the first [`PinocchioScript::codegen_runs`] of them): before rne's kernels of that robot
@@ -77,9 +77,15 @@ impl Peer {
                     ]
                 }))
                 .collect(),
-            Peer::Extra => ["jacobians_ns", "jacobians_all_ns", "jdqd_ns", "regressor_ns"]
-                .map(String::from)
-                .to_vec(),
+            Peer::Extra => [
+                "jacobians_ns",
+                "jacobians_all_ns",
+                "jdqd_ns",
+                "jdqd_fk_ns",
+                "regressor_ns",
+            ]
+            .map(String::from)
+            .to_vec(),
         }
     }
 }
@@ -154,8 +160,8 @@ pub const COMPARISONS: [Comparison; 10] = [
         quantity: "J̇ q̇ (all frames)",
         kernel: Kernel::FrameJacobianDotQd,
         plain: (
-            "computeJointJacobiansTimeVariation + dJ q̇ per joint",
-            "extra.jdqd_ns",
+            "forwardKinematics(q, q̇, 0) + getClassicalAcceleration per joint",
+            "extra.jdqd_fk_ns",
         ),
         codegen: None,
     },
@@ -206,6 +212,9 @@ pub struct PinocchioScript {
     pub calls: u64,
     /// `run_cg.sh` and its calls per measurement, unless skipped.
     pub codegen: Option<(PathBuf, u64)>,
+    /// In how many of the runs on each robot `run_cg.sh` takes part (the first ones): it
+    /// generates and compiles its code every time, minutes per robot.
+    pub codegen_runs: usize,
     /// `run_extra.sh` of this repository's `tools/pinocchio/`, if present.
     pub extra: Option<PathBuf>,
 }
@@ -376,9 +385,14 @@ mod tests {
         let bad = parse("rnea_ns x\ncrba_ns 2\naba_ns 3\nnle_ns 4\n", Peer::Plain).unwrap_err();
         assert!(bad.contains("rnea_ns"), "{bad}");
         let zero = CODEGEN_OUTPUT.replace("cg_rnea_ns ", "cg_rnea_ns 0 #");
-        assert!(parse(&zero, Peer::CodeGen).unwrap_err().contains("cg_rnea_ns"));
+        assert!(parse(&zero, Peer::CodeGen)
+            .unwrap_err()
+            .contains("cg_rnea_ns"));
         let exact = CODEGEN_OUTPUT.replace("cg_rnea_maxdiff ", "cg_rnea_maxdiff 0 #");
-        assert_eq!(parse(&exact, Peer::CodeGen).unwrap()["cg_rnea_maxdiff"], 0.0);
+        assert_eq!(
+            parse(&exact, Peer::CodeGen).unwrap()["cg_rnea_maxdiff"],
+            0.0
+        );
     }
 
     /// Each figure's median is over the runs that have it.
@@ -400,7 +414,11 @@ mod tests {
     fn comparisons_name_printed_figures() {
         let printed: Vec<String> = [Peer::Plain, Peer::CodeGen, Peer::Extra]
             .into_iter()
-            .flat_map(|p| p.required().into_iter().map(move |k| format!("{}.{k}", p.prefix())))
+            .flat_map(|p| {
+                p.required()
+                    .into_iter()
+                    .map(move |k| format!("{}.{k}", p.prefix()))
+            })
             .collect();
         for c in COMPARISONS {
             assert!(printed.contains(&c.plain.1.to_owned()), "{}", c.plain.1);

@@ -90,7 +90,12 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
         let kernels: Vec<_> = robot.rows.iter().map(|r| r.kernel).collect();
         assert_eq!(kernels, CONTROL, "{}: every control kernel", robot.robot);
         for row in &robot.rows {
-            assert!(row.timing.median() > 0.0, "{} {:?}: no time", robot.robot, row.kernel);
+            assert!(
+                row.timing.median() > 0.0,
+                "{} {:?}: no time",
+                robot.robot,
+                row.kernel
+            );
             assert!(
                 row.errors.states > 0 && row.errors.max_relative <= 1e-12,
                 "{} {:?}: max relative error {:e} above 1e-12",

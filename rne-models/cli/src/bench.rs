@@ -39,7 +39,11 @@ pub struct BenchArgs {
     pub codegen_runs: u8,
     /// The Jacobian and regressor timer (`tools/pinocchio/run_extra.sh` of this repository),
     /// run when the file exists.
-    #[arg(long, value_name = "RUN_EXTRA_SH", default_value = "tools/pinocchio/run_extra.sh")]
+    #[arg(
+        long,
+        value_name = "RUN_EXTRA_SH",
+        default_value = "tools/pinocchio/run_extra.sh"
+    )]
     pub pinocchio_extra: PathBuf,
     /// No progress lines on stderr.
     #[arg(long)]
