@@ -306,14 +306,17 @@ impl PinocchioScript {
     }
 }
 
-/// The figures of one run of `peer`'s script: every `name value` line whose value is a
-/// number; an error names a figure of [`Peer::required`] that is missing or not a positive
+/// The figures of one run of `peer`'s script: every `name value …` line whose first word
+/// after the name is a number; an error names a figure of [`Peer::required`] that is missing or not a positive
 /// number (differences, `_maxdiff`, may be 0).
 pub fn parse(output: &str, peer: Peer) -> Result<BTreeMap<String, f64>, String> {
     let figures: BTreeMap<String, f64> = output
         .lines()
         .filter_map(|line| line.trim().split_once(' '))
-        .filter_map(|(name, value)| Some((name.to_owned(), value.trim().parse::<f64>().ok()?)))
+        .filter_map(|(name, rest)| {
+            let value = rest.split_whitespace().next()?.parse::<f64>().ok()?;
+            Some((name.to_owned(), value))
+        })
         .collect();
     for key in peer.required() {
         let value = figures.get(&key).copied();

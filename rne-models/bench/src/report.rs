@@ -180,7 +180,12 @@ impl Report {
         let (calls, runs) = (first.calls, first.runs);
         let codegen = match first.codegen_calls {
             Some(c) => format!(
-                "; `run_cg.sh ROBOT.urdf {c}` beside it (in {} of the runs) times Pinocchio's analytical derivatives,                  `computeMinverse` and the CppADCodeGen code of each algorithm (CG: through                  `CodeGenX::evalFunction`, what a Pinocchio user calls; CG floor: the generated                  function on a pre-packed input; gcc -Ofast, median of 5 interleaved                  repetitions); max diff is the generated code's largest difference from the plain                  algorithm over 64 states",
+                "; `run_cg.sh ROBOT.urdf {c}` beside it (in {} of the runs) times Pinocchio's \
+                 analytical derivatives, `computeMinverse` and the CppADCodeGen code of each \
+                 algorithm (CG: through `CodeGenX::evalFunction`, what a Pinocchio user calls; CG \
+                 floor: the generated function on a pre-packed input; gcc -Ofast, median of 5 \
+                 interleaved repetitions); max diff is the generated code's largest difference \
+                 from the plain algorithm over 64 states",
                 first.codegen_runs
             ),
             None => "; `run_cg.sh` was skipped".to_owned(),
