@@ -1,6 +1,6 @@
 //! `rne bench`: run time against error, for the kernels and for the integrators (DESIGN.md §5).
 //!
-//! Three studies, each written as markdown tables and work-precision charts by [`Report`]:
+//! The studies, each written as markdown tables (and work-precision charts) by [`Report`]:
 //! - **Kernels** ([`kernels`]): for every built-in robot and for inverse dynamics, mass
 //!   matrix, bias torques and forward dynamics, every implementation rne offers
 //!   ([`Implementation`]: generated `f64`, `f32`, runtime parameters, the scene variants of
@@ -132,7 +132,7 @@ impl Effort {
     }
 }
 
-/// Runs the three studies with `effort`, and the comparison with Pinocchio when `pinocchio`
+/// Runs the studies with `effort`, and the comparison with Pinocchio when `pinocchio`
 /// names its script (URDF copies go to `scratch`), calling `progress` with the name of each
 /// step as it starts.
 pub fn run(
