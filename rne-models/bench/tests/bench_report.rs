@@ -80,7 +80,7 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
         }
     }
 
-    let urdf = ["ur5", "panda-arm", "panda"];
+    let urdf = ["ur5", "panda", "panda-arm"];
     assert_eq!(
         report.control.iter().map(|c| c.robot).collect::<Vec<_>>(),
         urdf,
