@@ -32,31 +32,44 @@ pub trait KernelCalls: Timed {
     fn evaluate(&mut self, k: usize, out: &mut Vec<f64>);
 }
 
-/// `kernel` of `model` on `inputs`, timed on the first `pool` of them (cycled through in
-/// order), each input and result passed through [`black_box`].
-pub struct Calls<D: Dynamics<N, N>, const N: usize> {
-    model: D,
-    kernel: Kernel,
-    inputs: Vec<Input<D::Scalar, N>>,
+/// Input states of one kind, the first `pool` of which are cycled through in order while
+/// timing.
+#[derive(Clone, Debug)]
+pub struct Pool<I> {
+    inputs: Vec<I>,
     pool: usize,
     next: usize,
 }
 
-impl<D: Dynamics<N, N>, const N: usize> Calls<D, N> {
-    /// `kernel` of `model` on `inputs`, timed on the first `pool` of them (at least one).
-    pub fn new(model: D, kernel: Kernel, inputs: Vec<Input<D::Scalar, N>>, pool: usize) -> Self {
+impl<I> Pool<I> {
+    /// `inputs`, timed on the first `pool` of them (at least one).
+    pub fn new(inputs: Vec<I>, pool: usize) -> Self {
         let pool = pool.clamp(1, inputs.len().max(1));
-        Calls {
-            model,
-            kernel,
+        Pool {
             inputs,
             pool,
             next: 0,
         }
     }
 
-    /// Makes `calls` calls of `f` on the timing pool.
-    fn cycle<R>(&mut self, calls: u64, f: impl Fn(&D, &Input<D::Scalar, N>) -> R) {
+    /// Number of input states.
+    pub fn len(&self) -> usize {
+        self.inputs.len()
+    }
+
+    /// Whether there is no input state.
+    pub fn is_empty(&self) -> bool {
+        self.inputs.is_empty()
+    }
+
+    /// Input state `k`.
+    pub fn get(&self, k: usize) -> &I {
+        &self.inputs[k]
+    }
+
+    /// Makes `calls` calls of `f` on the timing pool, each input and result passed through
+    /// [`black_box`].
+    pub fn cycle<R>(&mut self, calls: u64, f: impl Fn(&I) -> R) {
         if self.inputs.is_empty() {
             return;
         }
@@ -67,8 +80,33 @@ impl<D: Dynamics<N, N>, const N: usize> Calls<D, N> {
             } else {
                 self.next + 1
             };
-            black_box(f(&self.model, input));
+            black_box(f(input));
         }
+    }
+}
+
+/// `kernel` of `model` on `inputs`, timed on the first `pool` of them (cycled through in
+/// order), each input and result passed through [`black_box`].
+pub struct Calls<D: Dynamics<N, N>, const N: usize> {
+    model: D,
+    kernel: Kernel,
+    inputs: Pool<Input<D::Scalar, N>>,
+}
+
+impl<D: Dynamics<N, N>, const N: usize> Calls<D, N> {
+    /// `kernel` of `model` on `inputs`, timed on the first `pool` of them (at least one).
+    pub fn new(model: D, kernel: Kernel, inputs: Vec<Input<D::Scalar, N>>, pool: usize) -> Self {
+        Calls {
+            model,
+            kernel,
+            inputs: Pool::new(inputs, pool),
+        }
+    }
+
+    /// Makes `calls` calls of `f` on the timing pool.
+    fn cycle<R>(&mut self, calls: u64, f: impl Fn(&D, &Input<D::Scalar, N>) -> R) {
+        let model = &self.model;
+        self.inputs.cycle(calls, |input| f(model, input));
     }
 }
 
@@ -86,6 +124,13 @@ impl<D: Dynamics<N, N>, const N: usize> Timed for Calls<D, N> {
                 self.cycle(calls, |m, s| m.forward_dynamics(&s.q, &s.qd, &s.tau))
             }
             Kernel::KineticEnergy => self.cycle(calls, |m, s| m.kinetic_energy(&s.q, &s.qd)),
+            Kernel::InverseDynamicsDerivatives => self.cycle(calls, |m, s| {
+                m.inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd)
+            }),
+            Kernel::ForwardDynamicsDerivatives => self.cycle(calls, |m, s| {
+                m.forward_dynamics_derivatives(&s.q, &s.qd, &s.tau)
+            }),
+            Kernel::MassMatrixInverse => self.cycle(calls, |m, s| m.mass_matrix_inverse(&s.q)),
             _ => self.cycle(calls, |m, s| m.potential_energy(&s.q)),
         }
     }
@@ -101,7 +146,7 @@ where
 
     fn evaluate(&mut self, k: usize, out: &mut Vec<f64>) {
         out.clear();
-        let s = &self.inputs[k];
+        let s = self.inputs.get(k);
         let m = &self.model;
         let vector = |v: Option<[D::Scalar; N]>| v.into_iter().flatten();
         let matrix = |v: Option<[[D::Scalar; N]; N]>| v.into_iter().flatten().flatten();
@@ -113,6 +158,23 @@ where
             Kernel::BiasTorques => vector(m.bias_torques(&s.q, &s.qd)).collect(),
             Kernel::ForwardDynamics => vector(m.forward_dynamics(&s.q, &s.qd, &s.tau)).collect(),
             Kernel::KineticEnergy => m.kinetic_energy(&s.q, &s.qd).into_iter().collect(),
+            Kernel::InverseDynamicsDerivatives => m
+                .inverse_dynamics_derivatives(&s.q, &s.qd, &s.qdd)
+                .map(|(dq, dqd)| [dq, dqd])
+                .into_iter()
+                .flatten()
+                .flatten()
+                .flatten()
+                .collect(),
+            Kernel::ForwardDynamicsDerivatives => m
+                .forward_dynamics_derivatives(&s.q, &s.qd, &s.tau)
+                .map(|(dq, dqd, minv)| [dq, dqd, minv])
+                .into_iter()
+                .flatten()
+                .flatten()
+                .flatten()
+                .collect(),
+            Kernel::MassMatrixInverse => matrix(m.mass_matrix_inverse(&s.q)).collect(),
             _ => m.potential_energy(&s.q).into_iter().collect(),
         };
         out.extend(values.into_iter().map(OrderedReal::to_f64));
@@ -154,7 +216,7 @@ mod tests {
         let inputs: Vec<Input<f64, 1>> = (0..10).map(|k| input(f64::from(k))).collect();
         let mut calls = Calls::new(Spring, Kernel::ForwardDynamics, inputs.clone(), 3);
         calls.run(7);
-        assert_eq!(calls.next, 1);
+        assert_eq!(calls.inputs.next, 1);
         let mut out = Vec::new();
         calls.evaluate(9, &mut out);
         assert_eq!(out, vec![9.0]);

@@ -77,6 +77,15 @@ pub fn errors(
     kernel: Kernel,
     candidates: &mut [Candidate<'_>],
 ) -> Vec<ErrorSummary> {
+    errors_with(|case, k| cases.exact(case, kernel, k), candidates)
+}
+
+/// The errors of each candidate over the states of its calls, against `exact(case, k)`, the
+/// exact value for the candidate's case at state `k` (computed once per case and state).
+pub fn errors_with(
+    exact: impl Fn(Case, usize) -> Vec<DoubleDouble>,
+    candidates: &mut [Candidate<'_>],
+) -> Vec<ErrorSummary> {
     let states = candidates
         .iter()
         .map(|c| c.calls.states())
@@ -85,10 +94,10 @@ pub fn errors(
     let mut errors: Vec<Vec<Deviation>> = vec![Vec::with_capacity(states); candidates.len()];
     let mut result = Vec::new();
     for k in 0..states {
-        let mut exact: [Option<Vec<DoubleDouble>>; 5] = Default::default();
+        let mut values: [Option<Vec<DoubleDouble>>; 5] = Default::default();
         for (candidate, errors) in candidates.iter_mut().zip(&mut errors) {
             let case: Case = candidate.implementation.case();
-            let x = exact[case.index()].get_or_insert_with(|| cases.exact(case, kernel, k));
+            let x = values[case.index()].get_or_insert_with(|| exact(case, k));
             candidate.calls.evaluate(k, &mut result);
             errors.push(Deviation::between(
                 &result,

@@ -1,11 +1,14 @@
 //! `rne bench`: run time against error, for the kernels and for the integrators (DESIGN.md §5).
 //!
-//! Three studies, each written as markdown tables and work-precision charts by [`Report`]:
+//! The studies, each written as markdown tables (and work-precision charts) by [`Report`]:
 //! - **Kernels** ([`kernels`]): for every built-in robot and for inverse dynamics, mass
 //!   matrix, bias torques and forward dynamics, every implementation rne offers
 //!   ([`Implementation`]: generated `f64`, `f32`, runtime parameters, the scene variants of
 //!   [`rne_models::generated::variants`], the interpreted programs, the numeric reference), timed per call and measured
 //!   for error against the double-double value of the same model ([`precision`]);
+//! - **Control kernels** ([`control`]): the derivatives, M⁻¹, frame Jacobians, J̇q̇ and
+//!   regressor of the URDF robots, timed and measured for error likewise, which the comparison
+//!   with Pinocchio ([`pinocchio`]) sets beside its algorithms and generated code;
 //! - **Scene savings** ([`scenes`]): operations and time of the inverse dynamics against the
 //!   gravity torques and the zero-gravity, locked-joint and static-scene variants;
 //! - **Integrators** ([`integrators`]): time to solution against final-state error and energy
@@ -18,6 +21,7 @@
 #![deny(missing_docs)]
 
 pub mod calls;
+pub mod control;
 pub mod error;
 pub mod implementation;
 pub mod integrators;
@@ -128,7 +132,7 @@ impl Effort {
     }
 }
 
-/// Runs the three studies with `effort`, and the comparison with Pinocchio when `pinocchio`
+/// Runs the studies with `effort`, and the comparison with Pinocchio when `pinocchio`
 /// names its script (URDF copies go to `scratch`), calling `progress` with the name of each
 /// step as it starts.
 pub fn run(
@@ -139,32 +143,34 @@ pub fn run(
     let start = Instant::now();
     let (plan, pool) = (effort.kernel_plan(), effort.pool());
     let mut kernel_results = Vec::new();
+    let mut control_results = Vec::new();
     let mut scene_results = Vec::new();
     let mut pinocchio_results = Vec::new();
     for robot in BUILTIN_ROBOTS {
         let compared = pinocchio.filter(|_| pinocchio::COMPARED.contains(&robot.name));
         let mut pinocchio_runs = Vec::new();
-        let run_pinocchio = |runs: &mut Vec<[f64; 4]>| -> Result<(), BenchError> {
+        let run_pinocchio = |runs: &mut Vec<_>| -> Result<(), BenchError> {
             if let Some((script, scratch)) = compared {
-                runs.push(script.run_once(robot, scratch)?);
+                runs.push(script.run_once(robot, scratch, runs.len())?);
             }
             Ok(())
         };
         progress(&format!("{}: models and samples", robot.name));
         let cases = robots::Cases::new(robot, effort.samples())?;
+        let control_programs = control::has_control(robot.name).then(|| control::programs(&cases));
         run_pinocchio(&mut pinocchio_runs)?;
         progress(&format!("{}: kernels", robot.name));
         kernel_results.push(kernels::measure(&cases, &plan, pool)?);
+        if let Some(programs) = &control_programs {
+            progress(&format!("{}: control kernels", robot.name));
+            control_results.push(control::measure(&cases, programs, &plan, pool)?);
+        }
         run_pinocchio(&mut pinocchio_runs)?;
         progress(&format!("{}: scenes", robot.name));
         scene_results.push(scenes::measure(&cases, &plan, pool)?);
         run_pinocchio(&mut pinocchio_runs)?;
         if let Some((script, _)) = compared {
-            pinocchio_results.push(PinocchioTimes {
-                robot: robot.name,
-                ns: pinocchio::median_of(&pinocchio_runs),
-                calls: script.calls,
-            });
+            pinocchio_results.push(script.times(robot.name, &pinocchio_runs));
         }
     }
     let plan = effort.integrator_plan();
@@ -175,6 +181,7 @@ pub fn run(
     Ok(Report {
         effort,
         kernels: kernel_results,
+        control: control_results,
         scenes: scene_results,
         integrators: vec![double, irb],
         pinocchio: pinocchio_results,

@@ -10,8 +10,8 @@ use rne_codegen::Kernel;
 use super::error::BenchError;
 use super::implementation::Implementation;
 use super::integrators::{Family, IntegratorStudy, REFERENCE_TOLERANCE};
-use super::kernels::RobotKernels;
-use super::pinocchio::{self, PinocchioTimes, ALGORITHMS};
+use super::kernels::{KernelRow, RobotKernels};
+use super::pinocchio::{PinocchioTimes, COMPARISONS};
 use super::robots::{BENCHED, SEED};
 use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
 use super::scenes::{RobotScenes, SceneKernel};
@@ -33,6 +33,8 @@ pub struct Report {
     pub effort: Effort,
     /// Kernel work-precision, one entry per robot.
     pub kernels: Vec<RobotKernels>,
+    /// The control and identification kernels of the URDF robots ([`crate::control`]).
+    pub control: Vec<RobotKernels>,
     /// Scene savings, one entry per robot.
     pub scenes: Vec<RobotScenes>,
     /// Integrator work-precision, one entry per problem.
@@ -133,6 +135,7 @@ impl Report {
         );
         self.pinocchio_table(&mut md);
         self.kernel_tables(&mut md);
+        self.control_table(&mut md);
         self.scene_table(&mut md);
         self.published_table(&mut md);
         self.integrator_tables(&mut md);
@@ -160,36 +163,112 @@ impl Report {
         charts
     }
 
+    /// rne's generated `f64` kernel on `robot`, from the kernel or the control tables.
+    fn generated(&self, robot: &str, kernel: Kernel) -> Option<&KernelRow> {
+        self.kernels
+            .iter()
+            .chain(&self.control)
+            .filter(|k| k.robot == robot)
+            .flat_map(|k| &k.rows)
+            .find(|r| r.kernel == kernel && r.implementation == Implementation::Generated)
+    }
+
     fn pinocchio_table(&self, md: &mut String) {
-        if self.pinocchio.is_empty() {
+        let Some(first) = self.pinocchio.first() else {
             return;
-        }
-        let calls = self.pinocchio[0].calls;
+        };
+        let (calls, runs) = (first.calls, first.runs);
+        let codegen = match first.codegen_calls {
+            Some(c) => format!(
+                "; `run_cg.sh ROBOT.urdf {c}` beside it (in {} of the runs) times Pinocchio's \
+                 analytical derivatives, `computeMinverse` and the CppADCodeGen code of each \
+                 algorithm (CG: through `CodeGenX::evalFunction`, what a Pinocchio user calls; CG \
+                 floor: the generated function on a pre-packed input; gcc -Ofast, median of 5 \
+                 interleaved repetitions); max diff is the generated code's largest difference \
+                 from the plain algorithm over 64 states",
+                first.codegen_runs
+            ),
+            None => "; `run_cg.sh` was skipped".to_owned(),
+        };
         let _ = writeln!(
             md,
-            "## Beside Pinocchio\n\nPinocchio 4.1.0's algorithms timed by \
-             `../shared/tools/pinocchio/run.sh ROBOT.urdf {calls}` (header-only C++, -O3 \
-             -march=native, seeded states; mean over {calls} calls) on the same URDF as the \
-             built-in robot, three times during this run (before, between and after rne's \
-             timings of that robot), median kept; rne's time is the generated f64 kernel's median \
-             from the tables below. Speed-up = Pinocchio's time / rne's.\n\n\
-             | robot | Pinocchio | ns/call | rne kernel | ns/call | speed-up |\n|---|---|---:|---|---:|---:|"
+            "## Beside Pinocchio\n\nPinocchio 4.1.0 on the same URDF as each built-in robot, \
+             timed {runs} times during this run (before, between and after rne's timings of \
+             that robot), median kept: `../shared/tools/pinocchio/run.sh ROBOT.urdf {calls}` \
+             times the plain algorithms (header-only C++, -O3 -march=native, seeded states, \
+             mean over {calls} calls){codegen}; `tools/pinocchio/run_extra.sh ROBOT.urdf \
+             {calls}` times the Jacobians (`computeJointJacobians`, then each joint's 6 × nv \
+             Jacobian in world axes), J̇q̇ and the regressor. rne's time is the generated f64 \
+             kernel's median and its error the largest normwise relative error against the \
+             double-double value (tables below). × = Pinocchio's time / rne's.\n\n\
+             | robot | quantity | rne kernel | rne ns | rne max rel. error | Pinocchio | ns | × \
+             | CG ns | × | CG floor ns | × | CG max diff |\n\
+             |---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|"
         );
         for times in &self.pinocchio {
-            let Some(robot) = self.kernels.iter().find(|k| k.robot == times.robot) else {
-                continue;
-            };
-            let speedups = pinocchio::speedups(times, robot);
-            for (i, (algorithm, kernel)) in ALGORITHMS.iter().enumerate() {
-                let ours = times.ns[i] / speedups[i];
+            for c in COMPARISONS {
+                let Some(ours) = self.generated(times.robot, c.kernel) else {
+                    continue;
+                };
+                let rne = ours.timing.median();
+                let plain = times.get(c.plain.1);
+                let (cg, raw, diff) = c.codegen.map_or((f64::NAN, f64::NAN, None), |x| {
+                    (
+                        times.codegen(x, "_ns"),
+                        times.codegen(x, "_raw_ns"),
+                        Some(times.codegen(x, "_maxdiff")),
+                    )
+                });
                 let _ = writeln!(
                     md,
-                    "| {} | {algorithm} | {} | {} | {} | {} |",
+                    "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
                     times.robot,
-                    ns(times.ns[i]),
-                    kernel.name(),
-                    ns(ours),
-                    ratio(speedups[i]),
+                    c.quantity,
+                    c.kernel.name(),
+                    ns(rne),
+                    sci(ours.errors.max_relative),
+                    c.plain.0,
+                    ns(plain),
+                    ratio(plain / rne),
+                    ns(cg),
+                    ratio(cg / rne),
+                    ns(raw),
+                    ratio(raw / rne),
+                    diff.map_or_else(|| "—".to_owned(), sci),
+                );
+            }
+        }
+        let _ = writeln!(md);
+    }
+
+    fn control_table(&self, md: &mut String) {
+        if self.control.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            md,
+            "## Control and identification kernels\n\nThe URDF robots' generated `control` \
+             modules (derivatives, M⁻¹, the Jacobians and J̇q̇ of every link's frame, the \
+             joint-torque regressor), timed together; errors against the double-double value \
+             of the same programs over the whole sample.\n\n\
+             | robot | kernel | ns/call | IQR | max rel. error | median rel. error | max ulps \
+             | median ulps |\n|---|---|---:|---:|---:|---:|---:|---:|"
+        );
+        for robot in &self.control {
+            for row in &robot.rows {
+                let (q1, q3) = row.timing.quartiles();
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {}–{} | {} | {} | {} | {} |",
+                    robot.robot,
+                    row.kernel.name(),
+                    ns(row.timing.median()),
+                    ns(q1),
+                    ns(q3),
+                    sci(row.errors.max_relative),
+                    sci(row.errors.median_relative),
+                    ulps(row.errors.max_ulps),
+                    ulps(row.errors.median_ulps),
                 );
             }
         }

@@ -1,9 +1,10 @@
 //! `rne bench --quick` end to end: every robot, kernel and implementation measured, errors of
-//! the right size for each format, integrators ordered by accuracy, and the report and its
+//! the right size for each format, the URDF robots' control kernels measured, integrators ordered by accuracy, and the report and its
 //! figures written.
 
 use std::collections::BTreeSet;
 
+use rne_bench::control::CONTROL;
 use rne_bench::integrators::Family;
 use rne_bench::robots::BENCHED;
 use rne_bench::{self as bench, Effort, Implementation};
@@ -79,6 +80,32 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
         }
     }
 
+    let urdf = ["ur5", "panda", "panda-arm"];
+    assert_eq!(
+        report.control.iter().map(|c| c.robot).collect::<Vec<_>>(),
+        urdf,
+        "the URDF robots' control kernels are measured"
+    );
+    for robot in &report.control {
+        let kernels: Vec<_> = robot.rows.iter().map(|r| r.kernel).collect();
+        assert_eq!(kernels, CONTROL, "{}: every control kernel", robot.robot);
+        for row in &robot.rows {
+            assert!(
+                row.timing.median() > 0.0,
+                "{} {:?}: no time",
+                robot.robot,
+                row.kernel
+            );
+            assert!(
+                row.errors.states > 0 && row.errors.max_relative <= 1e-12,
+                "{} {:?}: max relative error {:e} above 1e-12",
+                robot.robot,
+                row.kernel,
+                row.errors.max_relative
+            );
+        }
+    }
+
     assert_eq!(report.integrators.len(), 2);
     for study in &report.integrators {
         for family in Family::ALL {
@@ -106,6 +133,8 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
         assert!(png.starts_with(b"\x89PNG\r\n\x1a\n") && png.len() > 10_000);
     }
     assert!(markdown.contains("## Scene savings"));
+    assert!(markdown.contains("## Control and identification kernels"));
+    assert!(markdown.contains("| panda | inverse_dynamics_derivatives | "));
     assert!(markdown.contains("| puma560 | "));
     assert_eq!(
         written.len(),

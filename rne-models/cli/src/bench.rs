@@ -1,5 +1,5 @@
-//! `rne bench [--quick] [--out DIR] [--pinocchio RUN_SH]`: run time against error for the kernels and the
-//! integrators (DESIGN.md §5), written as markdown with SVG and PNG figures.
+//! `rne bench [--quick] [--out DIR] [--pinocchio RUN_SH [--no-codegen] [--pinocchio-extra SH]]`:
+//! run time against error for the kernels and the integrators (DESIGN.md §5), written as markdown with SVG and PNG figures.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -23,9 +23,28 @@ pub struct BenchArgs {
     /// time Pinocchio on the URDF robots during the run and report the ratios.
     #[arg(long, value_name = "RUN_SH")]
     pub pinocchio: Option<PathBuf>,
-    /// Calls per figure for Pinocchio's script.
+    /// Calls per figure for Pinocchio's `run.sh` and `run_extra.sh`.
     #[arg(long, default_value_t = 200_000)]
     pub pinocchio_calls: u64,
+    /// Calls per measurement for `run_cg.sh` (beside RUN_SH: Pinocchio's derivatives and its
+    /// CppADCodeGen code; each run generates and compiles the code first).
+    #[arg(long, default_value_t = 50_000)]
+    pub codegen_calls: u64,
+    /// Do not run `run_cg.sh`.
+    #[arg(long)]
+    pub no_codegen: bool,
+    /// In how many of the three runs on each robot `run_cg.sh` takes part (the first ones);
+    /// each generates and compiles Pinocchio's code anew, minutes per robot.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub codegen_runs: u8,
+    /// The Jacobian and regressor timer (`tools/pinocchio/run_extra.sh` of this repository),
+    /// run when the file exists.
+    #[arg(
+        long,
+        value_name = "RUN_EXTRA_SH",
+        default_value = "tools/pinocchio/run_extra.sh"
+    )]
+    pub pinocchio_extra: PathBuf,
     /// No progress lines on stderr.
     #[arg(long)]
     pub quiet: bool,
@@ -40,8 +59,15 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     };
     let start = Instant::now();
     let script = args.pinocchio.as_ref().map(|path| PinocchioScript {
-        path: path.clone(),
-        calls: args.pinocchio_calls,
+        codegen_runs: usize::from(args.codegen_runs),
+        ..PinocchioScript::new(
+            path.clone(),
+            args.pinocchio_calls,
+            (!args.no_codegen).then_some(args.codegen_calls),
+            args.pinocchio_extra
+                .is_file()
+                .then(|| args.pinocchio_extra.clone()),
+        )
     });
     let scratch = args.out.join("pinocchio-urdf");
     let pinocchio = script.as_ref().map(|s| (s, scratch.as_path()));

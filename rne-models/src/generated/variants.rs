@@ -1,7 +1,8 @@
 //! The generated variants `rne bench` compares with the built-in robots' default modules
 //! ([`crate::generated`]): each robot's spec file through `derive_dynamics!` again, with one
 //! scene setting changed (DESIGN.md §3), for the four benchmarked kernels only (inverse
-//! dynamics, mass matrix, bias torques, forward dynamics).
+//! dynamics, mass matrix, bias torques, forward dynamics), and for the URDF robots the
+//! default scene with the kernels compared with Pinocchio's (`control`).
 //!
 //! Per robot, a module of the robot's name holds
 //! - `single`: `scalar: f32`;
@@ -9,14 +10,19 @@
 //! - `locked`: the first joint locked at 0 (`lock: { <first joint>: 0.0 }`): N − 1 joints;
 //! - `at_rest`: `velocities: zero`, a static scene (the functions ignore `qd`);
 //! - `runtime` (robots whose spec has named parameters, the TOML ones): `parameters: runtime`,
-//!   every function reading a `Params` struct.
+//!   every function reading a `Params` struct;
+//! - `control` (the URDF robots, which `rne bench --pinocchio` sets beside Pinocchio): the
+//!   control and identification kernels of DESIGN.md §4 that Pinocchio also offers — the
+//!   inverse- and forward-dynamics derivatives, M⁻¹, the Jacobians and J̇q̇ of every link's
+//!   frame, and the joint-torque regressor — with the default scene.
 //!
 //! Gravity and velocities do not enter M(q), so `zero_gravity` and `at_rest` generate no mass
 //! matrix: it would be the default module's.
 
 /// The variants of one robot: see the module documentation.
 macro_rules! variants {
-    ($(#[$doc:meta])* $module:ident, $file:tt, $first_joint:ident $(, $runtime:ident)?) => {
+    ($(#[$doc:meta])* $module:ident, $file:tt, $first_joint:ident $(, $runtime:ident)?
+     $(; $control:ident)?) => {
         $(#[$doc])*
         pub mod $module {
             rne_codegen::derive_dynamics! {
@@ -65,6 +71,18 @@ macro_rules! variants {
                     }
                 }
             )?
+
+            $(
+                rne_codegen::derive_dynamics! {
+                    /// The control and identification kernels Pinocchio also offers.
+                    pub mod $control {
+                        robot: $file,
+                        outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives,
+                                  mass_matrix_inverse, frame_jacobians, frame_jacobian_dot_qd,
+                                  regressor],
+                    }
+                }
+            )?
         }
     };
 }
@@ -93,19 +111,22 @@ variants!(
     /// Variants of the UR5 (`ur5`); a URDF has no named parameters.
     ur5,
     "robots/ur5.urdf",
-    shoulder_pan_joint
+    shoulder_pan_joint;
+    control
 );
 variants!(
     /// Variants of the Panda with its hand (`panda`); a URDF has no named parameters.
     panda,
     "robots/panda.urdf",
-    panda_joint1
+    panda_joint1;
+    control
 );
 variants!(
     /// Variants of the Panda arm (`panda-arm`); a URDF has no named parameters.
     panda_arm,
     "robots/panda-arm.urdf",
-    panda_joint1
+    panda_joint1;
+    control
 );
 variants!(
     /// Variants of the six-joint IRB 140 (`irb140`).
