@@ -1,7 +1,8 @@
 //! The control and identification kernels of the URDF robots, which `rne bench --pinocchio`
 //! sets beside Pinocchio's algorithms and its CppADCodeGen code (issues 13, 14, 15): the
-//! inverse- and forward-dynamics derivatives and M⁻¹ (on [`Dynamics`]), the frame Jacobians
-//! and J̇q̇ (on [`Kinematics`]) and the joint-torque regressor (on [`Identification`]), each
+//! inverse- and forward-dynamics derivatives and M⁻¹ (on [`rne_codegen::Dynamics`]), the frame
+//! Jacobians and J̇q̇ (on [`Kinematics`]) and the joint-torque regressor (on
+//! [`Identification`]), each
 //! from the robot's generated `control` module of [`rne_models::generated::variants`].
 //!
 //! Errors are measured as for the dynamics kernels ([`crate::kernels`]): against the

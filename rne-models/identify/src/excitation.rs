@@ -95,7 +95,7 @@ impl FourierTrajectory {
     }
 }
 
-/// Per-joint limits: |q_i| ≤ position[i], |q̇_i| ≤ velocity[i], |q̈_i| ≤ acceleration[i]
+/// Per-joint limits: `|q_i| ≤ position[i]`, `|q̇_i| ≤ velocity[i]`, `|q̈_i| ≤ acceleration[i]`
 /// (infinite for none).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Limits {

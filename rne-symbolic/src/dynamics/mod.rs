@@ -271,7 +271,7 @@ impl SymbolicDynamics {
     }
 
     /// The Christoffel C(q, q̇), for which Ṁ − 2C is skew-symmetric, by the O(N d) recursion
-    /// of Echeandia and Wensing (2021) ([`coriolis`]). On a fixed base with at most
+    /// of Echeandia and Wensing (2021) (module `coriolis`). On a fixed base with at most
     /// [`CHRISTOFFEL_UP_TO`] joint variables the same matrix is also built from its Christoffel
     /// symbols ([`Self::christoffel_coriolis_matrix`]), and the construction with fewer
     /// operations is kept: on small arms the symbols, shared through the graph, are cheaper.
@@ -295,7 +295,7 @@ impl SymbolicDynamics {
     }
 
     /// The Christoffel C(q, q̇) by the recursion of Echeandia and Wensing (2021)
-    /// ([`coriolis`]), whatever the model's size.
+    /// (module `coriolis`), whatever the model's size.
     pub fn recursive_coriolis_matrix(&mut self) -> Vec<Vec<Id>> {
         let qd = self.velocity_symbols(Symbol::Velocity);
         let zeros = self.zeros();
