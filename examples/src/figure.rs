@@ -1,14 +1,10 @@
 //! The swing-up's figure, an SVG (or PNG) of three panels: joint angles against time with the upright
 //! targets, torques against time with the ±39.4 N·m limits, and the cost per iteration.
 //!
-//! Text needs a font even for the SVG backend (plotters measures labels to lay out the chart),
-//! and no system font is assumed: Hack Regular (MIT licence with the Bitstream Vera licence,
-//! shipped by the `epaint_default_fonts` crate of the egui project) is registered as plotters'
-//! `sans-serif` family, as `rne-models` does for its figures.
+//! Text is drawn with the reports' font, registered by [`rne_figures::register_font`].
 
 use std::ops::Range;
 use std::path::Path;
-use std::sync::OnceLock;
 
 use plotters::chart::SeriesAnno;
 use plotters::coord::types::RangedCoordf64;
@@ -43,7 +39,7 @@ pub fn render_swing_up(
         path: path.to_owned(),
         message,
     };
-    register_font().map_err(plot_error)?;
+    rne_figures::register_font().map_err(|e| plot_error(e.to_string()))?;
     let size = (WIDTH, TITLE_HEIGHT + 3 * PANEL_HEIGHT);
     match path.extension().and_then(|e| e.to_str()) {
         Some("svg") => draw(
@@ -214,22 +210,4 @@ fn extent(values: impl Iterator<Item = f64>) -> (f64, f64) {
     });
     let pad = if hi > lo { 0.1 * (hi - lo) } else { 1.0 };
     (lo - pad, hi + pad)
-}
-
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), String> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        )
-        .is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err("the embedded font could not be read".into())
-    }
 }

@@ -21,5 +21,5 @@ pub mod work_precision;
 pub use error::FigureError;
 pub use format::{sci, ulps};
 pub use measure::{relative_error, ulp, Deviation, Format};
-pub use render::{render, Draw, Formats, Mark, PALETTE};
+pub use render::{register_font, render, Draw, Formats, Mark, PALETTE};
 pub use table::Table;

@@ -100,8 +100,10 @@ fn present<F: Draw, DB: DrawingBackend>(
     root.present().map_err(failed)
 }
 
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), FigureError> {
+/// Registers the embedded font (Hack Regular, from `epaint_default_fonts`) as plotters'
+/// `sans-serif` family, once per process: plotters measures text even for SVG, and no system
+/// font is assumed. [`render()`] calls it; figures drawn with plotters directly call it first.
+pub fn register_font() -> Result<(), FigureError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         plotters::style::register_font(

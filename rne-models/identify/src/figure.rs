@@ -2,11 +2,9 @@
 //! measurement as a wide translucent band and the prediction as a thin line inside it, drawn
 //! with plotters as SVG (PNG for a `.png` path).
 //!
-//! plotters measures text to lay out a chart even for SVG, and no system font is assumed: Hack
-//! Regular from the `epaint_default_fonts` crate is registered as its `sans-serif` family.
+//! Text is drawn with the reports' font, registered by [`rne_figures::register_font`].
 
 use std::path::Path;
-use std::sync::OnceLock;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -29,7 +27,7 @@ pub fn torque_figure(
         file: path.to_path_buf(),
         message,
     };
-    register_font().map_err(failed)?;
+    rne_figures::register_font().map_err(|e| failed(e.to_string()))?;
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|source| IdentifyError::Io {
             file: dir.to_path_buf(),
@@ -151,22 +149,4 @@ fn draw<DB: DrawingBackend>(
             .map_err(e)?;
     }
     root.present().map_err(e)
-}
-
-/// Registers the embedded font as the `sans-serif` family, once per process.
-fn register_font() -> Result<(), String> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| {
-        plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::HACK_REGULAR,
-        )
-        .is_ok()
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err("the embedded font could not be read".into())
-    }
 }
