@@ -3,6 +3,9 @@
 //! regressor's rank and reproduce the generalised forces, and an optimised excitation of base
 //! and legs with 1 % force noise gives them back.
 
+mod common;
+
+use common::numeric_rank;
 use nalgebra::{DMatrix, DVector};
 use rne_identify::{
     design, fit, identify, predict, simulate, BaseSet, Design, Limits, Measurements, Simulation,
@@ -45,25 +48,6 @@ fn states(count: usize) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
             (q, v, a)
         })
         .collect()
-}
-
-/// The numeric rank by SVD with unit-norm columns (zero columns dropped), with a wide gap.
-fn numeric_rank(w: &DMatrix<f64>) -> usize {
-    let columns: Vec<usize> = (0..w.ncols())
-        .filter(|&c| w.column(c).norm() > 1e-12 * w.amax())
-        .collect();
-    let mut scaled = w.select_columns(&columns);
-    for mut column in scaled.column_iter_mut() {
-        let norm = column.norm();
-        column /= norm;
-    }
-    let mut s: Vec<f64> = scaled.singular_values().iter().copied().collect();
-    s.sort_by(|a, b| b.total_cmp(a));
-    let rank = s.iter().filter(|&&x| x > 1e-8 * s[0]).count();
-    if let (Some(&kept), Some(&dropped)) = (s.get(rank - 1), s.get(rank)) {
-        assert!(kept > 1e-6 * s[0] && dropped < 1e-11 * s[0]);
-    }
-    rank
 }
 
 #[test]
