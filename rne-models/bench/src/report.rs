@@ -80,12 +80,20 @@ fn ratio(r: f64) -> String {
     }
 }
 
-/// The command that produces a report with `effort`.
-fn command(effort: Effort) -> &'static str {
-    match effort {
-        Effort::Quick => "cargo run --release -p rne-cli --bin rne -- bench --quick",
-        Effort::Full => "cargo run --release -p rne-cli --bin rne -- bench",
-    }
+/// The command that produces a report with `effort` in this build: with the fused kernels
+/// (the `fma` feature) in a build for the machine, as the fused build is made.
+fn command(effort: Effort) -> String {
+    let fused = rne_models::generated::FUSED_MULTIPLY_ADD;
+    let flags = match fused && cfg!(target_feature = "fma") {
+        true => "RUSTFLAGS=\"-C target-cpu=native\" ",
+        false => "",
+    };
+    let features = if fused { " --features fma" } else { "" };
+    let quick = match effort {
+        Effort::Quick => " --quick",
+        Effort::Full => "",
+    };
+    format!("{flags}cargo run --release -p rne-cli{features} --bin rne -- bench{quick}")
 }
 
 /// The processor, as `/proc/cpuinfo` names it (Linux), and the number of hardware threads.
@@ -103,6 +111,33 @@ fn machine() -> String {
     format!("{model}, {threads} hardware threads")
 }
 
+/// The build: its profile, whether its target has fused multiply-add (AVX2 and FMA, as in a
+/// `RUSTFLAGS="-C target-cpu=native"` build on this kind of machine; Pinocchio's generated
+/// code is built with `-march=native`), and whether the URDF robots' kernels fuse (the `fma`
+/// feature).
+fn build() -> String {
+    let profile = if cfg!(debug_assertions) {
+        "debug"
+    } else {
+        "release"
+    };
+    let target = match (cfg!(target_feature = "avx2"), cfg!(target_feature = "fma")) {
+        (true, true) => "target with AVX2 and FMA",
+        (false, true) => "target with FMA",
+        (true, false) => "target with AVX2, no FMA",
+        (false, false) => "baseline target, no FMA",
+    };
+    let fused = match (
+        rne_models::generated::FUSED_MULTIPLY_ADD,
+        cfg!(target_feature = "fma"),
+    ) {
+        (true, true) => "; the URDF robots' kernels `fma: true`, fused",
+        (true, false) => "; the URDF robots' kernels `fma: true`, unfused on this target",
+        (false, _) => "",
+    };
+    format!("{profile} build, {target}{fused}")
+}
+
 impl Report {
     /// The report as markdown; figures are linked by their PNG file names.
     pub fn markdown(&self) -> String {
@@ -112,7 +147,7 @@ impl Report {
         let _ = writeln!(md, "# rne bench: run time against error\n");
         let _ = writeln!(
             md,
-            "`{}` on {} ({} build), {:.1} s. Kernels: {} seeded states per robot (ChaCha8, seed \
+            "`{}` on {} ({}), {:.1} s. Kernels: {} seeded states per robot (ChaCha8, seed \
              {SEED:#x}; |q| ≤ π, |q̇| ≤ {QD_BOUND}, |q̈| ≤ {QDD_BOUND}, |τ| ≤ max({TAU_FLOOR}, \
              ‖g(q)‖∞)) for the errors, the first {} cycled through for the times; {} \
              interleaved rounds of batches of at least {} µs per implementation. Times are \
@@ -122,11 +157,7 @@ impl Report {
              of the same program.\n",
             command(effort),
             machine(),
-            if cfg!(debug_assertions) {
-                "debug"
-            } else {
-                "release"
-            },
+            build(),
             self.elapsed.as_secs_f64(),
             effort.samples(),
             effort.pool(),

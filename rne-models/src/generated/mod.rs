@@ -3,8 +3,26 @@
 //! thesis's chapter 6 simulates ([`scenes`]), and the variants `rne bench` measures
 //! ([`variants`]).
 
+/// `derive_dynamics!` for a URDF robot's module that `rne bench --pinocchio` sets beside
+/// Pinocchio: as written, or with the crate feature `fma` with `fma: true` added, so that a
+/// build for a target with fused multiply-add (`RUSTFLAGS="-C target-cpu=native"`) compares
+/// fused kernels with Pinocchio's CppADCodeGen code, which gcc builds with `-march=native`.
+/// The settings end with a comma.
+macro_rules! beside_pinocchio {
+    ($(#[$doc:meta])* pub mod $name:ident { $($settings:tt)* }) => {
+        #[cfg(not(feature = "fma"))]
+        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* } }
+        #[cfg(feature = "fma")]
+        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* fma: true, } }
+    };
+}
+
 pub mod scenes;
 pub mod variants;
+
+/// Whether the URDF robots' default and `control` modules were generated with `fma: true`
+/// (the crate feature `fma`, for `rne bench` in a native build).
+pub const FUSED_MULTIPLY_ADD: bool = cfg!(feature = "fma");
 
 rne_codegen::derive_dynamics! {
     /// The planar elbow manipulator of the thesis's chapter 4 (table 6.1).
@@ -36,21 +54,21 @@ rne_codegen::derive_dynamics! {
     }
 }
 
-rne_codegen::derive_dynamics! {
+beside_pinocchio! {
     /// The Universal Robots UR5 of the ros-industrial description (ROBOTS.md).
     pub mod ur5 {
         robot: "robots/ur5.urdf",
     }
 }
 
-rne_codegen::derive_dynamics! {
+beside_pinocchio! {
     /// The Franka Emika Panda with its hand and two fingers: 9 joints, a tree (ROBOTS.md).
     pub mod panda {
         robot: "robots/panda.urdf",
     }
 }
 
-rne_codegen::derive_dynamics! {
+beside_pinocchio! {
     /// The Franka Emika Panda arm to its flange, without the hand: 7 joints (ROBOTS.md).
     pub mod panda_arm {
         robot: "robots/panda-arm.urdf",

@@ -14,7 +14,8 @@
 //! - `control` (the URDF robots, which `rne bench --pinocchio` sets beside Pinocchio): the
 //!   control and identification kernels of DESIGN.md §4 that Pinocchio also offers — the
 //!   inverse- and forward-dynamics derivatives, M⁻¹, the Jacobians and J̇q̇ of every link's
-//!   frame, and the joint-torque regressor — with the default scene.
+//!   frame, and the joint-torque regressor — with the default scene (and `fma: true` with the
+//!   crate feature `fma`, as the URDF robots' default modules).
 //!
 //! Gravity and velocities do not enter M(q), so `zero_gravity` and `at_rest` generate no mass
 //! matrix: it would be the default module's.
@@ -73,7 +74,7 @@ macro_rules! variants {
             )?
 
             $(
-                rne_codegen::derive_dynamics! {
+                beside_pinocchio! {
                     /// The control and identification kernels Pinocchio also offers.
                     pub mod $control {
                         robot: $file,
