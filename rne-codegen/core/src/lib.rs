@@ -30,8 +30,10 @@
 //!   each joint's pair is computed once with `sin_cos`.
 //! - **Dead code**: only the nodes an output needs are lowered ([`Program::lower`]).
 //! - **Linear combinations**: constant factors are distributed over sums used once, equal
-//!   terms merged, equal coefficients factored out again, and the sums rebuilt as balanced
-//!   trees (log₂ n deep instead of n − 1) ([`distribute_constants`]).
+//!   terms merged, equal coefficients factored out again, and the sums rebuilt adding the
+//!   two earliest-ready terms first: balanced trees (log₂ n deep instead of n − 1) whose
+//!   late terms — the recursion's values from the previous link — come in last
+//!   ([`distribute_constants`]).
 //! - **Negations** are absorbed into subtractions and computed only when something other
 //!   than an addition uses them.
 //! - **Large kernels** (over 15 000 instructions, `split.rs`) are emitted as a chain of

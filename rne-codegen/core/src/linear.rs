@@ -5,16 +5,19 @@
 //! numeric parameters folded — whose terms carry constants of their own. Written out as a
 //! linear combination `Σ cᵢ tᵢ + c₀` of non-linear terms tᵢ, the products of constants fold
 //! into one coefficient per term, terms with the same tᵢ merge, and terms sharing a
-//! coefficient are summed before one multiplication. Sums are rebuilt as balanced trees, so a
-//! sum of n terms is log₂ n additions deep instead of n − 1 — the recursion's long sums sit on
-//! the critical path of the kernels, and their depth is latency. The pass never adds an
+//! coefficient are summed before one multiplication. Sums are rebuilt by adding the two terms
+//! that are ready first, again and again: terms ready together form a balanced tree, log₂ n
+//! additions deep instead of n − 1, and a term that is ready late (the recursion's value
+//! from the previous link) is added last — the recursion's long sums sit on the critical
+//! path of the kernels, and their depth is latency. The pass never adds an
 //! operation: every coefficient group costs at most the multiplications the original tree
 //! spent on it, and the additions are one fewer than the terms, as before. Limits: only sums
 //! used once are opened (a shared sum is computed once and stays a term); no factor other
 //! than a constant is distributed or collected; the evaluation order of the sums changes,
 //! which changes rounding in the last bits.
 
-use std::collections::HashMap;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
 
 use rne_symbolic::{ExprGraph, Id, Node};
 
@@ -50,6 +53,7 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
     };
 
     let mut rebuilt: HashMap<Id, Id> = HashMap::new();
+    let mut depths = Depths::default();
     for &id in &nodes {
         if opened[id.index()] {
             continue;
@@ -57,7 +61,7 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
         let node = graph.node(id);
         let new = if is_linear(graph, node) {
             let combination = Combination::collect(graph, id, &opened);
-            combination.build(graph, &rebuilt)
+            combination.build(graph, &rebuilt, &mut depths)
         } else {
             let r = |c: Id| rebuilt[&c];
             match node {
@@ -126,7 +130,7 @@ impl Combination {
 
     /// Builds the combination from the rebuilt terms: equal terms merged, terms grouped by
     /// the magnitude of their coefficient, one multiplication per group.
-    fn build(self, graph: &mut ExprGraph, rebuilt: &HashMap<Id, Id>) -> Id {
+    fn build(self, graph: &mut ExprGraph, rebuilt: &HashMap<Id, Id>, depths: &mut Depths) -> Id {
         let mut merged: Vec<(f64, Id)> = Vec::new();
         for (c, t) in self.terms {
             let t = rebuilt[&t];
@@ -145,14 +149,14 @@ impl Combination {
         }
         let mut terms: Vec<(bool, Id)> = Vec::with_capacity(groups.len() + 1);
         for (magnitude, members) in groups {
-            let (negative, sum) = balanced_sum(graph, members);
+            let (negative, sum) = balanced_sum(graph, members, depths);
             let k = graph.constant(magnitude);
             terms.push((negative, graph.mul(k, sum)));
         }
         if self.constant != 0.0 || terms.is_empty() {
             terms.push((self.constant < 0.0, graph.constant(self.constant.abs())));
         }
-        let (negative, total) = balanced_sum(graph, terms);
+        let (negative, total) = balanced_sum(graph, terms, depths);
         if negative {
             graph.neg(total)
         } else {
@@ -161,25 +165,79 @@ impl Combination {
     }
 }
 
-/// `±(±t₁ ± t₂ ± …)` summed as a balanced tree, so that n terms are log₂ n additions deep
-/// rather than n − 1: the sums of the recursion are long, and their depth is latency on the
-/// critical path of the kernel. Returns the sign to apply and the sum.
-fn balanced_sum(graph: &mut ExprGraph, mut terms: Vec<(bool, Id)>) -> (bool, Id) {
+/// `±(±t₁ ± t₂ ± …)` summed by always adding the two terms that are ready first (least
+/// [`Depths`]), so that the sum's result is ready as early as its terms allow: n terms of
+/// equal depth become a balanced tree, log₂ n additions deep rather than n − 1, and a term
+/// that arrives late — the recursion's value from the previous link — is added last, after
+/// the others have been summed while it was computed. Merging the two least is optimal for
+/// this "maximum plus one" cost (Golumbic, "Combinatorial merging", IEEE Trans. Computers
+/// 25(11), 1976). Ties keep the terms' order. Returns the sign to apply and the sum.
+fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Depths) -> (bool, Id) {
     assert!(!terms.is_empty(), "a sum has a term");
-    while terms.len() > 1 {
-        let mut next = Vec::with_capacity(terms.len().div_ceil(2));
-        for pair in terms.chunks(2) {
-            next.push(match *pair {
-                [(sa, a), (sb, b)] if sa == sb => (sa, graph.add(a, b)),
-                [(false, a), (true, b)] => (false, graph.sub(a, b)),
-                [(true, a), (false, b)] => (false, graph.sub(b, a)),
-                [single] => single,
-                _ => unreachable!("chunks of two"),
-            });
-        }
-        terms = next;
+    let mut ready: BinaryHeap<Reverse<(u32, usize)>> = BinaryHeap::new();
+    let mut pending: Vec<(bool, Id)> = Vec::with_capacity(2 * terms.len());
+    for term in terms {
+        ready.push(Reverse((depths.of(graph, term.1), pending.len())));
+        pending.push(term);
     }
-    terms[0]
+    loop {
+        let Reverse((_, first)) = ready.pop().expect("a term is pending");
+        let Some(Reverse((_, second))) = ready.pop() else {
+            return pending[first];
+        };
+        let sum = match (pending[first], pending[second]) {
+            ((sa, a), (sb, b)) if sa == sb => (sa, graph.add(a, b)),
+            ((false, a), (true, b)) => (false, graph.sub(a, b)),
+            ((true, a), (false, b)) => (false, graph.sub(b, a)),
+            _ => unreachable!("two signs"),
+        };
+        ready.push(Reverse((depths.of(graph, sum.1), pending.len())));
+        pending.push(sum);
+    }
+}
+
+/// When each node's value is ready, in cycles from the kernel's start: a latency per
+/// operation on top of the latest operand (inputs and constants at 0). The latencies are
+/// those of a current x86-64 core (Agner Fog's instruction tables: addition, multiplication
+/// 3–4 cycles, division ~13, square root ~20), the sines and cosines of the kernel's prologue
+/// ~40; only their order matters here.
+#[derive(Default)]
+struct Depths {
+    ready: HashMap<Id, u32>,
+}
+
+impl Depths {
+    /// The cycle `id`'s value is ready at.
+    fn of(&mut self, graph: &ExprGraph, id: Id) -> u32 {
+        let mut stack = vec![id];
+        while let Some(&top) = stack.last() {
+            if self.ready.contains_key(&top) {
+                stack.pop();
+                continue;
+            }
+            let node = graph.node(top);
+            let missing: Vec<Id> = node
+                .children()
+                .filter(|c| !self.ready.contains_key(c))
+                .collect();
+            if !missing.is_empty() {
+                stack.extend(missing);
+                continue;
+            }
+            let operands = node.children().map(|c| self.ready[&c]).max().unwrap_or(0);
+            let latency = match node {
+                Node::Const(_) | Node::Symbol(_) => 0,
+                Node::Neg(_) | Node::Sign(_) => 1,
+                Node::Add(..) | Node::Mul(..) => 3,
+                Node::Div(..) => 13,
+                Node::Sqrt(_) => 20,
+                Node::Sin(_) | Node::Cos(_) => 40,
+            };
+            self.ready.insert(top, operands + latency);
+            stack.pop();
+        }
+        self.ready[&id]
+    }
 }
 
 #[cfg(test)]
@@ -209,6 +267,21 @@ mod tests {
         assert_eq!(rewrite("(+ (* 2 x) (* 3 x))"), "(* x 5)");
         assert_eq!(rewrite("(+ (* 2 x) (* 2 (* y z)))"), "(* 2 (+ x (* y z)))");
         assert_eq!(rewrite("(- (* 2 x) (* 2 y))"), "(* 2 (+ x (- y)))");
+    }
+
+    /// Terms ready at the start are summed first and a term that needs a long computation is
+    /// added last, so the sum's result waits for it by one addition only; terms ready
+    /// together form a balanced tree. (The printed form orders the operands of `+` by node.)
+    #[test]
+    fn a_late_term_is_added_last() {
+        assert_eq!(
+            rewrite("(+ (sin (sin (* x y))) (+ x (+ y z)))"),
+            "(+ (sin (sin (* x y))) (+ z (+ x y)))"
+        );
+        assert_eq!(
+            rewrite("(+ (* x y) (+ (* y z) (+ (* x z) (* z z))))"),
+            "(+ (+ (* x z) (* z z)) (+ (* x y) (* y z)))"
+        );
     }
 
     #[test]

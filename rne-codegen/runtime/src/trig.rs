@@ -89,7 +89,7 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// `(sin xᵢ, cos xᵢ)` of every element, bit for bit those of [`sin_cos`], computed lane by
 /// lane without branches so that the compiler evaluates several arguments in one vector
 /// instruction (the kernels take the sines and cosines of all joint angles at once).
-#[inline]
+#[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
