@@ -88,7 +88,10 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 
 /// `(sin xᵢ, cos xᵢ)` of every element, bit for bit those of [`sin_cos`], computed lane by
 /// lane without branches so that the compiler evaluates several arguments in one vector
-/// instruction (the kernels take the sines and cosines of all joint angles at once).
+/// instruction (the kernels take the sines and cosines of all joint angles at once). Always
+/// inlined: as a call, which LLVM chose for AVX2 targets, the results go through memory and
+/// the kernel's first link waits for the call to return — UR5's and the Panda arm's inverse
+/// dynamics ran 5–15 % slower (docs/performance.md).
 #[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
