@@ -48,6 +48,7 @@ mod builder;
 mod emit;
 mod error;
 mod kernel;
+mod latency;
 mod linear;
 mod load;
 mod model_type;

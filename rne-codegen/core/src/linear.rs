@@ -21,6 +21,8 @@ use std::collections::{BinaryHeap, HashMap};
 
 use rne_symbolic::{ExprGraph, Id, Node};
 
+use crate::latency::node_cycles;
+
 /// Rewrites the expressions `roots` (kernel outputs) into linear-combination form, adding the
 /// new nodes to `graph`; returns the new roots.
 pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
@@ -196,11 +198,8 @@ fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Dept
     }
 }
 
-/// When each node's value is ready, in cycles from the kernel's start: a latency per
-/// operation on top of the latest operand (inputs and constants at 0). The latencies are
-/// those of a current x86-64 core (Agner Fog's instruction tables: addition, multiplication
-/// 3–4 cycles, division ~13, square root ~20), the sines and cosines of the kernel's prologue
-/// ~40; only their order matters here.
+/// When each node's value is ready, in cycles from the kernel's start, by the latency model
+/// of [`crate::latency`]; only the order matters here.
 #[derive(Default)]
 struct Depths {
     ready: HashMap<Id, u32>,
@@ -225,15 +224,7 @@ impl Depths {
                 continue;
             }
             let operands = node.children().map(|c| self.ready[&c]).max().unwrap_or(0);
-            let latency = match node {
-                Node::Const(_) | Node::Symbol(_) => 0,
-                Node::Neg(_) | Node::Sign(_) => 1,
-                Node::Add(..) | Node::Mul(..) => 3,
-                Node::Div(..) => 13,
-                Node::Sqrt(_) => 20,
-                Node::Sin(_) | Node::Cos(_) => 40,
-            };
-            self.ready.insert(top, operands + latency);
+            self.ready.insert(top, operands + node_cycles(node));
             stack.pop();
         }
         self.ready[&id]

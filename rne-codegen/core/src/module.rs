@@ -24,6 +24,8 @@ pub struct KernelReport {
     pub kernel: Kernel,
     /// Operations per call of the emitted function.
     pub ops: OpCount,
+    /// Its critical path in modelled cycles ([`Program::critical_path`]).
+    pub critical_path: u32,
     /// Time spent building and emitting this kernel.
     pub generation_time: Duration,
 }
@@ -235,6 +237,7 @@ pub fn generate(
         kernels.push(KernelReport {
             kernel,
             ops: program.op_count(),
+            critical_path: program.critical_path(),
             generation_time: kernel_start.elapsed(),
         });
     }

@@ -48,7 +48,7 @@ pub enum Command {
     Show(show::ShowArgs),
     /// Print the Rust that `derive_dynamics!` generates for a robot.
     Emit(emit::EmitArgs),
-    /// Operation counts and generation time per generated function.
+    /// Operation counts, critical path (modelled cycles) and generation time per generated function.
     Stats(stats::StatsArgs),
     /// Evaluate the dynamics at one state.
     Eval(eval::EvalArgs),

@@ -1,4 +1,4 @@
-//! `rne stats MODEL`: operation counts and generation time per kernel.
+//! `rne stats MODEL`: operation counts, critical path and generation time per kernel.
 
 use std::io::Write;
 
@@ -61,7 +61,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
                     "kernel": k.kernel.name(),
                     "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
                     "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "sign": k.ops.sign,
-                    "cost": k.ops.cost(),
+                    "cost": k.ops.cost(), "critical_path": k.critical_path,
                     "generation_ms": k.generation_time.as_secs_f64() * 1e3,
                 })
             })
@@ -83,14 +83,25 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
     writeln!(
         out,
-        "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10}",
-        "kernel", "mul", "add", "div", "neg", "sin", "cos", "sqrt", "sign", "cost", "gen (ms)"
+        "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>6} {:>10}",
+        "kernel",
+        "mul",
+        "add",
+        "div",
+        "neg",
+        "sin",
+        "cos",
+        "sqrt",
+        "sign",
+        "cost",
+        "path",
+        "gen (ms)"
     )?;
     for k in &module.kernels {
         let o = k.ops;
         writeln!(
             out,
-            "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>10.3}",
+            "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>6} {:>10.3}",
             k.kernel.name(),
             o.mul,
             o.add,
@@ -101,6 +112,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             o.sqrt,
             o.sign,
             o.cost(),
+            k.critical_path,
             k.generation_time.as_secs_f64() * 1e3
         )?;
     }
