@@ -56,7 +56,7 @@ pub(crate) fn node_cycles(node: Node) -> u32 {
 }
 
 /// The cycles instruction `instr` takes after its last operand.
-fn instr_cycles(instr: Instr) -> u32 {
+pub(crate) fn instr_cycles(instr: Instr) -> u32 {
     cycles(match instr {
         Instr::Neg(_) | Instr::Sign(_) => Operation::Sign,
         Instr::Add(..) | Instr::Sub(..) | Instr::Mul(..) => Operation::Arithmetic,

@@ -11,6 +11,8 @@ use std::collections::HashMap;
 
 use rne_symbolic::{ExprGraph, Id, Node, OpCount, Real, Symbol};
 
+use crate::latency::instr_cycles;
+
 /// An operand: a previous instruction's result, a constant or an input.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Operand {
@@ -131,10 +133,13 @@ impl Program {
 
     /// The program with each addition or subtraction that has an operand computed by a
     /// multiplication used nowhere else fused with it: `a·b + c`, `a·b − c` and `c − a·b` become
-    /// one [`Instr::MulAdd`], [`Instr::MulSub`] or [`Instr::NegMulAdd`] (when both operands are
-    /// such products, the one computed later is fused, the earlier being likelier ready).
-    /// Operation counts do not change (a fused pair counts as a multiplication and an
-    /// addition); rounding does where the target fuses ([`Real::mul_add`]).
+    /// one [`Instr::MulAdd`], [`Instr::MulSub`] or [`Instr::NegMulAdd`] — unless fusing would
+    /// make the sum ready later than the product and the sum apart would, by the latency model
+    /// of `latency.rs`: a fused instruction waits for its addend too, so fusing a product
+    /// whose addend arrives late lengthens the chain. When both operands are such products,
+    /// the one giving the earlier result is fused (the later-computed one on a tie). Operation
+    /// counts do not change (a fused pair counts as a multiplication and an addition);
+    /// rounding does where the target fuses ([`Real::mul_add`]).
     pub fn fuse_multiply_add(&self) -> Program {
         let uses = self.use_counts();
         let single_product = |o: Operand| match o {
@@ -144,30 +149,54 @@ impl Program {
             },
             _ => None,
         };
-        let later =
-            |x: Option<(u32, Operand, Operand)>, y: Option<(u32, Operand, Operand)>| match (x, y) {
-                (Some(p), Some(q)) if p.0 > q.0 => (Some(p), None),
-                (Some(_), Some(q)) => (None, Some(q)),
-                other => other,
-            };
+        // When each instruction's value is ready in the fused program (a fused product's
+        // entry is never read).
+        let mut ready: Vec<u32> = Vec::with_capacity(self.instrs.len());
+        let at = |o: Operand, ready: &[u32]| match o {
+            Operand::Temp(t) => ready[t as usize],
+            Operand::Const(_) | Operand::Input(_) => 0,
+        };
         let mut fused: Vec<Option<Instr>> = self.instrs.iter().map(|&i| Some(i)).collect();
         for (k, instr) in self.instrs.iter().enumerate() {
-            let replacement = match *instr {
-                Instr::Add(x, y) => match later(single_product(x), single_product(y)) {
-                    (Some((t, a, b)), _) => Some((t, Instr::MulAdd(a, b, y))),
-                    (_, Some((t, a, b))) => Some((t, Instr::MulAdd(a, b, x))),
-                    _ => None,
-                },
-                Instr::Sub(x, y) => match later(single_product(x), single_product(y)) {
-                    (Some((t, a, b)), _) => Some((t, Instr::MulSub(a, b, y))),
-                    (_, Some((t, a, b))) => Some((t, Instr::NegMulAdd(a, b, x))),
-                    _ => None,
-                },
-                _ => None,
+            let sum = |x: Operand, y: Operand, ready: &[u32]| {
+                at(x, ready).max(at(y, ready)) + instr_cycles(*instr)
             };
-            if let Some((t, instr)) = replacement {
-                fused[t as usize] = None;
-                fused[k] = Some(instr);
+            let (unfused, x, y, subtract) = match *instr {
+                Instr::Add(x, y) => (sum(x, y, &ready), x, y, false),
+                Instr::Sub(x, y) => (sum(x, y, &ready), x, y, true),
+                _ => {
+                    let operands = instr.operands().into_iter().map(|o| at(o, &ready)).max();
+                    ready.push(operands.unwrap_or(0) + instr_cycles(*instr));
+                    continue;
+                }
+            };
+            // (finish, product index, fused instruction) of fusing each candidate product.
+            let candidate = |product: Operand, addend: Operand, first: bool, ready: &[u32]| {
+                single_product(product).map(|(t, a, b)| {
+                    let fused = match (subtract, first) {
+                        (false, _) => Instr::MulAdd(a, b, addend),
+                        (true, true) => Instr::MulSub(a, b, addend),
+                        (true, false) => Instr::NegMulAdd(a, b, addend),
+                    };
+                    let operands = fused.operands().into_iter().map(|o| at(o, ready)).max();
+                    (operands.unwrap_or(0) + instr_cycles(fused), t, fused)
+                })
+            };
+            let best = [
+                candidate(x, y, true, &ready),
+                candidate(y, x, false, &ready),
+            ]
+            .into_iter()
+            .flatten()
+            .filter(|&(finish, _, _)| finish <= unfused)
+            .min_by_key(|&(finish, t, _)| (finish, std::cmp::Reverse(t)));
+            match best {
+                Some((finish, t, instr)) => {
+                    fused[t as usize] = None;
+                    fused[k] = Some(instr);
+                    ready.push(finish);
+                }
+                None => ready.push(unfused),
             }
         }
         // Renumber the temporaries past the removed products.
@@ -310,6 +339,26 @@ mod tests {
             assert_eq!(fused.outputs, vec![Operand::Temp(0)]);
             assert_eq!(fused.op_count(), program.op_count(), "{text}");
         }
+    }
+
+    /// A product whose addend is ready long after it is not fused: the fused instruction
+    /// would wait for the addend and then take longer than the addition alone; with an
+    /// addend ready early it is fused.
+    #[test]
+    fn a_product_is_not_fused_with_a_late_addend() {
+        let late = lowered("(+ (* x y) (sin (sin z)))").fuse_multiply_add();
+        assert!(
+            late.instrs.iter().all(|i| !matches!(i, Instr::MulAdd(..))),
+            "{:?}",
+            late.instrs
+        );
+        let early = lowered("(+ (* (sin (sin z)) y) x)").fuse_multiply_add();
+        assert!(
+            early.instrs.iter().any(|i| matches!(i, Instr::MulAdd(..))),
+            "{:?}",
+            early.instrs
+        );
+        assert!(early.critical_path() < lowered("(+ (* (sin (sin z)) y) x)").critical_path());
     }
 
     /// A product that something else also uses stays a product (fusing it would compute it

@@ -30,6 +30,10 @@ pub struct EmitArgs {
     /// A static scene: every joint velocity is zero (the macro's `velocities: zero`).
     #[arg(long)]
     pub at_rest: bool,
+    /// Fused multiply-add (the macro's `fma: true`): products summed through `Real::mul_add`,
+    /// one instruction and one rounding on targets with FMA.
+    #[arg(long)]
+    pub fma: bool,
 }
 
 /// Prints the generated module.
@@ -40,6 +44,7 @@ pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
         args.lock.as_deref(),
     )?;
     scene.zero_velocities = args.at_rest;
+    scene.fma = args.fma;
     scene.mimic = args.options.mimic_mode();
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;

@@ -23,6 +23,10 @@ pub struct StatsArgs {
     /// How parameters enter the kernels (the macro's `parameters:`).
     #[arg(long, value_enum, default_value_t = Parameters::Constant)]
     pub parameters: Parameters,
+    /// Fused multiply-add (the macro's `fma: true`): the same counts (a fused pair is a
+    /// multiplication and an addition), a shorter critical path.
+    #[arg(long)]
+    pub fma: bool,
 }
 
 /// The macro's `parameters:` setting.
@@ -49,6 +53,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             Parameters::Runtime => ParameterMode::Runtime,
             Parameters::Base => ParameterMode::Base,
         },
+        fma: args.fma,
         ..args.options.scene()
     };
     let module = generate(&model, &scene, &source.display_name())?;
