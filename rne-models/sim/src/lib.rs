@@ -64,16 +64,21 @@
 
 #![deny(missing_docs)]
 
+mod configuration;
 mod controller;
 mod dopri5;
 mod error;
 mod gauss_legendre;
 mod integrator;
+mod lie_variational;
 pub mod linalg;
+mod manifold_state;
 mod metrics;
 pub mod model;
+mod momentum;
 mod record;
 mod rk4;
+mod se3;
 mod simulate;
 mod state;
 
@@ -84,6 +89,7 @@ mod test_models;
 #[cfg(test)]
 mod thesis_tests;
 
+pub use configuration::integrate;
 pub use controller::{
     ConstantTorque, Controller, Damping, GravityCompensation, Pd, Saturation, Sum, ZeroInput,
 };
@@ -91,8 +97,11 @@ pub use dopri5::Dopri5;
 pub use error::{RunError, SimError};
 pub use gauss_legendre::{GaussLegendre, Stages};
 pub use integrator::{Integrator, Method, Stats};
+pub use lie_variational::LieVariational;
+pub use manifold_state::ManifoldState;
 pub use metrics::{Summary, SETTLING_BAND};
 pub use model::{check_kernels, WithoutGravity, SIMULATED};
+pub use momentum::{world_momentum, Momentum};
 pub use record::Record;
 pub use rk4::Rk4;
 pub use simulate::{output_times, simulate};
