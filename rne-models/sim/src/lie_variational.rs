@@ -150,7 +150,8 @@ impl LieVariational {
         let mut q = x0.q;
         if layout.floating {
             let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
-            if !((norm - 1.0).abs() <= QUATERNION_NORM_SLACK) {
+            let near_unit = (norm - 1.0).abs() <= QUATERNION_NORM_SLACK;
+            if !near_unit {
                 return Err(SimError::InvalidSetting(
                     "the initial base quaternion q[3..7] must have unit norm",
                 ));
@@ -279,11 +280,12 @@ impl LieVariational {
             let mu: Six = std::array::from_fn(|i| end.kicked[i]);
             p[..6].copy_from_slice(&co_adjoint(&step, &mu));
         }
-        for i in layout.base_velocities()..NV {
-            p[i] = end.kicked[i] + h * end.d[i];
+        let nb = layout.base_velocities();
+        for ((pi, kicked), d) in p[nb..].iter_mut().zip(&end.kicked[nb..]).zip(&end.d[nb..]) {
+            *pi = kicked + h * d;
         }
-        for i in 0..NV {
-            p[i] += 0.5 * h * (end.u[i] - g[i]);
+        for ((pi, u), g) in p.iter_mut().zip(&end.u).zip(&g) {
+            *pi += 0.5 * h * (u - g);
         }
         Node { q, p, g }
     }
