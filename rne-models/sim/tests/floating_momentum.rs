@@ -301,6 +301,7 @@ fn a_floating_robot_falls_at_g_in_every_orientation() {
         [0.1, 0.7, -0.3, 0.640_312_423_743_284_9],
     ];
     let no_input = |_: f64, _: &[f64; NQ], _: &[f64; NV]| [0.0; NV];
+    let mut worst = 0.0f64;
     for quaternion in orientations {
         let mut q0 = [1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 0.0, 0.4, -0.9, 1.3];
         q0[3..7].copy_from_slice(&quaternion);
@@ -316,31 +317,23 @@ fn a_floating_robot_falls_at_g_in_every_orientation() {
             )
             .unwrap();
         let r = rotation(&quaternion);
+        let mut expected = q0;
+        let mut expected_v = [0.0; NV];
         for i in 0..3 {
-            let fallen = q0[i] + 0.5 * G[i] * t * t;
-            assert!(
-                (last.q[i] - fallen).abs() < 1e-12,
-                "{quaternion:?}: position {:?}",
-                last.q
-            );
-            let body_velocity: f64 = (0..3).map(|k| r[(k, i)] * G[k] * t).sum();
-            assert!(
-                (last.v[i] - body_velocity).abs() < 1e-12,
-                "{quaternion:?}: v {:?}",
-                last.v
-            );
+            expected[i] += 0.5 * G[i] * t * t;
+            expected_v[i] = (0..3).map(|k| r[(k, i)] * G[k] * t).sum();
         }
-        let still = last.q[3..]
+        // Position ½ g t², body velocity Rᵀ g t; orientation, joints, ω and joint rates unchanged.
+        let error = last
+            .q
             .iter()
-            .zip(&q0[3..])
-            .all(|(a, b)| (a - b).abs() < 1e-12);
-        assert!(still, "{quaternion:?}: turned or bent {:?}", last.q);
-        assert!(
-            last.v[3..].iter().all(|w| w.abs() < 1e-12),
-            "{quaternion:?}: {:?}",
-            last.v
-        );
+            .zip(&expected)
+            .chain(last.v.iter().zip(&expected_v))
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(error < 1e-11, "{quaternion:?}: {last:?}");
+        worst = worst.max(error);
     }
+    println!("free fall over 1 s at h = 10 ms: largest error in q and v {worst:e}");
     // The forward-dynamics kernel agrees: the body acceleration at rest is Rᵀ g.
     let q = [0.0, 0.0, 0.0, 0.5, -0.5, 0.5, 0.5, 0.4, -0.9, 1.3];
     let a = earth::Model
