@@ -165,6 +165,8 @@ impl LieVariational {
             g: vector(model.gravity_torques(&q)),
         };
         let mut v = x0.v;
+        // The previous step's velocity and length, for the starting guess of the next one.
+        let mut previous: Option<([f64; NV], f64)> = None;
         sink(times[0], x0);
         for w in times.windows(2) {
             let (t_a, t_b) = (w[0], w[1]);
@@ -172,7 +174,15 @@ impl LieVariational {
             let h = (t_b - t_a) / n as f64;
             for j in 0..n {
                 let t = t_a + j as f64 * h;
+                let current = v;
+                // Linear extrapolation of the step velocities, v_k ≈ v_{k−1} + r (v_{k−1} − v_{k−2})
+                // with r the ratio of the step midpoints' spacings.
+                if let Some((before, h_before)) = previous {
+                    let r = (h + h_before) / (2.0 * h_before);
+                    v = std::array::from_fn(|i| current[i] + r * (current[i] - before[i]));
+                }
                 let end = self.solve(layout, model, input, t, &node, &mut v, h, &mut stats)?;
+                previous = Some((current, h));
                 node = Self::advance(layout, model, &node, &v, &end, h);
                 stats.steps += 1;
                 if !(node.q.iter().chain(&node.p).all(|x| x.is_finite())) {
