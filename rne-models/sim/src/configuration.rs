@@ -106,7 +106,7 @@ pub(crate) fn base_placement<const NQ: usize>(q: &[f64; NQ]) -> ([[f64; 3]; 3], 
 
 /// q ⊕ v: the configuration reached from q by moving at the constant velocity v for unit time,
 /// on the configuration manifold of `model` (Pinocchio's `integrate`; see the module docs).
-/// Scale v by h for a step of length h.
+/// Scale v by h for a step of length h. Only the model's layout (its base, NQ and NV) is read.
 ///
 /// Errors with [`SimError::InvalidSetting`] when NQ and NV do not fit the model's base.
 ///
