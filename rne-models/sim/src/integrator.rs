@@ -18,9 +18,11 @@ pub struct Stats {
     pub rejected: u64,
     /// Evaluations of the right-hand side: calls of `forward_dynamics` for the explicit
     /// methods; evaluations of the canonical vector field (one M, C, g and Cholesky solve each)
-    /// for Gauss–Legendre.
+    /// for Gauss–Legendre; evaluations of the velocity equation (one M, C and Cholesky solve
+    /// each) for [`LieVariational`](crate::LieVariational).
     pub evaluations: u64,
-    /// Fixed-point iterations on the implicit stage equations (Gauss–Legendre only).
+    /// Fixed-point iterations on the implicit stage equations (Gauss–Legendre) or velocity
+    /// equation (LieVariational); zero for the explicit methods.
     pub iterations: u64,
 }
 

@@ -1,5 +1,6 @@
-//! Hand-written models for the simulation tests: a simple pendulum, a linear oscillator and the
-//! thesis's planar elbow from its closed forms (4.45)–(4.47) with the Christoffel C.
+//! Hand-written models for the simulation tests: a simple pendulum, a linear oscillator, the
+//! thesis's planar elbow from its closed forms (4.45)–(4.47) with the Christoffel C, and a free
+//! rigid body on a floating base.
 
 use rne_runtime::{Dynamics, Kernel};
 
@@ -203,6 +204,88 @@ macro_rules! closed_form_dynamics {
 closed_form_dynamics!(Pendulum, 1, "pendulum", ["q"]);
 closed_form_dynamics!(Oscillator, 1, "oscillator", ["q"]);
 closed_form_dynamics!(PlanarElbow, 2, "planar elbow", ["q1", "q2"]);
+
+/// A free rigid body on a floating base (NQ = 7, NV = 6), its centre of mass at the base origin
+/// and its principal axes along the base axes: M = diag(m, m, m, I₁, I₂, I₃), and the skew
+/// Christoffel-type C = [[m ω×, 0], [0, −(I ω)×]] (Ṁ = 0 = C + Cᵀ) with C v = [ω × m v; ω × I ω],
+/// the Newton–Euler bias in body coordinates. Gravity `gravity` (world frame) gives
+/// g(q) = [−m Rᵀ g; 0] and V = −m gᵀ p.
+#[derive(Clone, Copy, Debug)]
+pub struct FreeBody {
+    pub m: f64,
+    pub inertia: [f64; 3],
+    pub gravity: [f64; 3],
+}
+
+impl FreeBody {
+    fn mass_diagonal(&self) -> [f64; 6] {
+        let [a, b, c] = self.inertia;
+        [self.m, self.m, self.m, a, b, c]
+    }
+}
+
+impl Dynamics<7, 6> for FreeBody {
+    type Scalar = f64;
+    const NAME: &'static str = "free body";
+    const JOINTS: &'static [&'static str] = &[];
+    const FLOATING_BASE: bool = true;
+    const KERNELS: &'static [Kernel] = &[
+        Kernel::ForwardDynamics,
+        Kernel::MassMatrix,
+        Kernel::CoriolisMatrix,
+        Kernel::GravityTorques,
+        Kernel::KineticEnergy,
+        Kernel::PotentialEnergy,
+    ];
+    fn forward_dynamics(&self, q: &[f64; 7], v: &[f64; 6], tau: &[f64; 6]) -> Option<[f64; 6]> {
+        let cv = mat_vec(&self.coriolis_matrix(q, v)?, v);
+        let g = self.gravity_torques(q)?;
+        let d = self.mass_diagonal();
+        Some(std::array::from_fn(|i| (tau[i] - cv[i] - g[i]) / d[i]))
+    }
+    fn mass_matrix(&self, _q: &[f64; 7]) -> Option<[[f64; 6]; 6]> {
+        let d = self.mass_diagonal();
+        Some(std::array::from_fn(|i| {
+            std::array::from_fn(|j| if i == j { d[i] } else { 0.0 })
+        }))
+    }
+    fn coriolis_matrix(&self, _q: &[f64; 7], v: &[f64; 6]) -> Option<[[f64; 6]; 6]> {
+        let hat = |w: [f64; 3]| [[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]];
+        let w = [v[3], v[4], v[5]];
+        let iw = [
+            self.inertia[0] * w[0],
+            self.inertia[1] * w[1],
+            self.inertia[2] * w[2],
+        ];
+        let (mw, iw) = (hat(w), hat(iw));
+        let mut c = [[0.0; 6]; 6];
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] = self.m * mw[i][j];
+                c[3 + i][3 + j] = -iw[i][j];
+            }
+        }
+        Some(c)
+    }
+    fn gravity_torques(&self, q: &[f64; 7]) -> Option<[f64; 6]> {
+        let r = crate::se3::rotation(&[q[3], q[4], q[5], q[6]]);
+        let f = crate::se3::rotate_back(&r, &self.gravity);
+        Some([
+            -self.m * f[0],
+            -self.m * f[1],
+            -self.m * f[2],
+            0.0,
+            0.0,
+            0.0,
+        ])
+    }
+    fn kinetic_energy(&self, q: &[f64; 7], v: &[f64; 6]) -> Option<f64> {
+        Some(0.5 * dot(v, &mat_vec(&self.mass_matrix(q)?, v)))
+    }
+    fn potential_energy(&self, q: &[f64; 7]) -> Option<f64> {
+        Some(-self.m * (0..3).map(|i| self.gravity[i] * q[i]).sum::<f64>())
+    }
+}
 
 /// Observed convergence orders log₂(eₖ / eₖ₊₁) of errors at successively halved steps.
 pub fn observed_order(errors: &[f64]) -> Vec<f64> {
