@@ -11,6 +11,7 @@ use rne_symbolic::RobotModel;
 const STRICT: LoadOptions = LoadOptions {
     symbolic_parameters: false,
     strict: true,
+    free_mimic: false,
 };
 
 /// Two revolute links; `{upper}` and `{fore}` are the `<inertia>` attributes of each.
@@ -210,4 +211,53 @@ fn a_massless_moving_link_is_a_warning_in_a_toml_spec() {
         "{}",
         found[0].1
     );
+}
+
+/// A follower whose `<mimic>` names a joint the robot does not have (as
+/// `alex_psyonic_hands.urdf` of example-robot-data does): an error with mimic joints
+/// constrained; with mimic joints free the tag is dropped with a warning naming the joint and
+/// the follower is a joint of its own; strict validation makes that warning an error.
+#[test]
+fn a_mimic_of_a_missing_joint_is_dropped_with_a_warning_when_mimic_joints_are_free() {
+    let text = r#"<robot name="hand">
+  <link name="palm"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="finger"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="finger_q2" type="revolute">
+    <parent link="palm"/><child link="finger"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <mimic joint="finger_q1" multiplier="1"/>
+  </joint>
+</robot>"#;
+    let read =
+        |options: LoadOptions| spec::parse_robot(text, "hand.urdf", RobotFormat::Urdf, &options);
+    let refused = read(LoadOptions::default()).unwrap_err();
+    assert!(
+        refused.to_string().contains("follows 'finger_q1'"),
+        "{refused}"
+    );
+
+    let free = LoadOptions {
+        free_mimic: true,
+        ..LoadOptions::default()
+    };
+    let model = read(free).expect("loads with mimic joints free");
+    assert_eq!(model.dof(), 1, "the follower is a joint of its own");
+    let [warning] = &model.warnings[..] else {
+        panic!("one warning expected: {:?}", model.warnings);
+    };
+    assert_eq!(warning.kind(), SpecWarningKind::MimicLeaderMissing);
+    let message = warning.to_string();
+    assert!(
+        message.contains("hand.urdf:")
+            && message.contains("finger_q2")
+            && message.contains("finger_q1"),
+        "{message}"
+    );
+
+    let strict = read(LoadOptions {
+        strict: true,
+        ..free
+    })
+    .unwrap_err();
+    assert_eq!(strict.kind(), SpecErrorKind::Strict, "{strict}");
 }

@@ -7,16 +7,18 @@ use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
 use crate::module::{generate, GeneratedModule};
-use crate::scene::{ParameterMode, Scene};
+use crate::scene::{MimicMode, ParameterMode, Scene};
 
 /// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension), naming it
 /// `origin` in error messages, with parameters kept symbolic when `scene` wants them at run
-/// time and warnings made errors when it asks for strict validation. The model's
+/// time, warnings made errors when it asks for strict validation and mimic tags without a
+/// leader dropped when its mimic joints are free. The model's
 /// [`warnings`](RobotModel::warnings) are what the Builder prints and the macro documents.
 pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel, CodegenError> {
     let options = LoadOptions {
         symbolic_parameters: scene.parameters == ParameterMode::Runtime,
         strict: scene.strict,
+        free_mimic: scene.mimic == MimicMode::Free,
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
     let text = std::fs::read_to_string(path).map_err(|source| CodegenError::Read {

@@ -45,6 +45,7 @@ impl ModelOptions {
         LoadOptions {
             symbolic_parameters,
             strict: self.strict,
+            free_mimic: self.mimic == MimicOption::Free,
         }
     }
 

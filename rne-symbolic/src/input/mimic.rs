@@ -6,7 +6,7 @@
 
 use super::{InputLink, Place};
 use crate::model::{JointKind, JointVariable};
-use crate::spec::{SpecError, SpecErrorKind};
+use crate::spec::{SpecError, SpecErrorKind, SpecWarning, SpecWarningKind};
 
 /// Checks every mimic link of `links`, whose joint variables are `joints`.
 pub(crate) fn check(links: &[InputLink], joints: &[JointVariable]) -> Result<(), SpecError> {
@@ -62,6 +62,39 @@ pub(crate) fn check(links: &[InputLink], joints: &[JointVariable]) -> Result<(),
         }
     }
     Ok(())
+}
+
+/// With mimic joints free: removes every mimic whose leader is not a moving joint of the
+/// robot (which [`check`] refuses), returning the link index and a warning for each.
+pub(crate) fn drop_missing_leaders(
+    links: &mut [InputLink],
+    joints: &[JointVariable],
+) -> Vec<(usize, SpecWarning)> {
+    let missing: Vec<(usize, String)> = links
+        .iter()
+        .enumerate()
+        .filter_map(|(i, input)| {
+            let mimic = input.link.mimic.as_ref()?;
+            leader_link(links, joints, &mimic.leader)
+                .is_none()
+                .then(|| (i, mimic.leader.clone()))
+        })
+        .collect();
+    missing
+        .into_iter()
+        .map(|(i, leader)| {
+            links[i].link.mimic = None;
+            let warning = SpecWarning::new(
+                SpecWarningKind::MimicLeaderMissing,
+                format!(
+                    "the mimic joint follows '{leader}', which is not a moving joint of the \
+                     robot; with mimic joints free it is a joint of its own"
+                ),
+            )
+            .at_field(links[i].fields.mimic);
+            (i, warning)
+        })
+        .collect()
 }
 
 /// The link moved by the joint variable `name`.

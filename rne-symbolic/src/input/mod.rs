@@ -121,11 +121,13 @@ impl InputLink {
 }
 
 /// Validates `input` and builds its model, with the warnings found (not yet located in the
-/// file). `symbolic_parameters` keeps every parameter as its own symbol instead of folding it.
+/// file). [`LoadOptions::symbolic_parameters`] keeps every parameter as its own symbol instead
+/// of folding it; [`LoadOptions::free_mimic`] drops mimic tags whose leader is missing.
 pub(crate) fn assemble(
-    input: RobotInput,
-    symbolic_parameters: bool,
+    mut input: RobotInput,
+    options: &LoadOptions,
 ) -> Result<RobotModel, SpecError> {
+    let symbolic_parameters = options.symbolic_parameters;
     let values = Values::new(&input.graph, &input.parameters);
     validate::finite_vector(&values, &input.gravity, "gravity")?;
     let numbers = input
@@ -144,6 +146,14 @@ pub(crate) fn assemble(
             found
                 .into_iter()
                 .map(|w| link.place_warning(Place::Link, w.at_field(link.fields.inertia))),
+        );
+    }
+    if options.free_mimic {
+        let dropped = mimic::drop_missing_leaders(&mut input.links, &input.joints);
+        warnings.extend(
+            dropped
+                .into_iter()
+                .map(|(l, w)| input.links[l].place_warning(Place::Joint, w)),
         );
     }
     mimic::check(&input.links, &input.joints)?;

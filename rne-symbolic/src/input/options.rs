@@ -12,4 +12,9 @@ pub struct LoadOptions {
     /// warning ([`SpecWarning`](crate::spec::SpecWarning)) is returned as an error of kind
     /// [`SpecErrorKind::Strict`](crate::spec::SpecErrorKind::Strict).
     pub strict: bool,
+    /// Mimic joints will be independent joints (the CLI's `--mimic free`, the macro's
+    /// `mimic: free`): a `<mimic>` (or `mimic = {..}`) naming a leader that is not a moving
+    /// joint of the robot is then dropped with a warning instead of refused, as Pinocchio's
+    /// default reader, which ignores mimic tags, loads such a file.
+    pub free_mimic: bool,
 }

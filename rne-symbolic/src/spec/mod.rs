@@ -169,7 +169,7 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
             joints: tree.joints,
             base: spec.base,
         },
-        options.symbolic_parameters,
+        options,
     )
 }
 

@@ -21,6 +21,10 @@ pub enum SpecWarningKind {
     /// A moving joint whose link and every link beyond it have no mass and no inertia: the
     /// joint is kept for kinematics, but M(q) is singular and forward dynamics undefined.
     MasslessSubtree,
+    /// A mimic joint whose leader is not a moving joint of the robot, read with mimic joints
+    /// free ([`LoadOptions::free_mimic`](crate::spec::LoadOptions::free_mimic)): the mimic
+    /// is dropped and the joint is a joint of its own.
+    MimicLeaderMissing,
 }
 
 /// A warning found while reading a robot file, naming the file, the joint or link and the field

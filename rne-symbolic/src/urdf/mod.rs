@@ -82,10 +82,10 @@ use crate::RobotModel;
 use self::elements::UrdfRobot;
 
 /// Reads a URDF robot from `text`; `origin` names the file in error and warning messages.
-/// Only [`LoadOptions::strict`] matters: a URDF has no parameters.
+/// [`LoadOptions::strict`] and [`LoadOptions::free_mimic`] matter: a URDF has no parameters.
 pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let robot = document::read(text).map_err(|e| e.locate(origin, text))?;
-    let mut model = read(&robot, origin).map_err(|e| {
+    let mut model = read(&robot, origin, options).map_err(|e| {
         let span = element_span(&robot, e.joint(), e.link());
         e.at_span(span).locate(origin, text)
     })?;
@@ -99,10 +99,14 @@ pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<Robo
     input::enforce(model, options.strict)
 }
 
-fn read(robot: &UrdfRobot, origin: &str) -> Result<RobotModel, SpecError> {
+fn read(robot: &UrdfRobot, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let tree = tree::build(robot)?;
     let input = assemble::input(robot, &tree, origin)?;
-    input::assemble(input, false)
+    let options = LoadOptions {
+        symbolic_parameters: false,
+        ..*options
+    };
+    input::assemble(input, &options)
 }
 
 /// The opening tag of the first `<joint>` named `joint`, else of the first `<link>` named
