@@ -140,25 +140,11 @@ mod tests {
         )
     }
 
+    /// The base's rotation from the quaternion (xyzw) of q, by nalgebra.
     fn rotation_of(q: &[f64]) -> [[f64; 3]; 3] {
-        let [x, y, z, w] = [q[3], q[4], q[5], q[6]];
-        [
-            [
-                1.0 - 2.0 * (y * y + z * z),
-                2.0 * (x * y - z * w),
-                2.0 * (x * z + y * w),
-            ],
-            [
-                2.0 * (x * y + z * w),
-                1.0 - 2.0 * (x * x + z * z),
-                2.0 * (y * z - x * w),
-            ],
-            [
-                2.0 * (x * z - y * w),
-                2.0 * (y * z + x * w),
-                1.0 - 2.0 * (x * x + y * y),
-            ],
-        ]
+        let quaternion = nalgebra::Quaternion::new(q[6], q[3], q[4], q[5]);
+        let r = nalgebra::UnitQuaternion::from_quaternion(quaternion).to_rotation_matrix();
+        std::array::from_fn(|i| std::array::from_fn(|j| r[(i, j)]))
     }
 
     /// Against central differences: the quaternion is a unit quaternion of R, the body

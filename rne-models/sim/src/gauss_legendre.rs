@@ -2,6 +2,7 @@
 //! canonical coordinates (q, p), p = M(q) q̇, for energy-respecting long runs.
 
 use super::controller::Controller;
+use super::fixed_point::converged;
 use rne_runtime::Dynamics;
 
 use super::error::SimError;
@@ -240,13 +241,7 @@ impl GaussLegendre {
                     residual: change,
                 });
             }
-            // Converged when the change vanishes, when it stops decreasing below the tolerance
-            // (the round-off floor), or when the contraction θ = change / previous predicts a
-            // remaining error θ / (1 − θ) · change below the rounding unit.
-            let theta = change / previous;
-            let floor = k > 1 && theta >= 1.0 && change <= self.tolerance;
-            let negligible = k > 1 && theta < 1.0 && theta / (1.0 - theta) * change <= f64::EPSILON;
-            if change == 0.0 || floor || negligible {
+            if converged(k, change, previous, self.tolerance) {
                 return Ok(Canonical::combination(h, &tab.b, &f));
             }
             previous = change;

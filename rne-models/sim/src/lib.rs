@@ -121,6 +121,7 @@ mod configuration;
 mod controller;
 mod dopri5;
 mod error;
+mod fixed_point;
 mod gauss_legendre;
 mod integrator;
 mod lie_variational;

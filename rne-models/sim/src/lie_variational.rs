@@ -5,6 +5,7 @@ use rne_runtime::{Dynamics, Kernel};
 
 use crate::configuration::Layout;
 use crate::error::SimError;
+use crate::fixed_point::converged;
 use crate::integrator::{substeps, validate_times, Stats};
 use crate::linalg::{cholesky, cholesky_solve, mat_t_vec, mat_vec};
 use crate::manifold_state::ManifoldState;
@@ -252,12 +253,7 @@ impl LieVariational {
                     residual: change,
                 });
             }
-            // As in Gauss–Legendre: converged when the change vanishes, stops decreasing below
-            // the tolerance, or its contraction predicts a remaining error below rounding.
-            let theta = change / previous;
-            let floor = k > 1 && theta >= 1.0 && change <= self.tolerance;
-            let negligible = k > 1 && theta < 1.0 && theta / (1.0 - theta) * change <= f64::EPSILON;
-            if change == 0.0 || floor || negligible {
+            if converged(k, change, previous, self.tolerance) {
                 return Ok(StepEnd { kicked, d, u });
             }
             previous = change;
