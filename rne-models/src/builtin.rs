@@ -2,10 +2,11 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{load_robot, parse_robot, LoadOptions, RobotFormat, SpecError};
+use rne_symbolic::spec::{load_robot, LoadOptions, SpecError};
 use rne_symbolic::RobotModel;
 
 use crate::generated;
+use crate::robot_file::parse_embedded;
 use crate::visit::Visitor;
 
 /// Which generated module a built-in robot has.
@@ -127,10 +128,7 @@ impl RobotSource {
     /// Reads the robot, a TOML spec or a URDF as its file's extension says.
     pub fn load(&self, options: &LoadOptions) -> Result<RobotModel, SpecError> {
         match self {
-            RobotSource::Builtin(robot) => {
-                let format = RobotFormat::from_path(Path::new(robot.file))?;
-                parse_robot(robot.source, robot.file, format, options)
-            }
+            RobotSource::Builtin(robot) => parse_embedded(robot.source, robot.file, options),
             RobotSource::File(path) => load_robot(path, options),
         }
     }

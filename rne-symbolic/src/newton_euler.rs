@@ -12,7 +12,7 @@
 //! links they carry, exactly as in (3.21) and (3.24).
 
 use crate::expr::{ExprGraph, Id, Vec3};
-use crate::model::{JointKind, RobotModel};
+use crate::model::{JointKind, Link, RobotModel, StateLayout};
 pub use crate::motion::JointMotion;
 use crate::motion::{LinkCoordinate, LinkPlacement};
 
@@ -227,16 +227,14 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         products.push(own_products);
     }
 
-    // Backward recursion, leaves first (children always come after their parent).
-    let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
-    for i in (0..n).rev() {
+    // Backward recursion, leaves first.
+    let reactions = backward_recursion(g, links, &placements, |g, i| {
         let link = &links[i];
         let LinkMotion {
             alpha, accel_com, ..
         } = out[i];
         // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
         let inertial_force = g.vscale(link.mass, accel_com);
-        let mut force = inertial_force;
         // (3.24): τ_i = Σ_c [R_c^i τ_c + (R_c^i f_c) × r_{i,ci}] − f_i × r_{i−1,ci}
         //             + ω_i × (I_i ω_i) + I_i α_i.
         // With f_i substituted from (3.21) and the cross products regrouped as the thesis
@@ -248,8 +246,33 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         let gyroscopic = products[i].gyroscopic(g, &link.inertia);
         let i_alpha = g.mat_vec(&link.inertia, alpha);
         let own_moment = g.cross(link.com, inertial_force);
-        let mut torque = g.vadd(gyroscopic, i_alpha);
-        torque = g.vadd(torque, own_moment);
+        let torque = g.vadd(gyroscopic, i_alpha);
+        (inertial_force, g.vadd(torque, own_moment))
+    });
+    let torques = generalised_forces(g, links, &reactions, &coordinates, &layout);
+    NewtonEuler {
+        motion: out,
+        reactions,
+        torques,
+    }
+}
+
+/// The backward recursion of (3.21) and (3.24), leaves first (children always come after their
+/// parent): link i's reaction is `own(g, i)`, the force and the moment about its origin its
+/// own motion needs, plus each child c's reaction carried into frame i, R_c^i f_c and
+/// R_c^i τ_c, with the moment r_{i−1,c} × R_c^i f_c of the child's force about the origin
+/// (r_{i−1,c} the point where c is attached). On a tree the children's terms are summed where
+/// the thesis's serial chain has the single R_{i+1}^i f_{i+1}.
+pub(crate) fn backward_recursion(
+    g: &mut ExprGraph,
+    links: &[Link],
+    placements: &[LinkPlacement],
+    mut own: impl FnMut(&mut ExprGraph, usize) -> (Vec3, Vec3),
+) -> Vec<JointReaction> {
+    let n = links.len();
+    let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
+    for i in (0..n).rev() {
+        let (mut force, mut torque) = own(g, i);
         for child in (i + 1..n).filter(|&c| links[c].parent == Some(i)) {
             let reaction = reactions[child].expect("children are processed before their parent");
             let f = placements[child].to_parent(g, reaction.force);
@@ -261,37 +284,42 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         }
         reactions[i] = Some(JointReaction { force, torque });
     }
-    let reactions: Vec<JointReaction> = reactions
+    reactions
         .into_iter()
         .map(|r| r.expect("every link was visited"))
-        .collect();
+        .collect()
+}
 
+/// The left-hand side of (3.1) from the joint reactions: per joint variable u_iᵀ τ_i
+/// (revolute) or u_iᵀ f_i (prismatic) plus the rotor's reflected inertia I_a q̈ (armature),
+/// carried onto the variable by the mimic multiplier and summed over the links it drives,
+/// after the free-flyer's [f; τ] on a floating base.
+pub(crate) fn generalised_forces(
+    g: &mut ExprGraph,
+    links: &[Link],
+    reactions: &[JointReaction],
+    coordinates: &[Option<LinkCoordinate>],
+    layout: &StateLayout,
+) -> Vec<Id> {
     let mut terms: Vec<Vec<Id>> = vec![Vec::new(); layout.nv()];
-    for (i, (link, reaction)) in links.iter().zip(&reactions).enumerate() {
+    for ((link, reaction), coordinate) in links.iter().zip(reactions).zip(coordinates) {
         if link.kind == JointKind::FreeFlyer {
             for a in 0..3 {
                 terms[a].push(reaction.force[a]);
                 terms[3 + a].push(reaction.torque[a]);
             }
         }
-        if let Some(c) = coordinates[i] {
-            let along = match link.kind {
+        if let Some(c) = coordinate {
+            let mut along = match link.kind {
                 JointKind::Prismatic => g.dot(link.axis, reaction.force),
                 _ => g.dot(link.axis, reaction.torque),
             };
-            let mut force = along;
             if let Some(armature) = link.armature {
-                // The rotor's reflected inertia: Ia q̈ of the link's coordinate.
                 let rotor = g.mul(armature, c.qdd);
-                force = g.add(force, rotor);
+                along = g.add(along, rotor);
             }
-            terms[layout.v_offset() + c.variable].push(c.project(g, force));
+            terms[layout.v_offset() + c.variable].push(c.project(g, along));
         }
     }
-    let torques = terms.into_iter().map(|t| g.sum(t)).collect();
-    NewtonEuler {
-        motion: out,
-        reactions,
-        torques,
-    }
+    terms.into_iter().map(|t| g.sum(t)).collect()
 }

@@ -10,8 +10,9 @@ mod common;
 use common::{rel_err, rng, uniform};
 use rne_codegen_core::{build_kernel, Kernel, ParameterMode, Program, Scene};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
+use rne_models::QUADRUPED;
 use rne_symbolic::model::Base;
-use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
 /// A state: q (a unit quaternion for a floating base), v, a and u.
@@ -69,13 +70,9 @@ fn builtin(name: &str) -> RobotModel {
 }
 
 fn quadruped() -> RobotModel {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../rne-models/corpus/tests/fixtures/quadruped.urdf"
-    );
-    let text = std::fs::read_to_string(path).expect("the fixture exists");
-    let mut model = parse_robot(&text, path, RobotFormat::Urdf, &LoadOptions::default())
-        .expect("the fixture loads");
+    let mut model = QUADRUPED
+        .load(&LoadOptions::default())
+        .expect("the quadruped loads");
     model.set_base(Base::Floating);
     applied(&model)
 }

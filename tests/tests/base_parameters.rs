@@ -15,7 +15,7 @@ use rne_symbolic::NumericModel;
 rne_codegen::derive_dynamics! {
     /// Constant parameters.
     mod elbow {
-        robot: "../rne-models/robots/planar-elbow.toml",
+        robot: "fixtures/robots/planar-elbow.toml",
         outputs: [inverse_dynamics, mass_matrix, coriolis_matrix, gravity_torques, bias_torques,
                   forward_dynamics, kinetic_energy, potential_energy,
                   inverse_dynamics_derivatives, base_regressor],
@@ -25,7 +25,7 @@ rne_codegen::derive_dynamics! {
 rne_codegen::derive_dynamics! {
     /// The base parameters at run time.
     mod elbow_base {
-        robot: "../rne-models/robots/planar-elbow.toml",
+        robot: "fixtures/robots/planar-elbow.toml",
         outputs: [inverse_dynamics, mass_matrix, coriolis_matrix, gravity_torques, bias_torques,
                   forward_dynamics, kinetic_energy, potential_energy,
                   inverse_dynamics_derivatives, base_regressor],
@@ -36,10 +36,10 @@ rne_codegen::derive_dynamics! {
 fn planar_elbow() -> NumericModel {
     let spec = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../rne-models/robots/planar-elbow.toml"
+        "/fixtures/robots/planar-elbow.toml"
     );
     load_file(spec.as_ref(), &LoadOptions::default())
-        .expect("the built-in robot loads")
+        .expect("the planar elbow loads")
         .to_numeric()
 }
 

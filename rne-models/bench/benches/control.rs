@@ -1,6 +1,7 @@
 //! The control and identification kernels (DESIGN.md §4) of UR5 and the Panda arm, timed by
 //! criterion: the derivatives of inverse and forward dynamics, M⁻¹, the Jacobians of every
-//! frame, J̇q̇ and the regressor, beside inverse dynamics for scale.
+//! frame, J̇q̇ and the regressor (rne-models' `control` variants, the modules `rne bench
+//! --pinocchio` times), beside inverse dynamics (the default modules) for scale.
 //!
 //! ```text
 //! cargo bench -p rne-bench --bench control
@@ -19,23 +20,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-rne_codegen::derive_dynamics! {
-    /// UR5's control and identification kernels.
-    mod ur5 {
-        robot: "../robots/ur5.urdf",
-        outputs: [inverse_dynamics, inverse_dynamics_derivatives, forward_dynamics_derivatives,
-                  mass_matrix_inverse, frame_jacobians, frame_jacobian_dot_qd, regressor],
-    }
-}
-
-rne_codegen::derive_dynamics! {
-    /// The Panda arm's control and identification kernels.
-    mod panda_arm {
-        robot: "../robots/panda-arm.urdf",
-        outputs: [inverse_dynamics, inverse_dynamics_derivatives, forward_dynamics_derivatives,
-                  mass_matrix_inverse, frame_jacobians, frame_jacobian_dot_qd, regressor],
-    }
-}
+use rne_models::generated::{panda_arm, ur5, variants};
 
 /// 64 seeded states (q, q̇, q̈, τ).
 fn states<const N: usize>() -> Vec<[[f64; N]; 4]> {
@@ -48,6 +33,7 @@ fn states<const N: usize>() -> Vec<[[f64; N]; 4]> {
 
 macro_rules! bench_robot {
     ($c:expr, $name:literal, $module:ident, $n:literal) => {{
+        use variants::$module::control;
         let pool = states::<$n>();
         let mut group = $c.benchmark_group($name);
         let mut k = 0usize;
@@ -64,31 +50,31 @@ macro_rules! bench_robot {
         group.bench_function("inverse_dynamics_derivatives", |b| {
             b.iter(|| {
                 let [q, v, a, _] = next();
-                $module::inverse_dynamics_derivatives(q, v, a)
+                control::inverse_dynamics_derivatives(q, v, a)
             })
         });
         group.bench_function("forward_dynamics_derivatives", |b| {
             b.iter(|| {
                 let [q, v, _, u] = next();
-                $module::forward_dynamics_derivatives(q, v, u)
+                control::forward_dynamics_derivatives(q, v, u)
             })
         });
         group.bench_function("mass_matrix_inverse", |b| {
-            b.iter(|| $module::mass_matrix_inverse(&next()[0]))
+            b.iter(|| control::mass_matrix_inverse(&next()[0]))
         });
         group.bench_function("frame_jacobians", |b| {
-            b.iter(|| $module::frame_jacobians(&next()[0]))
+            b.iter(|| control::frame_jacobians(&next()[0]))
         });
         group.bench_function("frame_jacobian_dot_qd", |b| {
             b.iter(|| {
                 let [q, v, _, _] = next();
-                $module::frame_jacobian_dot_qd(q, v)
+                control::frame_jacobian_dot_qd(q, v)
             })
         });
         group.bench_function("regressor", |b| {
             b.iter(|| {
                 let [q, v, a, _] = next();
-                $module::regressor(q, v, a)
+                control::regressor(q, v, a)
             })
         });
         group.finish();

@@ -3,10 +3,10 @@
 
 use std::io::Write;
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::Args;
 
+use super::long_run::LongRun;
 use super::CliError;
 use rne_bench::{self as bench, Effort, PinocchioScript};
 
@@ -57,7 +57,7 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         Effort::Full
     };
-    let start = Instant::now();
+    let run = LongRun::start(args.quiet);
     let script = args.pinocchio.as_ref().map(|path| PinocchioScript {
         codegen_runs: usize::from(args.codegen_runs),
         ..PinocchioScript::new(
@@ -71,19 +71,8 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     });
     let scratch = args.out.join("pinocchio-urdf");
     let pinocchio = script.as_ref().map(|s| (s, scratch.as_path()));
-    let report = bench::run(effort, pinocchio, |step| {
-        if !args.quiet {
-            eprintln!("[{:7.1} s] {step}", start.elapsed().as_secs_f64());
-        }
-    })?;
+    let report = bench::run(effort, pinocchio, |step| run.progress(step))?;
     let written = report.write(&args.out)?;
-    write!(out, "{}", report.markdown())?;
-    writeln!(
-        out,
-        "\nwrote {} files to {} in {:.1} s",
-        written.len(),
-        args.out.display(),
-        start.elapsed().as_secs_f64()
-    )?;
+    run.finish(out, &report.markdown(), &written, &args.out)?;
     Ok(())
 }

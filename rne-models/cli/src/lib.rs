@@ -12,6 +12,7 @@ mod eval;
 mod eval_kernels;
 mod identify;
 mod list;
+mod long_run;
 mod model;
 mod options;
 mod show;

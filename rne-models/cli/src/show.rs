@@ -76,6 +76,14 @@ pub struct ShowArgs {
 
 /// Prints the requested parts of the dynamics.
 pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    if args.what == Part::BaseParameters && args.symbolic_params {
+        return Err(CliError::Argument(
+            "--symbolic-params with --what base-parameters: the base parameters are found \
+             numerically at the spec's parameter values (their coefficients come from the \
+             geometry), so they cannot be kept as symbols; leave out --symbolic-params"
+                .into(),
+        ));
+    }
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, args.symbolic_params)?;
     let mut dynamics = SymbolicDynamics::new(&model);

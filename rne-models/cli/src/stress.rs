@@ -3,10 +3,10 @@
 
 use std::io::Write;
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::Args;
 
+use super::long_run::LongRun;
 use super::CliError;
 use rne_stress::{self as stress, Effort};
 
@@ -31,20 +31,9 @@ pub fn run(args: &StressArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         Effort::Full
     };
-    let start = Instant::now();
-    let report = stress::run(effort, |case| {
-        if !args.quiet {
-            eprintln!("[{:7.1} s] {case}", start.elapsed().as_secs_f64());
-        }
-    })?;
+    let run = LongRun::start(args.quiet);
+    let report = stress::run(effort, |case| run.progress(case))?;
     let written = report.write(&args.out)?;
-    write!(out, "{}", report.markdown())?;
-    writeln!(
-        out,
-        "\nwrote {} files to {} in {:.1} s",
-        written.len(),
-        args.out.display(),
-        start.elapsed().as_secs_f64()
-    )?;
+    run.finish(out, &report.markdown(), &written, &args.out)?;
     Ok(())
 }

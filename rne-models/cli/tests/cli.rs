@@ -411,3 +411,28 @@ fn command_line_lists_and_reports_errors() {
     assert!(!message.contains("panicked"), "{message}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Base parameters of a spec whose parameters are symbols (the planar elbow's `[parameters]`):
+/// they are found numerically at the spec's values, so `show --what base-parameters
+/// --symbolic-params` is refused with the reason, while `stats --parameters base` reads the
+/// spec at its values, as `derive_dynamics!` does, and generates every kernel.
+#[test]
+fn base_parameters_of_symbolic_parameters_are_refused_with_the_reason_and_found_at_values() {
+    let error = rne(&[
+        "show",
+        "planar-elbow",
+        "--what",
+        "base-parameters",
+        "--symbolic-params",
+    ])
+    .expect_err("symbols cannot be kept");
+    assert!(
+        error.contains("--symbolic-params") && error.contains("found numerically"),
+        "{error}"
+    );
+    let json = rne(&["stats", "planar-elbow", "--parameters", "base", "--json"]).expect("stats");
+    let json: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    assert_eq!(json["dof"], 2);
+    let kernels = json["kernels"].as_array().expect("kernels");
+    assert!(kernels.iter().any(|k| k["kernel"] == "base_regressor"));
+}

@@ -9,6 +9,7 @@ use rne_identify::{
     design, fit, identify, predict, simulate, BaseSet, Design, Limits, Measurements, Simulation,
 };
 use rne_models::builtin::RobotSource;
+use rne_models::QUADRUPED;
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 
@@ -194,14 +195,12 @@ fn excite_then_identify_through_the_command() {
     assert_eq!(lines[2], "b3 = I1zz + 0.09·m2   # = 1.807962");
 }
 
-/// `--floating-base`: the quadruped fixture on a free-flyer is excited (base and legs) and
+/// `--floating-base`: rne-models' quadruped on a free-flyer is excited (base and legs) and
 /// identified through the command, from data of NQ = 15 positions and NV = 14 rates and forces.
 #[test]
 fn a_floating_base_is_excited_and_identified_through_the_command() {
-    let robot = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../corpus/tests/fixtures/quadruped.urdf"
-    );
+    let robot = QUADRUPED.path();
+    let robot = robot.to_str().expect("utf-8 path");
     let dir = std::env::temp_dir().join(format!("rne-floating-{}", std::process::id()));
     let path = dir.join("quadruped.csv");
     let file = path.to_str().expect("utf-8 path");

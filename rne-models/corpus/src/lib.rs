@@ -4,7 +4,8 @@
 //! kernels and its numeric reference, fixed base with mimic semantics and floating base.
 //!
 //! CI has no Python: small fixture URDFs with Pinocchio's values committed beside them
-//! (`rne-models/corpus/tests/fixtures/`) are checked by the same code in a test.
+//! (`rne-models/corpus/tests/fixtures/`), and rne-models' quadruped with its values there too,
+//! are checked by the same code in a test.
 
 mod compare;
 mod report;

@@ -1,27 +1,38 @@
 //! Small URDFs as robots are published (mimic chains, a follower before its leader, a mimic on
 //! a fixed joint, continuous joints, odd names, stray elements, slightly wrong inertias, a body
-//! without joints), against Pinocchio 4.1's values committed beside them: CI checks rne
-//! against Pinocchio without Python. Regenerate the values with
+//! without joints) and rne-models' quadruped, against Pinocchio 4.1's values committed here:
+//! CI checks rne against Pinocchio without Python. Regenerate the values with
 //! `python tools/corpus/pinocchio_values.py rne-models/corpus/tests/fixtures --states 3 --out
-//! rne-models/corpus/tests/fixtures/pinocchio.json` (Pinocchio from
+//! rne-models/corpus/tests/fixtures/pinocchio.json` and `python tools/corpus/pinocchio_values.py
+//! rne-models/robots --only quadruped --states 3 --out
+//! rne-models/corpus/tests/fixtures/pinocchio-robots.json` (Pinocchio from
 //! `../shared/tools/pinocchio/setup.sh`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use rne_corpus::{check_robot, CaseReport, PinocchioValues, RobotReport};
+use rne_models::robots_dir;
 
 /// The bar: every error at most 1e-10 of the robot's torque scale.
 const TOLERANCE: f64 = 1e-10;
 
+/// The fixtures' reports, then those of the robot files Pinocchio's values were computed for.
 fn reports() -> Vec<RobotReport> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
-    let text = std::fs::read_to_string(dir.join("pinocchio.json")).unwrap();
+    let values = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+    let mut reports = compare(&values, "pinocchio.json", &values);
+    reports.extend(compare(&values, "pinocchio-robots.json", robots_dir()));
+    reports
+}
+
+/// Every robot of `values_dir/values_file` read from `robots`.
+fn compare(values_dir: &Path, values_file: &str, robots: &Path) -> Vec<RobotReport> {
+    let text = std::fs::read_to_string(values_dir.join(values_file)).unwrap();
     let values: PinocchioValues = serde_json::from_str(&text).unwrap();
     assert_eq!(values.pinocchio, "4.1.0");
     values
         .robots
         .iter()
-        .map(|robot| check_robot(&dir, robot))
+        .map(|robot| check_robot(robots, robot))
         .collect()
 }
 

@@ -16,6 +16,9 @@ pub enum FigureError {
         /// plotters' error.
         message: String,
     },
+    /// A figure file whose name ends in neither `.svg` nor `.png`.
+    #[error("{}: the figure's file name must end in .svg or .png", .0.display())]
+    Extension(PathBuf),
     /// A file or directory could not be written.
     #[error("cannot write {}: {source}", path.display())]
     Io {

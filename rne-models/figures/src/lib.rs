@@ -3,8 +3,9 @@
 //! format ([`sci`], [`ulps`]), one ulp and one normwise relative error ([`measure`]).
 //!
 //! Three kinds of figure, each drawn on any plotters backend ([`Draw`]) and written as SVG and
-//! PNG by [`render()`]:
-//! - [`time_series`]: panels of curves against time (the simulations);
+//! PNG by [`render()`] (or to one file the user names by [`render_file`]):
+//! - [`time_series`]: panels of curves against time or another variable (the simulations,
+//!   identification's torques, the iLQR example);
 //! - [`work_precision`]: cost against error on log-log axes with ranges (the benchmarks);
 //! - [`log_plot`]: errors on a log axis against a parameter (the stress cases).
 #![deny(missing_docs)]
@@ -21,5 +22,5 @@ pub mod work_precision;
 pub use error::FigureError;
 pub use format::{sci, ulps};
 pub use measure::{relative_error, ulp, Deviation, Format};
-pub use render::{register_font, render, Draw, Formats, Mark, PALETTE};
+pub use render::{register_font, render, render_file, Draw, Formats, Mark, PALETTE};
 pub use table::Table;

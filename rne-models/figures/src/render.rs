@@ -86,6 +86,32 @@ pub fn render<F: Draw>(
     Ok(written)
 }
 
+/// Writes `figure` to `path` alone, as SVG or PNG by the file's extension (`.svg`, `.png`),
+/// creating its directory: for a figure whose file the user names.
+pub fn render_file<F: Draw>(figure: &F, path: &Path) -> Result<(), FigureError> {
+    let extension = path.extension().and_then(|e| e.to_str());
+    let png = match extension.map(str::to_ascii_lowercase).as_deref() {
+        Some("svg") => false,
+        Some("png") => true,
+        _ => return Err(FigureError::Extension(path.to_path_buf())),
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(FigureError::io(dir))?;
+    }
+    register_font()?;
+    if png {
+        present(
+            figure,
+            BitMapBackend::new(path, figure.size()).into_drawing_area(),
+        )
+    } else {
+        present(
+            figure,
+            SVGBackend::new(path, figure.size()).into_drawing_area(),
+        )
+    }
+}
+
 /// Draws `figure` on a white `root` and presents it (writes the file).
 fn present<F: Draw, DB: DrawingBackend>(
     figure: &F,
@@ -129,10 +155,13 @@ pub enum Mark {
     Line,
     /// A thin dashed grey line: a bound or a reference, such as ε·cond(M) or a set-point.
     Reference,
+    /// A wide translucent line: a measurement, with a model's [`Mark::Line`] drawn over it.
+    Band,
 }
 
 /// Draws labelled point sets with their marks, in [`PALETTE`] colours in order (references
-/// are grey and take no colour), and their legend at `position`.
+/// are grey and take no colour), and their legend at `position`; a set with an empty label
+/// has no legend entry (a second line of a reference already named).
 pub(crate) fn draw_marked<'a, 'b, DB, X, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     sets: impl IntoIterator<Item = (&'b str, Mark, &'b [(f64, f64)])>,
@@ -149,6 +178,7 @@ where
         if mark != Mark::Reference {
             colour += 1;
         }
+        let band = c.mix(0.45).stroke_width(6);
         let drawn = match mark {
             Mark::Points => chart.draw_series(
                 points
@@ -164,15 +194,18 @@ where
                 4,
                 REFERENCE_GREY.stroke_width(1),
             ))?,
+            Mark::Band => chart.draw_series(LineSeries::new(points.iter().copied(), band))?,
         };
-        let legend = if mark == Mark::Reference {
-            REFERENCE_GREY.stroke_width(1)
-        } else {
-            c.stroke_width(2)
+        let legend = match mark {
+            Mark::Reference => REFERENCE_GREY.stroke_width(1),
+            Mark::Band => band,
+            Mark::Points | Mark::Line => c.stroke_width(2),
         };
-        drawn
-            .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend));
+        if !label.is_empty() {
+            drawn
+                .label(label)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], legend));
+        }
     }
     draw_legend(chart, position)
 }

@@ -1,7 +1,9 @@
 //! Time-series figures and their rendering with plotters, as SVG and PNG.
 //!
 //! A [`Figure`] is a title over panels stacked vertically, each panel a set of curves against
-//! time. It knows nothing about robots: the scenarios build figures from their records.
+//! time (or, as [`Panel::with_x_label`] says, another variable such as an iteration count). It
+//! knows nothing about robots: the scenarios, identification and the examples build figures
+//! from their records.
 //!
 //! [`render`](crate::render()) writes it as SVG and PNG.
 
@@ -63,9 +65,11 @@ pub enum Scale {
     Log,
 }
 
-/// One chart of a figure: curves against time t (s).
+/// One chart of a figure: curves against time t (s), or the variable of `x_label`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Panel {
+    /// The label of the horizontal axis, with its unit: `t (s)` unless set.
+    pub x_label: String,
     /// The label of the vertical axis, with its unit.
     pub y_label: String,
     /// The vertical scale.
@@ -78,9 +82,18 @@ impl Panel {
     /// A linear panel.
     pub fn new(y_label: impl Into<String>, curves: Vec<Curve>) -> Self {
         Self {
+            x_label: "t (s)".to_owned(),
             y_label: y_label.into(),
             scale: Scale::Linear,
             curves,
+        }
+    }
+
+    /// The panel against the variable `x_label` (with its unit) instead of time.
+    pub fn with_x_label(self, x_label: impl Into<String>) -> Self {
+        Self {
+            x_label: x_label.into(),
+            ..self
         }
     }
 
@@ -93,7 +106,7 @@ impl Panel {
     }
 }
 
-/// A titled figure of panels stacked vertically, sharing the time axis.
+/// A titled figure of panels stacked vertically, each with its own horizontal range.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Figure {
     /// The file name without extension, e.g. `fig6.4-released-from-zero`.
@@ -261,7 +274,7 @@ fn draw_panel<DB: DrawingBackend>(
             let mut chart = builder.build_cartesian_2d(t0..t1, y0..y1)?;
             chart
                 .configure_mesh()
-                .x_desc("t (s)")
+                .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
                 .x_label_formatter(&tick_format(t1 - t0))
                 .y_label_formatter(&tick_format(y1 - y0))
@@ -284,7 +297,7 @@ fn draw_panel<DB: DrawingBackend>(
             let mut chart = builder.build_cartesian_2d(t0..t1, (y0..y1).log_scale())?;
             chart
                 .configure_mesh()
-                .x_desc("t (s)")
+                .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
                 .x_label_formatter(&tick_format(t1 - t0))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -339,5 +352,47 @@ mod tests {
             Curve::reference("limit", &[0.0, 0.5, 3.0], 39.4).points,
             vec![(0.0, 39.4), (3.0, 39.4)]
         );
+    }
+
+    /// `render_file` writes one SVG named by the user with each panel's horizontal label, a
+    /// band's and a line's legend entries and none for an unlabelled reference; a name that is
+    /// neither .svg nor .png is refused by name.
+    #[test]
+    fn render_file_writes_the_named_svg_with_its_labels_and_refuses_other_names() {
+        let t = [0.0, 1.0, 2.0];
+        let figure = Figure {
+            file: "unused".to_owned(),
+            title: "title".to_owned(),
+            panels: vec![
+                Panel::new(
+                    "torque (N·m)",
+                    vec![
+                        Curve {
+                            style: Mark::Band,
+                            ..Curve::new("measured", &t, [1.0, 2.0, 1.5])
+                        },
+                        Curve::new("model", &t, [1.1, 1.9, 1.5]),
+                        Curve::reference("limit", &t, 3.0),
+                        Curve::reference("", &t, -3.0),
+                    ],
+                ),
+                Panel::log("cost J", vec![Curve::new("cost", &t, [1.0, 0.1, 0.01])])
+                    .with_x_label("iteration"),
+            ],
+        };
+        let dir = std::env::temp_dir().join(format!("rne-figures-{}", std::process::id()));
+        let path = dir.join("named.svg");
+        crate::render_file(&figure, &path).expect("written");
+        let svg = std::fs::read_to_string(&path).expect("an SVG");
+        for text in ["t (s)", "iteration", "measured", "model", "limit", "cost J"] {
+            assert!(svg.contains(text), "the figure lacks {text:?}");
+        }
+        // Each text element holds its text on a line of its own; the unlabelled reference
+        // adds no (empty) legend entry.
+        assert_eq!(svg.lines().filter(|l| *l == "limit").count(), 1);
+        assert!(!svg.contains(">\n\n</text>"));
+        let error = crate::render_file(&figure, &dir.join("named.pdf")).unwrap_err();
+        assert!(error.to_string().contains("named.pdf"), "{error}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -1,5 +1,5 @@
-//! Identification on a floating base: the quadruped of the corpus fixtures (a trunk and four
-//! two-joint legs, NV = 6 + 8) on a free-flyer. Its base parameters number the stacked
+//! Identification on a floating base: rne-models' quadruped (a trunk and four two-joint legs,
+//! NV = 6 + 8) on a free-flyer. Its base parameters number the stacked
 //! regressor's rank and reproduce the generalised forces, and an optimised excitation of base
 //! and legs with 1 % force noise gives them back.
 
@@ -11,18 +11,15 @@ use rne_identify::{
     design, fit, identify, predict, simulate, BaseSet, Design, Limits, Measurements, Simulation,
     BASE_COORDINATES,
 };
+use rne_models::QUADRUPED;
 use rne_reference::Reference;
 use rne_symbolic::model::Base;
-use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+use rne_symbolic::spec::LoadOptions;
 
 fn quadruped() -> Reference {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../corpus/tests/fixtures/quadruped.urdf"
-    );
-    let text = std::fs::read_to_string(path).expect("the fixture exists");
-    let mut model = parse_robot(&text, path, RobotFormat::Urdf, &LoadOptions::default())
-        .expect("the fixture loads");
+    let mut model = QUADRUPED
+        .load(&LoadOptions::default())
+        .expect("the quadruped loads");
     model.set_base(Base::Floating);
     Reference::new(&model.to_numeric())
 }

@@ -19,9 +19,11 @@
 //! moment, be substituted into the dynamics ([`super::SymbolicDynamics::with_standard_parameters`]).
 
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
-use crate::model::{JointKind, Link, RobotModel};
+use crate::model::{Link, RobotModel};
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
-use crate::newton_euler::{newton_euler, JointReaction, LinkMotion, NewtonEuler};
+use crate::newton_euler::{
+    backward_recursion, generalised_forces, newton_euler, LinkMotion, NewtonEuler,
+};
 
 use super::crba::about_origin;
 use super::energy::{link_poses, link_velocities};
@@ -95,52 +97,19 @@ pub(super) fn inverse_dynamics(
     bodies: &[BodyParameters],
 ) -> NewtonEuler {
     let kinematics = newton_euler(model, motion, gravity).motion;
-    let n = model.links.len();
     let layout = model.state_layout();
     let g = &mut model.graph;
     let links = &model.links;
     let placements = LinkPlacement::all(g, links, motion);
-    let mut reactions: Vec<Option<JointReaction>> = vec![None; n];
-    for i in (0..n).rev() {
-        // (3.21) and (3.24) about the body origin: the body's own wrench, then each child's
-        // reaction carried into this frame with its moment about this origin.
-        let (mut force, mut torque) = bodies[i].wrench(g, &kinematics[i]);
-        for child in (i + 1..n).filter(|&c| links[c].parent == Some(i)) {
-            let reaction = reactions[child].expect("children are processed before their parent");
-            let f = placements[child].to_parent(g, reaction.force);
-            let t = placements[child].to_parent(g, reaction.torque);
-            let moment = g.cross(placements[child].attachment, f);
-            force = g.vadd(force, f);
-            torque = g.vadd(torque, t);
-            torque = g.vadd(torque, moment);
-        }
-        reactions[i] = Some(JointReaction { force, torque });
-    }
-    let reactions: Vec<JointReaction> = reactions
-        .into_iter()
-        .map(|r| r.expect("every link was visited"))
+    // (3.21) and (3.24) about the body origin: each body's own wrench, then its children's.
+    let reactions = backward_recursion(g, links, &placements, |g, i| {
+        bodies[i].wrench(g, &kinematics[i])
+    });
+    let coordinates: Vec<Option<LinkCoordinate>> = links
+        .iter()
+        .map(|link| LinkCoordinate::of(g, link, motion))
         .collect();
-    let mut terms: Vec<Vec<Id>> = vec![Vec::new(); layout.nv()];
-    for (link, reaction) in links.iter().zip(&reactions) {
-        if link.kind == JointKind::FreeFlyer {
-            for a in 0..3 {
-                terms[a].push(reaction.force[a]);
-                terms[3 + a].push(reaction.torque[a]);
-            }
-        }
-        if let Some(c) = LinkCoordinate::of(g, link, motion) {
-            let mut along = match link.kind {
-                JointKind::Prismatic => g.dot(link.axis, reaction.force),
-                _ => g.dot(link.axis, reaction.torque),
-            };
-            if let Some(armature) = link.armature {
-                let rotor = g.mul(armature, c.qdd);
-                along = g.add(along, rotor);
-            }
-            terms[layout.v_offset() + c.variable].push(c.project(g, along));
-        }
-    }
-    let torques = terms.into_iter().map(|t| g.sum(t)).collect();
+    let torques = generalised_forces(g, links, &reactions, &coordinates, &layout);
     NewtonEuler {
         motion: kinematics,
         reactions,
