@@ -166,14 +166,7 @@ macro_rules! closed_form_dynamics {
             const NAME: &'static str = $name;
             const JOINTS: &'static [&'static str] = &$joints;
             const FLOATING_BASE: bool = false;
-            const KERNELS: &'static [Kernel] = &[
-                Kernel::ForwardDynamics,
-                Kernel::MassMatrix,
-                Kernel::CoriolisMatrix,
-                Kernel::GravityTorques,
-                Kernel::KineticEnergy,
-                Kernel::PotentialEnergy,
-            ];
+            const KERNELS: &'static [Kernel] = &crate::SIMULATED;
             fn forward_dynamics(
                 &self,
                 q: &[f64; $n],
@@ -229,14 +222,7 @@ impl Dynamics<7, 6> for FreeBody {
     const NAME: &'static str = "free body";
     const JOINTS: &'static [&'static str] = &[];
     const FLOATING_BASE: bool = true;
-    const KERNELS: &'static [Kernel] = &[
-        Kernel::ForwardDynamics,
-        Kernel::MassMatrix,
-        Kernel::CoriolisMatrix,
-        Kernel::GravityTorques,
-        Kernel::KineticEnergy,
-        Kernel::PotentialEnergy,
-    ];
+    const KERNELS: &'static [Kernel] = &crate::SIMULATED;
     fn forward_dynamics(&self, q: &[f64; 7], v: &[f64; 6], tau: &[f64; 6]) -> Option<[f64; 6]> {
         let cv = mat_vec(&self.coriolis_matrix(q, v)?, v);
         let g = self.gravity_torques(q)?;
