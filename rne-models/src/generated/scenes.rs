@@ -37,11 +37,11 @@ rne_codegen::derive_dynamics! {
 }
 
 rne_codegen::derive_dynamics! {
-    /// The planar elbow with viscous joint friction fv = 1.5 N·m·s/rad in its spec and in the
+    /// The planar elbow with the viscous joint friction fv = 1.5 N·m·s/rad of its spec in the
     /// model (`friction: include`): M q̈ + C q̇ + g + fv q̇ = u, the thesis's damped double
     /// pendulum (6.31) with the damping Kd = 1.5 of (6.30) as a property of the joints.
     pub mod planar_elbow_viscous {
-        robot: "robots/scenes/planar-elbow-viscous.toml",
+        robot: "robots/planar-elbow.toml",
         outputs: [forward_dynamics, mass_matrix, coriolis_matrix, gravity_torques,
                   kinetic_energy, potential_energy, friction_torques],
         friction: include,
