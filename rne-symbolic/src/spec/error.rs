@@ -1,8 +1,6 @@
 //! The error of spec reading: what went wrong, and where (file, line, link, field).
 
-use std::ops::Range;
-
-use super::location::Location;
+use super::diagnostic::Diagnostic;
 
 /// What kind of mistake a [`SpecError`] reports.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -39,117 +37,11 @@ pub enum SpecErrorKind {
 }
 
 /// An error found while reading a robot spec (DESIGN §2), naming the file, the joint or link and
-/// the field.
-///
-/// Displays as `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`; the
-/// line number appears when the reader knows where the offending text is, the joint, link and
-/// field when the error belongs to one. A URDF error names the joint for what its `<joint>`
-/// element says and the link for what its `<link>` element says:
-/// `robots/arm.urdf:7: joint 'elbow', field 'axis': axis must not be zero`.
-///
-/// A struct with a [`SpecErrorKind`] rather than an enum with one variant per mistake: every
-/// error carries the same location, callers that react to errors match on the kind, and the
-/// message says exactly what is wrong. It is boxed so that the `Result`s of the reader stay one
-/// pointer wide.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{}", self.0.at.render(&self.0.message))]
-pub struct SpecError(Box<Details>);
+/// the field: `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`
+/// (see [`Diagnostic`] for its parts).
+pub type SpecError = Diagnostic<SpecErrorKind>;
 
-#[derive(Clone, Debug, PartialEq, Eq)]
-struct Details {
-    kind: SpecErrorKind,
-    message: String,
-    at: Location,
-}
-
-impl SpecError {
-    /// An error of this kind with no location yet; the reader adds the file, link and field as
-    /// the error travels outwards.
-    pub(crate) fn new(kind: SpecErrorKind, message: impl Into<String>) -> SpecError {
-        SpecError(Box::new(Details {
-            kind,
-            message: message.into(),
-            at: Location::default(),
-        }))
-    }
-
-    /// An error of this kind at `at`.
-    pub(crate) fn at(kind: SpecErrorKind, message: String, at: Location) -> SpecError {
-        SpecError(Box::new(Details { kind, message, at }))
-    }
-
-    /// Sets the field if none is set yet (inner functions know more precise fields).
-    pub(crate) fn at_field(mut self, field: impl Into<String>) -> SpecError {
-        self.0.at.at_field(field);
-        self
-    }
-
-    /// Sets the joint if none is set yet (a URDF `<joint>` element).
-    pub(crate) fn in_joint(mut self, joint: &str) -> SpecError {
-        self.0.at.in_joint(joint);
-        self
-    }
-
-    /// Sets the link if none is set yet.
-    pub(crate) fn in_link(mut self, link: &str) -> SpecError {
-        self.0.at.in_link(link);
-        self
-    }
-
-    /// Sets the byte range of the offending text if none is set yet.
-    pub(crate) fn at_span(mut self, span: Option<Range<usize>>) -> SpecError {
-        self.0.at.at_span(span);
-        self
-    }
-
-    /// Sets the file name and turns the byte range into a line number of `text`.
-    pub(crate) fn locate(mut self, file: &str, text: &str) -> SpecError {
-        self.0.at.locate(file, text);
-        self
-    }
-
-    /// Where the error belongs, for a reader that completes it.
-    pub(crate) fn location_mut(&mut self) -> &mut Location {
-        &mut self.0.at
-    }
-
-    /// What kind of mistake this is.
-    pub fn kind(&self) -> SpecErrorKind {
-        self.0.kind
-    }
-
-    /// The file (the `origin` given to [`parse_str`](super::parse_str), or the path given to
-    /// [`load_file`](super::load_file)).
-    pub fn file(&self) -> &str {
-        &self.0.at.file
-    }
-
-    /// The 1-based line of the offending text, when known.
-    pub fn line(&self) -> Option<usize> {
-        self.0.at.line
-    }
-
-    /// The URDF joint the error belongs to, if any.
-    pub fn joint(&self) -> Option<&str> {
-        self.0.at.joint.as_deref()
-    }
-
-    /// The link the error belongs to, if any.
-    pub fn link(&self) -> Option<&str> {
-        self.0.at.link.as_deref()
-    }
-
-    /// The field the error belongs to, if any (`mass`, `inertia.xy`, `dh.theta`, `com[1]`,
-    /// `parameters.w`; in a URDF `axis`, `origin.rpy`, `inertial.mass`, ...).
-    pub fn field(&self) -> Option<&str> {
-        self.0.at.field.as_deref()
-    }
-
-    /// The description of the problem, without its location.
-    pub fn message(&self) -> &str {
-        &self.0.message
-    }
-}
+impl std::error::Error for SpecError {}
 
 #[cfg(test)]
 mod tests {

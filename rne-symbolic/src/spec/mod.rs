@@ -81,6 +81,7 @@
 //!   nest at most 64 deep.
 
 mod assemble;
+mod diagnostic;
 mod document;
 mod error;
 mod expression;
@@ -95,6 +96,7 @@ use std::path::Path;
 
 /// The readers' common entry points, re-exported where callers have always found them.
 pub use crate::input::{load_robot, parse_robot, LoadOptions, RobotFormat};
+pub use diagnostic::Diagnostic;
 pub use error::{SpecError, SpecErrorKind};
 pub use warning::{SpecWarning, SpecWarningKind};
 

@@ -1,11 +1,8 @@
 //! The warnings of spec reading: what published robot data often gets slightly wrong while the
 //! mathematics survives (DESIGN §2), located like errors.
 
-use std::fmt;
-use std::ops::Range;
-
+use super::diagnostic::Diagnostic;
 use super::error::{SpecError, SpecErrorKind};
-use super::location::Location;
 
 /// What a [`SpecWarning`] reports.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -32,106 +29,18 @@ pub enum SpecWarningKind {
 /// `robots/arm.urdf:10: link 'upper', field 'inertial.inertia': inertia breaks the triangle
 /// inequality: ...`. [`RobotModel::warnings`](crate::RobotModel::warnings) lists them;
 /// [`LoadOptions::strict`](super::LoadOptions::strict) turns the first into an error.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SpecWarning(Box<Details>);
-
-#[derive(Clone, Debug, PartialEq, Eq)]
-struct Details {
-    kind: SpecWarningKind,
-    message: String,
-    at: Location,
-}
+pub type SpecWarning = Diagnostic<SpecWarningKind>;
 
 impl SpecWarning {
-    /// A warning of this kind with no location yet.
-    pub(crate) fn new(kind: SpecWarningKind, message: impl Into<String>) -> SpecWarning {
-        SpecWarning(Box::new(Details {
-            kind,
-            message: message.into(),
-            at: Location::default(),
-        }))
-    }
-
-    /// Sets the field if none is set yet.
-    pub(crate) fn at_field(mut self, field: impl Into<String>) -> SpecWarning {
-        self.0.at.at_field(field);
-        self
-    }
-
-    /// Sets the joint if none is set yet.
-    pub(crate) fn in_joint(mut self, joint: &str) -> SpecWarning {
-        self.0.at.in_joint(joint);
-        self
-    }
-
-    /// Sets the link if none is set yet.
-    pub(crate) fn in_link(mut self, link: &str) -> SpecWarning {
-        self.0.at.in_link(link);
-        self
-    }
-
-    /// Sets the byte range of the text warned about if none is set yet.
-    pub(crate) fn at_span(mut self, span: Option<Range<usize>>) -> SpecWarning {
-        self.0.at.at_span(span);
-        self
-    }
-
-    /// Sets the file name and turns the byte range into a line number of `text`.
-    pub(crate) fn locate(mut self, file: &str, text: &str) -> SpecWarning {
-        self.0.at.locate(file, text);
-        self
-    }
-
     /// The error strict validation makes of this warning: same location, kind
     /// [`SpecErrorKind::Strict`], the message marked as such.
     pub fn into_error(self) -> SpecError {
-        let Details { message, at, .. } = *self.0;
+        let (message, at) = self.into_parts();
         SpecError::at(
             SpecErrorKind::Strict,
             format!("{message} (an error under strict validation)"),
             at,
         )
-    }
-
-    /// What the warning is about.
-    pub fn kind(&self) -> SpecWarningKind {
-        self.0.kind
-    }
-
-    /// The file.
-    pub fn file(&self) -> &str {
-        &self.0.at.file
-    }
-
-    /// The 1-based line of the text warned about, when known.
-    pub fn line(&self) -> Option<usize> {
-        self.0.at.line
-    }
-
-    /// The URDF joint the warning belongs to, if any.
-    pub fn joint(&self) -> Option<&str> {
-        self.0.at.joint.as_deref()
-    }
-
-    /// The link the warning belongs to, if any.
-    pub fn link(&self) -> Option<&str> {
-        self.0.at.link.as_deref()
-    }
-
-    /// The field the warning belongs to, if any.
-    pub fn field(&self) -> Option<&str> {
-        self.0.at.field.as_deref()
-    }
-
-    /// The description, without the location.
-    pub fn message(&self) -> &str {
-        &self.0.message
-    }
-}
-
-impl fmt::Display for SpecWarning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0.at.render(&self.0.message))
     }
 }
 
