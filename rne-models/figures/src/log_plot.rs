@@ -2,6 +2,7 @@
 //! horizontal one, as scattered points, lines and dashed reference lines (such as ε·cond),
 //! written as SVG and PNG by [`render`](crate::render()).
 
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -117,44 +118,59 @@ impl Draw for LogPlot {
             .y_label_area_size(90);
         // Decades padded by a quarter on each side.
         let (y0, y1) = (y0 / 10f64.powf(0.25), y1 * 10f64.powf(0.25));
+        let y = (y0..y1).log_scale();
         match self.x_axis {
             Axis::Log => {
-                let (x0, x1) = (x0 / 10f64.powf(0.1), x1 * 10f64.powf(0.1));
-                let mut chart =
-                    builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
-                chart
-                    .configure_mesh()
-                    .x_desc(self.x_label.as_str())
-                    .y_desc(self.y_label.as_str())
-                    .x_label_formatter(&|x| format!("{x:.0e}"))
-                    .y_label_formatter(&|y| format!("{y:.0e}"))
-                    .light_line_style(WHITE.mix(0.0))
-                    .draw()?;
-                draw_marked(
-                    &mut chart,
-                    self.marked(&visible),
-                    SeriesLabelPosition::UpperLeft,
-                )?;
+                let x = (x0 / 10f64.powf(0.1))..(x1 * 10f64.powf(0.1));
+                self.draw_chart(
+                    &mut builder,
+                    x.log_scale(),
+                    y,
+                    |x| format!("{x:.0e}"),
+                    &visible,
+                )
             }
             Axis::Linear => {
                 let pad = 0.03 * (x1 - x0);
-                let mut chart =
-                    builder.build_cartesian_2d((x0 - pad)..(x1 + pad), (y0..y1).log_scale())?;
-                chart
-                    .configure_mesh()
-                    .x_desc(self.x_label.as_str())
-                    .y_desc(self.y_label.as_str())
-                    .x_label_formatter(&|x| format!("{x:.0}"))
-                    .y_label_formatter(&|y| format!("{y:.0e}"))
-                    .light_line_style(WHITE.mix(0.0))
-                    .draw()?;
-                draw_marked(
-                    &mut chart,
-                    self.marked(&visible),
-                    SeriesLabelPosition::UpperLeft,
-                )?;
+                let x = (x0 - pad)..(x1 + pad);
+                self.draw_chart(&mut builder, x, y, |x| format!("{x:.0}"), &visible)
             }
         }
+    }
+}
+
+impl LogPlot {
+    /// The chart on `builder` with horizontal axis `x` (labelled by `x_label`) and the
+    /// vertical axis `y` (logarithmic in every figure): mesh, axis titles and the visible series.
+    fn draw_chart<DB, X, Y>(
+        &self,
+        builder: &mut ChartBuilder<DB>,
+        x: X,
+        y: Y,
+        x_label: impl Fn(&f64) -> String,
+        visible: &[Vec<(f64, f64)>],
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+    where
+        DB: DrawingBackend,
+        X: AsRangedCoord<Value = f64>,
+        X::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+        Y: AsRangedCoord<Value = f64>,
+        Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    {
+        let mut chart = builder.build_cartesian_2d(x, y)?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .x_label_formatter(&x_label)
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()?;
+        draw_marked(
+            &mut chart,
+            self.marked(visible),
+            SeriesLabelPosition::UpperLeft,
+        )?;
         Ok(())
     }
 }
