@@ -52,12 +52,9 @@ fn fixture(name: &str) -> RobotModel {
     Scene::default().apply(&model).unwrap()
 }
 
+/// ‖a − b‖∞ / max(‖b‖∞, 1): these kernels' entries are of order one or larger.
 fn relative(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
+    common::rel_err_floor(a, b, 1.0)
 }
 
 fn rows(m: &DMatrix<f64>) -> Vec<f64> {

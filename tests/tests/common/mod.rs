@@ -27,20 +27,11 @@ pub fn state(rng: &mut ChaCha8Rng, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     )
 }
 
-/// Normwise relative error ‖a − b‖∞ / ‖b‖∞ (absolute error when ‖b‖∞ < 1e-300).
+/// Normwise relative error ‖a − b‖∞ / ‖b‖∞ (absolute error when b is zero), of vectors of the
+/// same length: the report's measure ([`rne_figures::relative_error`]).
 pub fn rel_err(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len(), "compared vectors differ in length");
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(0.0, f64::max);
-    if scale < 1e-300 {
-        diff
-    } else {
-        diff / scale
-    }
+    rne_figures::relative_error(a, b)
 }
 
 /// ‖a − b‖∞ / max(‖b‖∞, floor): relative error, absolute below `floor` (for quantities that
