@@ -2,12 +2,11 @@
 //! horizontal one, as scattered points, lines and dashed reference lines (such as ε·cond),
 //! written as SVG and PNG by [`render`](crate::render()).
 
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 pub use crate::render::Mark;
-use crate::render::{draw_marked, Draw};
+use crate::render::{draw_chart, ChartAxis, Draw};
 
 /// Size of a rendered figure in pixels.
 const SIZE: (u32, u32) = (960, 600);
@@ -118,60 +117,33 @@ impl Draw for LogPlot {
             .y_label_area_size(90);
         // Decades padded by a quarter on each side.
         let (y0, y1) = (y0 / 10f64.powf(0.25), y1 * 10f64.powf(0.25));
-        let y = (y0..y1).log_scale();
+        let y = ChartAxis {
+            range: (y0..y1).log_scale(),
+            title: &self.y_label,
+            ticks: &|y| format!("{y:.0e}"),
+        };
+        let sets = self.marked(&visible);
+        let legend = SeriesLabelPosition::UpperLeft;
         match self.x_axis {
             Axis::Log => {
                 let x = (x0 / 10f64.powf(0.1))..(x1 * 10f64.powf(0.1));
-                self.draw_chart(
-                    &mut builder,
-                    x.log_scale(),
-                    y,
-                    |x| format!("{x:.0e}"),
-                    &visible,
-                )
+                let x = ChartAxis {
+                    range: x.log_scale(),
+                    title: &self.x_label,
+                    ticks: &|x| format!("{x:.0e}"),
+                };
+                draw_chart(&mut builder, x, y, sets, legend)
             }
             Axis::Linear => {
                 let pad = 0.03 * (x1 - x0);
-                let x = (x0 - pad)..(x1 + pad);
-                self.draw_chart(&mut builder, x, y, |x| format!("{x:.0}"), &visible)
+                let x = ChartAxis {
+                    range: (x0 - pad)..(x1 + pad),
+                    title: &self.x_label,
+                    ticks: &|x| format!("{x:.0}"),
+                };
+                draw_chart(&mut builder, x, y, sets, legend)
             }
         }
-    }
-}
-
-impl LogPlot {
-    /// The chart on `builder` with horizontal axis `x` (labelled by `x_label`) and the
-    /// vertical axis `y` (logarithmic in every figure): mesh, axis titles and the visible series.
-    fn draw_chart<DB, X, Y>(
-        &self,
-        builder: &mut ChartBuilder<DB>,
-        x: X,
-        y: Y,
-        x_label: impl Fn(&f64) -> String,
-        visible: &[Vec<(f64, f64)>],
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
-    where
-        DB: DrawingBackend,
-        X: AsRangedCoord<Value = f64>,
-        X::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
-        Y: AsRangedCoord<Value = f64>,
-        Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    {
-        let mut chart = builder.build_cartesian_2d(x, y)?;
-        chart
-            .configure_mesh()
-            .x_desc(self.x_label.as_str())
-            .y_desc(self.y_label.as_str())
-            .x_label_formatter(&x_label)
-            .y_label_formatter(&|y| format!("{y:.0e}"))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
-        draw_marked(
-            &mut chart,
-            self.marked(visible),
-            SeriesLabelPosition::UpperLeft,
-        )?;
-        Ok(())
     }
 }
 

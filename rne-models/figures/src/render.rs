@@ -9,6 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -157,6 +158,46 @@ pub enum Mark {
     Reference,
     /// A wide translucent line: a measurement, with a model's [`Mark::Line`] drawn over it.
     Band,
+}
+
+/// One axis of a chart: its range (a `Range<f64>` or a logarithmic one), its title and how its
+/// ticks are labelled.
+pub(crate) struct ChartAxis<'a, R> {
+    /// The coordinate range.
+    pub range: R,
+    /// The axis title.
+    pub title: &'a str,
+    /// The tick label of a value.
+    pub ticks: &'a dyn Fn(&f64) -> String,
+}
+
+/// Builds the chart of `x` and `y` on `builder` and draws its mesh (axis titles and tick
+/// labels, no minor grid lines) and the marked sets ([`draw_marked`]) with their legend at
+/// `position`: every figure's chart, whatever the kinds of its axes.
+pub(crate) fn draw_chart<'b, DB, X, Y>(
+    builder: &mut ChartBuilder<DB>,
+    x: ChartAxis<X>,
+    y: ChartAxis<Y>,
+    sets: impl IntoIterator<Item = (&'b str, Mark, &'b [(f64, f64)])>,
+    position: SeriesLabelPosition,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>
+where
+    DB: DrawingBackend,
+    X: AsRangedCoord<Value = f64>,
+    X::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: AsRangedCoord<Value = f64>,
+    Y::CoordDescType: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let mut chart = builder.build_cartesian_2d(x.range, y.range)?;
+    chart
+        .configure_mesh()
+        .x_desc(x.title)
+        .y_desc(y.title)
+        .x_label_formatter(x.ticks)
+        .y_label_formatter(y.ticks)
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    draw_marked(&mut chart, sets, position)
 }
 
 /// Draws labelled point sets with their marks, in [`PALETTE`] colours in order (references

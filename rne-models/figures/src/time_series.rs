@@ -11,7 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 pub use crate::render::Mark;
-use crate::render::{draw_marked, Draw};
+use crate::render::{draw_chart, ChartAxis, Draw};
 
 /// Width of a rendered figure in pixels.
 const WIDTH: u32 = 1000;
@@ -268,23 +268,24 @@ fn draw_panel<DB: DrawingBackend>(
         .margin_right(24)
         .x_label_area_size(40)
         .y_label_area_size(86);
+    let t_ticks = tick_format(t1 - t0);
+    let x = ChartAxis {
+        range: t0..t1,
+        title: &panel.x_label,
+        ticks: &t_ticks,
+    };
+    let sets = marked(panel, &curves);
+    let legend = SeriesLabelPosition::UpperRight;
     match panel.scale {
         Scale::Linear => {
             let (y0, y1) = padded(y0, y1, panel.curves.len());
-            let mut chart = builder.build_cartesian_2d(t0..t1, y0..y1)?;
-            chart
-                .configure_mesh()
-                .x_desc(panel.x_label.as_str())
-                .y_desc(panel.y_label.as_str())
-                .x_label_formatter(&tick_format(t1 - t0))
-                .y_label_formatter(&tick_format(y1 - y0))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            draw_marked(
-                &mut chart,
-                marked(panel, &curves),
-                SeriesLabelPosition::UpperRight,
-            )
+            let y_ticks = tick_format(y1 - y0);
+            let y = ChartAxis {
+                range: y0..y1,
+                title: &panel.y_label,
+                ticks: &y_ticks,
+            };
+            draw_chart(&mut builder, x, y, sets, legend)
         }
         Scale::Log => {
             let (y0, y1) = if y1 > y0 {
@@ -294,20 +295,12 @@ fn draw_panel<DB: DrawingBackend>(
             } else {
                 (y0 / 10.0, y1 * 10.0)
             };
-            let mut chart = builder.build_cartesian_2d(t0..t1, (y0..y1).log_scale())?;
-            chart
-                .configure_mesh()
-                .x_desc(panel.x_label.as_str())
-                .y_desc(panel.y_label.as_str())
-                .x_label_formatter(&tick_format(t1 - t0))
-                .y_label_formatter(&|y| format!("{y:.0e}"))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()?;
-            draw_marked(
-                &mut chart,
-                marked(panel, &curves),
-                SeriesLabelPosition::UpperRight,
-            )
+            let y = ChartAxis {
+                range: (y0..y1).log_scale(),
+                title: &panel.y_label,
+                ticks: &|y| format!("{y:.0e}"),
+            };
+            draw_chart(&mut builder, x, y, sets, legend)
         }
     }
 }
