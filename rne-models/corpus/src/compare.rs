@@ -21,6 +21,9 @@ use rne_symbolic::RobotModel;
 use super::values::{BaseValues, RobotValues, State};
 use rne_interpreted::{Interpreted, StateRef};
 
+/// [`BaseValues::mimic`] of values computed with every mimic follower a joint of its own.
+pub(crate) const FREE: &str = "free";
+
 /// The kernels compared with Pinocchio.
 pub const CORPUS_KERNELS: [Kernel; 5] = [
     Kernel::InverseDynamics,
@@ -71,7 +74,7 @@ pub enum CaseReport {
 pub struct Comparison {
     /// Size of the velocity.
     pub nv: usize,
-    /// How Pinocchio applied the mimic joints (`none`, `pinocchio`, `projected`).
+    /// How Pinocchio applied the mimic joints (`none`, `pinocchio`, `projected`, `free`).
     pub mimic: String,
     /// Time to build the interpreted programs of the compared kernels.
     pub generation: Duration,
@@ -118,9 +121,20 @@ impl Errors {
     }
 }
 
-/// Reads `dir/values.file` and compares it with Pinocchio on both bases.
+/// Reads `dir/values.file` and compares it with Pinocchio on both bases: with mimic followers
+/// constrained, or, where Pinocchio's values treat every follower as a joint of its own
+/// (`mimic` = `free`), as rne reads the file with [`LoadOptions::free_mimic`].
 pub fn check_robot(dir: &Path, values: &RobotValues) -> RobotReport {
-    let read = load_robot(&dir.join(&values.file), &LoadOptions::default());
+    let path = dir.join(&values.file);
+    let read = load_robot(&path, &LoadOptions::default());
+    let free = LoadOptions {
+        free_mimic: true,
+        ..LoadOptions::default()
+    };
+    let read_free = [&values.fixed, &values.floating]
+        .iter()
+        .any(|v| v.mimic.as_deref() == Some(FREE))
+        .then(|| load_robot(&path, &free));
     // Messages name the file relative to the robots directory, as the table does.
     let prefix = format!("{}/", dir.display());
     let relative = |e: &dyn std::fmt::Display| e.to_string().replace(&prefix, "");
@@ -138,10 +152,17 @@ pub fn check_robot(dir: &Path, values: &RobotValues) -> RobotReport {
                 .collect(),
         })
     });
-    let case = |base: Base, pinocchio: &BaseValues| match (&read, &pinocchio.error) {
-        (_, Some(error)) => CaseReport::PinocchioRefuses(relative(error)),
-        (Err(error), None) => CaseReport::RneRefuses(relative(error)),
-        (Ok(model), None) => case_report(model, base, pinocchio),
+    let case = |base: Base, pinocchio: &BaseValues| {
+        let free = pinocchio.mimic.as_deref() == Some(FREE);
+        let read = match &read_free {
+            Some(read_free) if free => read_free,
+            _ => &read,
+        };
+        match (read, &pinocchio.error) {
+            (_, Some(error)) => CaseReport::PinocchioRefuses(relative(error)),
+            (Err(error), None) => CaseReport::RneRefuses(relative(error)),
+            (Ok(model), None) => case_report(model, base, pinocchio, free),
+        }
     };
     RobotReport {
         file: values.file.clone(),
@@ -156,6 +177,7 @@ fn warning_kind(kind: SpecWarningKind) -> &'static str {
         SpecWarningKind::TriangleInequality => "triangle inequality",
         SpecWarningKind::NegligibleNegativeInertia => "negligible negative inertia",
         SpecWarningKind::MasslessSubtree => "massless subtree",
+        SpecWarningKind::MimicLeaderMissing => "mimic leader missing",
         _ => "other",
     }
 }
@@ -169,11 +191,19 @@ fn worst(a: f64, b: f64) -> f64 {
     }
 }
 
-fn case_report(model: &RobotModel, base: Base, pinocchio: &BaseValues) -> CaseReport {
+/// One base of a file rne read; mimic followers constrained unless `free_mimic`.
+fn case_report(
+    model: &RobotModel,
+    base: Base,
+    pinocchio: &BaseValues,
+    free_mimic: bool,
+) -> CaseReport {
     let mut model = model.clone();
     model.set_base(base);
-    if let Err(e) = model.constrain_mimic_joints() {
-        return CaseReport::RneRefuses(e.to_string());
+    if !free_mimic {
+        if let Err(e) = model.constrain_mimic_joints() {
+            return CaseReport::RneRefuses(e.to_string());
+        }
     }
     if let Err(e) = model.check_moves() {
         return if pinocchio.nv == 0 {

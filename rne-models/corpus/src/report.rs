@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use super::compare::{CaseReport, Comparison, RobotReport};
+use super::compare::{CaseReport, Comparison, RobotReport, FREE};
 use super::values::PinocchioValues;
 
 /// The line after which the generated table starts.
@@ -79,6 +79,14 @@ fn case_cells(
                 notes.push(
                     "Pinocchio's `mimic=True` refuses the file (a follower before its leader): \
                      compared with `mimic=False` and the chain rule"
+                        .to_owned(),
+                );
+            }
+            if c.mimic == FREE {
+                notes.push(
+                    "its mimic joints follow no moving joint of the file (Pinocchio's `mimic=True` \
+                     and rne's default refuse it): compared as independent joints, Pinocchio's \
+                     `mimic=False` against rne's `--mimic free`"
                         .to_owned(),
                 );
             }

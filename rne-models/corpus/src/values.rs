@@ -41,8 +41,10 @@ pub struct BaseValues {
     /// Size of the velocity (6 + joints on a floating base).
     #[serde(default)]
     pub nv: usize,
-    /// `none` (no mimic joints), `pinocchio` (`mimic=True`) or `projected` (`mimic=False` and
-    /// the chain rule applied to Pinocchio's results, for files `mimic=True` refuses).
+    /// `none` (no mimic joints), `pinocchio` (`mimic=True`), `projected` (`mimic=False` and
+    /// the chain rule applied to Pinocchio's results, for files `mimic=True` refuses) or
+    /// `free` (`mimic=False`, every follower a joint of its own, for files whose mimic joints
+    /// follow no moving joint: compared with rne's reading with mimic joints free).
     #[serde(default)]
     pub mimic: Option<String>,
     /// The states.

@@ -1,6 +1,6 @@
 //! Small URDFs as robots are published (mimic chains, a follower before its leader, a mimic on
-//! a fixed joint, continuous joints, odd names, stray elements, slightly wrong inertias, a body
-//! without joints) and rne-models' quadruped, against Pinocchio 4.1's values committed here:
+//! a fixed joint, a mimic of a joint the file does not have, continuous joints, odd names, stray
+//! elements, slightly wrong inertias, a body without joints) and rne-models' quadruped, against Pinocchio 4.1's values committed here:
 //! CI checks rne against Pinocchio without Python. Regenerate the values with
 //! `python tools/corpus/pinocchio_values.py rne-models/corpus/tests/fixtures --states 3 --out
 //! rne-models/corpus/tests/fixtures/pinocchio.json` and `python tools/corpus/pinocchio_values.py
@@ -52,12 +52,22 @@ fn every_fixture_agrees_with_pinocchio_on_id_m_g_bias_and_fd_on_both_bases() {
         [
             "arm_mimic_chain.urdf",
             "brick.urdf",
+            "finger_missing_leader.urdf",
             "hand_mimic.urdf",
             "quadruped.urdf"
         ]
     );
     for report in &reports {
-        assert!(report.load.is_ok(), "{}: {:?}", report.file, report.load);
+        // A mimic of a missing joint is an error with mimic joints constrained (rne's
+        // default); the comparison reads that file with mimic joints free.
+        let refused = report.file == "finger_missing_leader.urdf";
+        assert_eq!(
+            report.load.is_err(),
+            refused,
+            "{}: {:?}",
+            report.file,
+            report.load
+        );
         let cases = [("fixed", &report.fixed), ("floating", &report.floating)];
         for (base, case) in cases {
             if report.file == "brick.urdf" && base == "fixed" {
@@ -107,4 +117,22 @@ fn the_fixtures_exercise_mimic_both_ways_floating_bases_and_warnings() {
     assert_eq!(compared(quadruped, &quadruped.floating).nv, 6 + 8);
     let brick = by_name("brick.urdf");
     assert_eq!(compared(brick, &brick.floating).nv, 6);
+    let finger = by_name("finger_missing_leader.urdf");
+    let error = finger.load.as_ref().unwrap_err();
+    assert!(
+        error.contains("Left_index_q2") && error.contains("index_q1"),
+        "the default reading names the follower and its missing leader: {error}"
+    );
+    for case in [&finger.fixed, &finger.floating] {
+        let c = compared(finger, case);
+        assert_eq!(
+            c.mimic, "free",
+            "Pinocchio's mimic=False, every follower free"
+        );
+    }
+    assert_eq!(
+        compared(finger, &finger.fixed).nv,
+        2,
+        "the follower of a missing joint is a joint of its own"
+    );
 }
