@@ -9,6 +9,7 @@ use super::progress::WithProgress;
 use rne_sim::{Integrator, Record, SimError};
 
 use super::control::{elbow_pd_scenario, irb140_pd_scenario, lyapunov_scenario};
+use super::floating_run::quadruped_in_space_scenario;
 use super::free_runs::{
     damped_pendulum, double_pendulum, irb140_pendulum_scenario, open_loop_scenario, release_energy,
 };
@@ -33,6 +34,7 @@ enum Experiment {
     Irb140Pendulum,
     Irb140Pd(usize),
     Lyapunov,
+    QuadrupedInSpace,
 }
 
 /// A named, built-in scenario: `rne simulate NAME`.
@@ -47,7 +49,7 @@ pub struct Scenario {
     experiment: Experiment,
 }
 
-/// Every built-in scenario, in the thesis's order.
+/// Every built-in scenario, in the thesis's order, then those beyond the thesis.
 pub static SCENARIOS: &[Scenario] = &[
     Scenario {
         name: "open-loop-from-zero",
@@ -140,6 +142,13 @@ pub static SCENARIOS: &[Scenario] = &[
         description: "V = 1/2 qd' M qd + 1/2 e' Kp e along all seven PD runs",
         experiment: Experiment::Lyapunov,
     },
+    Scenario {
+        name: "quadruped-in-space",
+        figures: "beyond the thesis",
+        description: "floating quadruped in zero gravity swinging its legs, 10 s, Lie-group \
+                      variational integrator: total momentum conserved",
+        experiment: Experiment::QuadrupedInSpace,
+    },
 ];
 
 /// The built-in scenario called `name`.
@@ -163,6 +172,7 @@ impl Scenario {
             Experiment::Irb140Pendulum => irb140_pendulum_scenario(self.name, options),
             Experiment::Irb140Pd(k) => irb140_pd_scenario(self.name, k, options),
             Experiment::Lyapunov => lyapunov_scenario(self.name, options),
+            Experiment::QuadrupedInSpace => quadruped_in_space_scenario(self.name),
         }
     }
 }

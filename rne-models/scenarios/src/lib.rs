@@ -31,6 +31,7 @@ mod control;
 mod error;
 pub mod experiments;
 mod figures;
+mod floating_run;
 mod free_runs;
 mod friction_run;
 pub mod measures;
