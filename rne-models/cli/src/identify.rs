@@ -276,7 +276,8 @@ fn estimate(
             || label.display().to_string(),
             |f| f.to_string_lossy().into_owned(),
         );
-        let title = format!("{name}: measured torques ({file}) and the identified model's");
+        let title =
+            format!("{name}: measured torques ({file}) and the identified model's prediction");
         torque_figure(figure, &title, shown, predicted).map_err(failed)?;
     }
     let fit_of = validation

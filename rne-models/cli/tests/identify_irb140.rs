@@ -203,7 +203,8 @@ fn excite_then_identify_through_the_command() {
 }
 
 /// `--floating-base`: rne-models' quadruped on a free-flyer is excited (base and legs) and
-/// identified through the command, from data of NQ = 15 positions and NV = 14 rates and forces.
+/// identified through the command, from data of NQ = 15 positions and NV = 14 rates and forces,
+/// and its figure is drawn.
 #[test]
 fn a_floating_base_is_excited_and_identified_through_the_command() {
     let robot = QUADRUPED.path();
@@ -211,6 +212,8 @@ fn a_floating_base_is_excited_and_identified_through_the_command() {
     let dir = std::env::temp_dir().join(format!("rne-floating-{}", std::process::id()));
     let path = dir.join("quadruped.csv");
     let file = path.to_str().expect("utf-8 path");
+    let figure_path = dir.join("quadruped.svg");
+    let figure = figure_path.to_str().expect("utf-8 path");
     let limits = "0.3,0.3,0.3,0.8,0.8,0.8,1.2,1.2,1.2,1.2,1.2,1.2,1.2,1.2";
     rne(&[
         "identify",
@@ -237,8 +240,20 @@ fn a_floating_base_is_excited_and_identified_through_the_command() {
         "--json",
         "--validate",
         file,
+        "--plot",
+        figure,
     ])
     .expect("identified");
+    // The figure's panels name the base's wrench (first six forces) apart from the joints.
+    let svg = std::fs::read_to_string(&figure_path).expect("figure written");
+    for label in [
+        "base force x (N)",
+        "base moment z (N·m)",
+        "joint 8 torque (N·m)",
+    ] {
+        assert!(svg.contains(label), "{label} missing from the figure");
+    }
+    assert!(!svg.contains("joint 9 torque"));
     let json: serde_json::Value = serde_json::from_str(&json).expect("one JSON object");
     for p in json["base_parameters"].as_array().expect("a list") {
         let (estimate, model) = (

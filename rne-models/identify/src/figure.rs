@@ -25,6 +25,22 @@ pub fn torque_figure(
     })
 }
 
+/// What generalised force `j` of `data` is: on a floating base (one more position than rates,
+/// the quaternion's) the first six are the wrench on the base in its own frame (DESIGN.md §4)
+/// and the joints are numbered after it.
+fn force_label(data: &Measurements, j: usize) -> String {
+    const AXES: [&str; 3] = ["x", "y", "z"];
+    if data.positions > data.joints {
+        match j {
+            0..3 => format!("base force {} (N)", AXES[j]),
+            3..6 => format!("base moment {} (N·m)", AXES[j - 3]),
+            _ => format!("joint {} torque (N·m)", j - 5),
+        }
+    } else {
+        format!("joint {} torque (N·m)", j + 1)
+    }
+}
+
 /// The figure: per joint, the measured band and the identified model's line, with the
 /// joint's RMS error in the legend.
 fn torque_panels(path: &Path, title: &str, data: &Measurements, predicted: &[Vec<f64>]) -> Figure {
@@ -49,10 +65,7 @@ fn torque_panels(path: &Path, title: &str, data: &Measurements, predicted: &[Vec
                 &time,
                 predicted.iter().map(|p| p[j]),
             );
-            Panel::new(
-                format!("joint {} torque (N·m)", j + 1),
-                vec![measured, model],
-            )
+            Panel::new(force_label(data, j), vec![measured, model])
         })
         .collect();
     Figure {
