@@ -40,9 +40,10 @@ impl BaseParameters {
     /// Finds the base parameters of the regressor `y` of `model` (NV rows of expressions in
     /// the model's graph; parameters at their values) from `samples` seeded random states.
     ///
-    /// The regressor is evaluated in double-double and K refined against it
-    /// ([`refine`]), so each coefficient is the `f64` nearest to the exact one for the
-    /// model's data: the planar elbow's l₁² is `0.09`, not `0.09000000000000029`.
+    /// The regressor is evaluated in double-double and K refined against it (iterative
+    /// refinement, `Refinement::refine`), so each coefficient is the `f64` nearest to the
+    /// exact one for the model's data: the planar elbow's l₁² is `0.09`, not
+    /// `0.09000000000000029`.
     pub fn find(model: &RobotModel, y: &[Vec<Id>], samples: usize) -> BaseParameters {
         let (graph, layout) = (&model.graph, model.state_layout());
         let columns = y.first().map_or(0, Vec::len);
