@@ -42,7 +42,7 @@ enum Experiment {
 pub struct Scenario {
     /// The name on the command line.
     pub name: &'static str,
-    /// The thesis's figures or section it reproduces.
+    /// The thesis's figures or section it reproduces ("—" for a scenario beyond the thesis).
     pub figures: &'static str,
     /// One line about it.
     pub description: &'static str,
@@ -144,7 +144,7 @@ pub static SCENARIOS: &[Scenario] = &[
     },
     Scenario {
         name: "quadruped-in-space",
-        figures: "beyond the thesis",
+        figures: "—",
         description: "floating quadruped in zero gravity swinging its legs, 10 s, Lie-group \
                       variational integrator: total momentum conserved",
         experiment: Experiment::QuadrupedInSpace,
