@@ -14,7 +14,8 @@
 //! The plan is a function of the program alone, so the emitted text is the same on every
 //! build.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
 
 use crate::program::{Operand, Program};
 
@@ -131,22 +132,23 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
     // Slots after the outputs', each reused once every part reading its value has run.
     let mut slots = BTreeMap::new();
     let mut free: BTreeSet<usize> = BTreeSet::new();
-    let mut busy: Vec<(usize, usize)> = Vec::new();
+    // (part last reading the value in it, slot), the earliest-freed first.
+    let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
     let mut len = program.outputs.len();
     for (home, last, value) in travelling {
-        busy.retain(|&(last_read, slot)| {
-            // Written in part `home − 1`, after every read of a value last read before it.
-            let done = last_read + 1 < home;
-            if done {
-                free.insert(slot);
+        // Written in part `home − 1`, after every read of a value last read before it.
+        while let Some(&Reverse((last_read, slot))) = busy.peek() {
+            if last_read + 1 >= home {
+                break;
             }
-            !done
-        });
+            busy.pop();
+            free.insert(slot);
+        }
         let slot = free.pop_first().unwrap_or_else(|| {
             len += 1;
             len - 1
         });
-        busy.push((last, slot));
+        busy.push(Reverse((last, slot)));
         slots.insert(value, slot);
     }
     Some(SplitPlan {
