@@ -81,15 +81,16 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
     }
     let parts: Vec<Vec<Statement>> = parts.into_values().collect();
 
-    // Where each named value is defined (`None`: the prologue) and every part reading it.
-    let mut defined: BTreeMap<usize, Option<usize>> = BTreeMap::new();
-    let mut readers: BTreeMap<usize, BTreeSet<usize>> = BTreeMap::new();
+    // Where each named value is defined (`None`: the prologue) and every part reading it,
+    // ascending (parts are visited in order).
+    let mut defined: Vec<Option<usize>> = vec![None; program.instrs.len()];
+    let mut readers: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
     for (p, statements) in parts.iter().enumerate() {
         for &statement in statements {
             let mut reads = Vec::new();
             match statement {
                 Statement::Let(i) => {
-                    defined.insert(i, Some(p));
+                    defined[i] = Some(p);
                     for operand in program.instrs[i].operands() {
                         values_read(program, named, prologue, operand, &mut reads);
                     }
@@ -100,32 +101,30 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
                 }
             }
             for value in reads {
-                readers.entry(value).or_default().insert(p);
+                if readers[value].last() != Some(&p) {
+                    readers[value].push(p);
+                }
             }
         }
     }
-    let imports_of = |value: usize, reading: &BTreeSet<usize>| -> Vec<usize> {
-        let home = defined.get(&value).copied().flatten();
-        reading
-            .iter()
-            .copied()
-            .filter(|&p| Some(p) != home)
-            .collect()
-    };
     let mut imports: Vec<Vec<usize>> = vec![Vec::new(); parts.len()];
     // (part defining it, +1 so that the prologue is 0; last part reading it; value)
     let mut travelling: Vec<(usize, usize, usize)> = Vec::new();
-    for (&value, reading) in &readers {
-        let foreign = imports_of(value, reading);
-        if foreign.is_empty() {
+    for (value, reading) in readers.iter().enumerate() {
+        let home = defined[value];
+        let mut foreign = reading
+            .iter()
+            .copied()
+            .filter(|&p| Some(p) != home)
+            .peekable();
+        if foreign.peek().is_none() {
             continue;
         }
-        for &p in &foreign {
+        for p in foreign {
             imports[p].push(value);
         }
-        let home = defined.get(&value).copied().flatten().map_or(0, |p| p + 1);
         let last = *reading.last().expect("read by a part");
-        travelling.push((home, last, value));
+        travelling.push((home.map_or(0, |p| p + 1), last, value));
     }
     travelling.sort_unstable();
 

@@ -84,7 +84,7 @@ impl BaseParameters {
             for _ in 0..2 {
                 for b in &basis {
                     let projection = b.dot(&residual);
-                    residual -= b * projection;
+                    residual.axpy(-projection, b, 1.0);
                 }
             }
             let size = residual.norm();

@@ -75,6 +75,32 @@ impl ExprGraph {
         self.as_const(id) == Some(1.0)
     }
 
+    /// Removes the nodes built since the graph had `len` of them and returns them in order:
+    /// the graph is as it was then, and [`ExprGraph::restore`] puts them back at the same ids.
+    /// Trying two constructions one after the other costs the nodes of one, not a copy of
+    /// the graph.
+    pub fn split_off(&mut self, len: usize) -> Vec<Node> {
+        let tail = self.nodes.split_off(len);
+        for node in &tail {
+            self.memo.remove(node);
+        }
+        tail
+    }
+
+    /// Appends nodes [`ExprGraph::split_off`] removed, when the graph has again the length it
+    /// had then: each gets back its id.
+    pub fn restore(&mut self, nodes: Vec<Node>) {
+        for node in nodes {
+            let id = Id::from_index(self.nodes.len());
+            debug_assert!(
+                !self.memo.contains_key(&node),
+                "restored onto another graph"
+            );
+            self.nodes.push(node);
+            self.memo.insert(node, id);
+        }
+    }
+
     fn intern(&mut self, node: Node) -> Id {
         if let Some(&id) = self.memo.get(&node) {
             return id;
