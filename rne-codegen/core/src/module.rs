@@ -223,12 +223,16 @@ pub fn generate(
             _ => None,
         };
         let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
+        // The kernel's graph is not needed past its program: freed before emission, the
+        // largest kernels' graphs and token streams are not held at the same time.
+        let symbols = built.dynamics.model.graph.symbols().clone();
+        drop(built.dynamics);
         let program = match scene.fma {
             true => built.program.fuse_multiply_add(),
             false => built.program,
         };
         let ctx = EmitContext {
-            symbols: built.dynamics.model.graph.symbols(),
+            symbols: &symbols,
             scalar: scene.scalar,
             parameters: scene.parameters,
             runtime: &runtime,
