@@ -14,7 +14,7 @@
 
 use std::collections::BTreeMap;
 
-use proc_macro2::{Ident, Literal, Span, TokenStream};
+use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenStream, TokenTree};
 use quote::{format_ident, quote};
 use rne_symbolic::{Symbol, SymbolTable};
 
@@ -58,13 +58,32 @@ struct Emitter<'a> {
     /// Whether the kernel reads standard parameters (`base_parameters`), which its program
     /// holds as `Symbol::Parameter(i)` = `standard[i]`.
     reads_standard: bool,
+    /// `<path to the runtime>::Real`.
+    real: TokenStream,
+}
+
+/// `(tokens)`.
+fn parenthesised(tokens: TokenStream) -> TokenTree {
+    TokenTree::Group(Group::new(Delimiter::Parenthesis, tokens))
+}
+
+/// One punctuation character, as `quote!` writes an operator.
+fn push_punct(out: &mut TokenStream, c: char) {
+    out.extend([TokenTree::Punct(Punct::new(c, Spacing::Alone))]);
+}
+
+/// `::`, as `quote!` writes it.
+fn push_path_separator(out: &mut TokenStream) {
+    out.extend([
+        TokenTree::Punct(Punct::new(':', Spacing::Joint)),
+        TokenTree::Punct(Punct::new(':', Spacing::Alone)),
+    ]);
 }
 
 impl Emitter<'_> {
     /// `<path to the runtime>::Real`.
     fn real(&self) -> TokenStream {
-        let runtime = self.ctx.runtime;
-        quote!(#runtime::Real)
+        self.real.clone()
     }
 
     fn scalar_type(&self) -> TokenStream {
@@ -146,92 +165,132 @@ impl Emitter<'_> {
         }
     }
 
-    fn operand(&self, o: Operand) -> (TokenStream, Precedence) {
+    /// How tightly operand `o` binds as written.
+    fn precedence(&self, o: Operand) -> Precedence {
         match o {
-            Operand::Const(c) => self.constant(c),
-            Operand::Input(s) => (self.input(s), Precedence::Atom),
+            Operand::Const(c) if c.is_sign_negative() && !c.is_nan() => Precedence::Unary,
+            Operand::Const(_) | Operand::Input(_) => Precedence::Atom,
+            Operand::Temp(t) if self.names[t as usize].is_some() => Precedence::Atom,
+            Operand::Temp(t) => {
+                let instr = self.program.instrs[t as usize];
+                if self.joint_trig(instr).is_some() {
+                    return Precedence::Atom;
+                }
+                match instr {
+                    Instr::Add(..) | Instr::Sub(..) => Precedence::Sum,
+                    Instr::Mul(..) | Instr::Div(..) => Precedence::Product,
+                    Instr::Neg(_) => Precedence::Unary,
+                    _ => Precedence::Atom,
+                }
+            }
+        }
+    }
+
+    /// The tokens of operand `o` (a name, a constant, an input, or an unnamed instruction
+    /// written out), appended to `out`: every token is pushed once, so writing a kernel
+    /// takes time linear in its text.
+    fn write(&self, o: Operand, out: &mut TokenStream) {
+        match o {
+            Operand::Const(c) => out.extend(self.constant(c).0),
+            Operand::Input(s) => out.extend(self.input(s)),
             Operand::Temp(t) => match &self.names[t as usize] {
-                Some(name) => (quote!(#name), Precedence::Atom),
-                None => self.instr(self.program.instrs[t as usize]),
+                Some(name) => out.extend([TokenTree::Ident(name.clone())]),
+                None => self.write_instr(self.program.instrs[t as usize], out),
             },
         }
     }
 
-    fn at_least(&self, o: Operand, min: Precedence) -> TokenStream {
-        let (tokens, precedence) = self.operand(o);
-        if precedence >= min {
-            tokens
+    /// The tokens of `o` as a `TokenStream` of its own.
+    fn operand(&self, o: Operand) -> TokenStream {
+        let mut tokens = TokenStream::new();
+        self.write(o, &mut tokens);
+        tokens
+    }
+
+    /// `o`, parenthesised when it binds less tightly than `min`.
+    fn write_at_least(&self, o: Operand, min: Precedence, out: &mut TokenStream) {
+        if self.precedence(o) >= min {
+            self.write(o, out);
         } else {
-            quote!((#tokens))
+            out.extend([parenthesised(self.operand(o))]);
         }
     }
 
     /// `sin`, `cos`, `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that
     /// `f64` kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`.
-    fn call(&self, method: &str, a: Operand) -> (TokenStream, Precedence) {
-        let method = Ident::new(method, Span::call_site());
-        let arg = self.operand(a).0;
-        let real = self.real();
-        (quote!(#real::#method(#arg)), Precedence::Atom)
+    fn write_call(&self, method: &str, args: &[Operand], out: &mut TokenStream) {
+        out.extend(self.real.clone());
+        push_path_separator(out);
+        out.extend([TokenTree::Ident(Ident::new(method, Span::call_site()))]);
+        let mut inner = TokenStream::new();
+        for (k, &a) in args.iter().enumerate() {
+            if k > 0 {
+                push_punct(&mut inner, ',');
+            }
+            self.write(a, &mut inner);
+        }
+        out.extend([parenthesised(inner)]);
     }
 
-    fn instr(&self, instr: Instr) -> (TokenStream, Precedence) {
+    fn write_instr(&self, instr: Instr, out: &mut TokenStream) {
         if let Some(name) = self.joint_trig(instr) {
-            return (quote!(#name), Precedence::Atom);
+            out.extend([TokenTree::Ident(name)]);
+            return;
         }
         use Precedence::*;
+        let mut binary = |a: Operand, op: char, b: Operand, left: Precedence, right: Precedence| {
+            self.write_at_least(a, left, out);
+            push_punct(out, op);
+            self.write_at_least(b, right, out);
+        };
         match instr {
-            Instr::Add(a, b) => {
-                let (a, b) = (self.at_least(a, Sum), self.at_least(b, Product));
-                (quote!(#a + #b), Sum)
-            }
-            Instr::Sub(a, b) => {
-                let (a, b) = (self.at_least(a, Sum), self.at_least(b, Product));
-                (quote!(#a - #b), Sum)
-            }
-            Instr::Mul(a, b) => {
-                let (a, b) = (self.at_least(a, Product), self.at_least(b, Unary));
-                (quote!(#a * #b), Product)
-            }
-            Instr::Div(a, b) => {
-                let (a, b) = (self.at_least(a, Product), self.at_least(b, Unary));
-                (quote!(#a / #b), Product)
-            }
+            Instr::Add(a, b) => binary(a, '+', b, Sum, Product),
+            Instr::Sub(a, b) => binary(a, '-', b, Sum, Product),
+            Instr::Mul(a, b) => binary(a, '*', b, Product, Unary),
+            Instr::Div(a, b) => binary(a, '/', b, Product, Unary),
             Instr::Neg(a) => {
-                let a = self.at_least(a, Unary);
-                (quote!(-#a), Unary)
+                push_punct(out, '-');
+                self.write_at_least(a, Unary, out);
             }
-            Instr::Sin(a) => self.call("sin", a),
-            Instr::Cos(a) => self.call("cos", a),
-            Instr::Sqrt(a) => self.call("sqrt", a),
-            Instr::Sign(a) => self.call("sign", a),
-            Instr::MulAdd(a, b, c) => self.mul_add(a, b, c, false, false),
-            Instr::MulSub(a, b, c) => self.mul_add(a, b, c, false, true),
-            Instr::NegMulAdd(a, b, c) => self.mul_add(a, b, c, true, false),
+            Instr::Sin(a) => self.write_call("sin", &[a], out),
+            Instr::Cos(a) => self.write_call("cos", &[a], out),
+            Instr::Sqrt(a) => self.write_call("sqrt", &[a], out),
+            Instr::Sign(a) => self.write_call("sign", &[a], out),
+            Instr::MulAdd(a, b, c) => self.write_mul_add(a, b, c, false, false, out),
+            Instr::MulSub(a, b, c) => self.write_mul_add(a, b, c, false, true, out),
+            Instr::NegMulAdd(a, b, c) => self.write_mul_add(a, b, c, true, false, out),
         }
     }
 
     /// `Real::mul_add(a, b, c)`, with `a` or `c` negated (`fma: true`; the negations fold
     /// into the fused instruction's variants).
-    fn mul_add(
+    fn write_mul_add(
         &self,
         a: Operand,
         b: Operand,
         c: Operand,
         negate_a: bool,
         negate_c: bool,
-    ) -> (TokenStream, Precedence) {
-        let signed = |o: Operand, negate: bool| {
+        out: &mut TokenStream,
+    ) {
+        let signed = |o: Operand, negate: bool, inner: &mut TokenStream| {
             if negate {
-                let o = self.at_least(o, Precedence::Unary);
-                quote!(-#o)
+                push_punct(inner, '-');
+                self.write_at_least(o, Precedence::Unary, inner);
             } else {
-                self.operand(o).0
+                self.write(o, inner);
             }
         };
-        let (a, b, c) = (signed(a, negate_a), self.operand(b).0, signed(c, negate_c));
-        let real = self.real();
-        (quote!(#real::mul_add(#a, #b, #c)), Precedence::Atom)
+        out.extend(self.real.clone());
+        push_path_separator(out);
+        out.extend([TokenTree::Ident(Ident::new("mul_add", Span::call_site()))]);
+        let mut inner = TokenStream::new();
+        signed(a, negate_a, &mut inner);
+        push_punct(&mut inner, ',');
+        self.write(b, &mut inner);
+        push_punct(&mut inner, ',');
+        signed(c, negate_c, &mut inner);
+        out.extend([parenthesised(inner)]);
     }
 
     /// The sines and cosines of the joint angles the kernel uses (a mass matrix never needs
@@ -331,6 +390,10 @@ pub fn emit_kernel(
         names: vec![None; program.instrs.len()],
         trig: BTreeMap::new(),
         reads_standard: kernel.inputs().contains(&Input::Standard),
+        real: {
+            let runtime = ctx.runtime;
+            quote!(#runtime::Real)
+        },
     };
     let mut prologue = vec![false; program.instrs.len()];
     let mut next = 0usize;
@@ -361,11 +424,11 @@ pub fn emit_kernel(
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
     let (body, result) = match split::plan(program, &named, &prologue) {
         None => {
-            let lets = (0..program.instrs.len())
-                .filter(|&t| named[t])
-                .map(|t| emitter.binding(t));
-            let body = quote!(#(#lets)*);
-            let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o).0);
+            let mut body = TokenStream::new();
+            for t in (0..program.instrs.len()).filter(|&t| named[t]) {
+                emitter.write_binding(t, &mut body);
+            }
+            let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o));
             (body, layout.value_tokens(&mut outputs))
         }
         Some(plan) => {
@@ -375,7 +438,7 @@ pub fn emit_kernel(
                     let k = Literal::usize_unsuffixed(k);
                     quote!(slots[#k])
                 }
-                _ => emitter.operand(o).0,
+                _ => emitter.operand(o),
             });
             (body, layout.value_tokens(&mut outputs))
         }
@@ -401,11 +464,16 @@ pub fn emit_kernel(
 }
 
 impl Emitter<'_> {
-    /// `let t = …;` of named instruction `t`.
-    fn binding(&self, t: usize) -> TokenStream {
-        let (value, _) = self.instr(self.program.instrs[t]);
-        let name = &self.names[t];
-        quote!(let #name = #value;)
+    /// `let t = …;` of named instruction `t`, appended to `out`.
+    fn write_binding(&self, t: usize, out: &mut TokenStream) {
+        let name = self.names[t].clone().expect("a named instruction");
+        out.extend([
+            TokenTree::Ident(Ident::new("let", Span::call_site())),
+            TokenTree::Ident(name),
+        ]);
+        push_punct(out, '=');
+        self.write_instr(self.program.instrs[t], out);
+        push_punct(out, ';');
     }
 
     /// The name a named or prologue value is bound to.
@@ -475,21 +543,24 @@ impl Emitter<'_> {
                 let (name, slot) = (self.value_name(value), slot(value));
                 quote!(let #name = slots[#slot];)
             });
-            let statements = statements.iter().map(|&statement| match statement {
-                Statement::Let(i) => {
-                    let binding = self.binding(i);
-                    let store = plan.slots.get(&i).map(|&s| {
-                        let (name, s) = (&self.names[i], Literal::usize_unsuffixed(s));
-                        quote!(slots[#s] = #name;)
-                    });
-                    quote!(#binding #store)
+            let mut body = TokenStream::new();
+            for &statement in statements {
+                match statement {
+                    Statement::Let(i) => {
+                        self.write_binding(i, &mut body);
+                        if let Some(&s) = plan.slots.get(&i) {
+                            let (name, s) = (&self.names[i], Literal::usize_unsuffixed(s));
+                            body.extend(quote!(slots[#s] = #name;));
+                        }
+                    }
+                    Statement::Output { output, instr } => {
+                        let output = Literal::usize_unsuffixed(output);
+                        body.extend(quote!(slots[#output] =));
+                        self.write(Operand::Temp(instr as u32), &mut body);
+                        push_punct(&mut body, ';');
+                    }
                 }
-                Statement::Output { output, instr } => {
-                    let value = self.operand(Operand::Temp(instr as u32)).0;
-                    let output = Literal::usize_unsuffixed(output);
-                    quote!(slots[#output] = #value;)
-                }
-            });
+            }
             quote! {
                 mod #module {
                     use super::*;
@@ -497,7 +568,7 @@ impl Emitter<'_> {
                     #[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]
                     pub(super) fn run #generics (#params #(#args,)* slots: &mut [#t; #len]) {
                         #(#imports)*
-                        #(#statements)*
+                        #body
                     }
                 }
                 #module::run(#param #(#inputs,)* &mut slots);

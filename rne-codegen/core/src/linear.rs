@@ -17,7 +17,7 @@
 //! which changes rounding in the last bits.
 
 use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::BinaryHeap;
 
 use rne_symbolic::{ExprGraph, Id, Node};
 
@@ -27,34 +27,28 @@ use crate::latency::node_cycles;
 /// new nodes to `graph`; returns the new roots.
 pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
     let nodes = graph.reachable(roots);
-    let mut uses: HashMap<Id, u32> = HashMap::new();
-    let mut parent_is_linear: HashMap<Id, bool> = HashMap::new();
+    let size = nodes.last().map_or(0, |id| id.index() + 1);
+    let mut uses = vec![0u32; size];
+    let mut parent_is_linear = vec![true; size];
     for &id in &nodes {
         let node = graph.node(id);
         let linear = is_linear(graph, node);
         for child in node.children() {
-            *uses.entry(child).or_default() += 1;
-            *parent_is_linear.entry(child).or_insert(true) &= linear;
+            uses[child.index()] += 1;
+            parent_is_linear[child.index()] &= linear;
         }
     }
     for &root in roots {
-        *uses.entry(root).or_default() += 2;
+        uses[root.index()] += 2;
     }
     // A linear node used once, by a linear node, is opened inside its parent's combination.
-    let opened = |id: Id| {
-        is_linear(graph, graph.node(id))
-            && uses.get(&id).copied().unwrap_or(0) == 1
-            && parent_is_linear.get(&id).copied().unwrap_or(false)
-    };
-    let opened: Vec<bool> = {
-        let mut flags = vec![false; nodes.last().map_or(0, |id| id.index() + 1)];
-        for &id in &nodes {
-            flags[id.index()] = opened(id);
-        }
-        flags
-    };
+    let mut opened = vec![false; size];
+    for &id in &nodes {
+        let k = id.index();
+        opened[k] = is_linear(graph, graph.node(id)) && uses[k] == 1 && parent_is_linear[k];
+    }
 
-    let mut rebuilt: HashMap<Id, Id> = HashMap::new();
+    let mut rebuilt: Vec<Option<Id>> = vec![None; size];
     let mut depths = Depths::default();
     for &id in &nodes {
         if opened[id.index()] {
@@ -65,7 +59,7 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
             let combination = Combination::collect(graph, id, &opened);
             combination.build(graph, &rebuilt, &mut depths)
         } else {
-            let r = |c: Id| rebuilt[&c];
+            let r = |c: Id| rebuilt[c.index()].expect("children are rebuilt first");
             match node {
                 Node::Const(_) | Node::Symbol(_) => id,
                 Node::Mul(a, b) => graph.mul(r(a), r(b)),
@@ -77,9 +71,12 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
                 Node::Add(..) | Node::Neg(_) => unreachable!("linear nodes are handled above"),
             }
         };
-        rebuilt.insert(id, new);
+        rebuilt[id.index()] = Some(new);
     }
-    roots.iter().map(|r| rebuilt[r]).collect()
+    roots
+        .iter()
+        .map(|r| rebuilt[r.index()].expect("roots are rebuilt"))
+        .collect()
 }
 
 /// Additions, negations and products with a constant.
@@ -132,10 +129,10 @@ impl Combination {
 
     /// Builds the combination from the rebuilt terms: equal terms merged, terms grouped by
     /// the magnitude of their coefficient, one multiplication per group.
-    fn build(self, graph: &mut ExprGraph, rebuilt: &HashMap<Id, Id>, depths: &mut Depths) -> Id {
+    fn build(self, graph: &mut ExprGraph, rebuilt: &[Option<Id>], depths: &mut Depths) -> Id {
         let mut merged: Vec<(f64, Id)> = Vec::new();
         for (c, t) in self.terms {
-            let t = rebuilt[&t];
+            let t = rebuilt[t.index()].expect("terms are rebuilt first");
             match merged.iter_mut().find(|(_, u)| *u == t) {
                 Some((existing, _)) => *existing += c,
                 None => merged.push((c, t)),
@@ -202,32 +199,49 @@ fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Dept
 /// of [`crate::latency`]; only the order matters here.
 #[derive(Default)]
 struct Depths {
-    ready: HashMap<Id, u32>,
+    /// By node index; `u32::MAX` where not computed yet.
+    ready: Vec<u32>,
 }
 
 impl Depths {
+    const UNKNOWN: u32 = u32::MAX;
+
+    fn known(&self, id: Id) -> Option<u32> {
+        self.ready
+            .get(id.index())
+            .copied()
+            .filter(|&r| r != Self::UNKNOWN)
+    }
+
     /// The cycle `id`'s value is ready at.
     fn of(&mut self, graph: &ExprGraph, id: Id) -> u32 {
+        if let Some(ready) = self.known(id) {
+            return ready;
+        }
+        if self.ready.len() < graph.len() {
+            self.ready.resize(graph.len(), Self::UNKNOWN);
+        }
         let mut stack = vec![id];
         while let Some(&top) = stack.last() {
-            if self.ready.contains_key(&top) {
+            if self.known(top).is_some() {
                 stack.pop();
                 continue;
             }
             let node = graph.node(top);
-            let missing: Vec<Id> = node
-                .children()
-                .filter(|c| !self.ready.contains_key(c))
-                .collect();
-            if !missing.is_empty() {
-                stack.extend(missing);
+            let before = stack.len();
+            stack.extend(node.children().filter(|&c| self.known(c).is_none()));
+            if stack.len() > before {
                 continue;
             }
-            let operands = node.children().map(|c| self.ready[&c]).max().unwrap_or(0);
-            self.ready.insert(top, operands + node_cycles(node));
+            let operands = node
+                .children()
+                .map(|c| self.ready[c.index()])
+                .max()
+                .unwrap_or(0);
+            self.ready[top.index()] = operands + node_cycles(node);
             stack.pop();
         }
-        self.ready[&id]
+        self.ready[id.index()]
     }
 }
 

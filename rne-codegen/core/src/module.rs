@@ -223,12 +223,21 @@ pub fn generate(
             _ => None,
         };
         let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
+        // The sweep one derivative kernel chose is the one the next would (the same torques):
+        // it builds that one alone.
+        if let Some(sweep) = built.dynamics.derivative_sweep() {
+            dynamics = dynamics.with_derivative_sweep(sweep);
+        }
+        // The kernel's graph is not needed past its program: freed before emission, the
+        // largest kernels' graphs and token streams are not held at the same time.
+        let symbols = built.dynamics.model.graph.symbols().clone();
+        drop(built.dynamics);
         let program = match scene.fma {
             true => built.program.fuse_multiply_add(),
             false => built.program,
         };
         let ctx = EmitContext {
-            symbols: built.dynamics.model.graph.symbols(),
+            symbols: &symbols,
             scalar: scene.scalar,
             parameters: scene.parameters,
             runtime: &runtime,

@@ -7,8 +7,6 @@
 //! elimination). [`Program::fuse_multiply_add`] then optionally fuses products into the sums
 //! that use them (the `fma: true` scene setting).
 
-use std::collections::HashMap;
-
 use rne_symbolic::{ExprGraph, Id, Node, OpCount, Real, Symbol};
 
 use crate::latency::instr_cycles;
@@ -55,16 +53,19 @@ pub enum Instr {
 
 impl Instr {
     /// The operands, in order.
-    pub fn operands(&self) -> Vec<Operand> {
-        match *self {
-            Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) | Instr::Div(a, b) => vec![a, b],
+    pub fn operands(&self) -> impl Iterator<Item = Operand> {
+        let (a, b, c) = match *self {
+            Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) | Instr::Div(a, b) => {
+                (a, Some(b), None)
+            }
             Instr::Neg(a) | Instr::Sin(a) | Instr::Cos(a) | Instr::Sqrt(a) | Instr::Sign(a) => {
-                vec![a]
+                (a, None, None)
             }
             Instr::MulAdd(a, b, c) | Instr::MulSub(a, b, c) | Instr::NegMulAdd(a, b, c) => {
-                vec![a, b, c]
+                (a, Some(b), Some(c))
             }
-        }
+        };
+        std::iter::once(a).chain(b).chain(c)
     }
 }
 
@@ -81,31 +82,33 @@ impl Program {
     /// Lowers the graph nodes needed by `outputs`.
     pub fn lower(graph: &ExprGraph, outputs: &[Id]) -> Program {
         let nodes = graph.reachable(outputs);
-        let mut negation_needed: HashMap<Id, bool> = HashMap::new();
+        let size = nodes.last().map_or(0, |id| id.index() + 1);
+        // Whether each negation is used by something other than an addition.
+        let mut negation_needed = vec![false; size];
         for &id in &nodes {
             let node = graph.node(id);
             let absorbs = matches!(node, Node::Add(..));
             for child in node.children() {
                 if matches!(graph.node(child), Node::Neg(_)) {
-                    *negation_needed.entry(child).or_default() |= !absorbs;
+                    negation_needed[child.index()] |= !absorbs;
                 }
             }
         }
         for &o in outputs {
             if matches!(graph.node(o), Node::Neg(_)) {
-                negation_needed.insert(o, true);
+                negation_needed[o.index()] = true;
             }
         }
 
         let mut program = Program::default();
-        let mut operand: HashMap<Id, Operand> = HashMap::new();
+        let mut operand: Vec<Option<Operand>> = vec![None; size];
         for &id in &nodes {
-            let op = |c: Id| operand[&c];
+            let op = |c: Id| operand[c.index()].expect("operands are lowered first");
             let value = match graph.node(id) {
                 Node::Const(c) => Operand::Const(c.value()),
                 Node::Symbol(s) => Operand::Input(s),
                 Node::Neg(a) => {
-                    if !negation_needed.get(&id).copied().unwrap_or(false) {
+                    if !negation_needed[id.index()] {
                         continue;
                     }
                     program.push(Instr::Neg(op(a)))
@@ -125,9 +128,12 @@ impl Program {
                 Node::Sqrt(a) => program.push(Instr::Sqrt(op(a))),
                 Node::Sign(a) => program.push(Instr::Sign(op(a))),
             };
-            operand.insert(id, value);
+            operand[id.index()] = Some(value);
         }
-        program.outputs = outputs.iter().map(|o| operand[o]).collect();
+        program.outputs = outputs
+            .iter()
+            .map(|o| operand[o.index()].expect("outputs are lowered"))
+            .collect();
         program
     }
 

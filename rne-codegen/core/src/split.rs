@@ -14,7 +14,8 @@
 //! The plan is a function of the program alone, so the emitted text is the same on every
 //! build.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::cmp::Reverse;
+use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
 
 use crate::program::{Operand, Program};
 
@@ -80,15 +81,16 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
     }
     let parts: Vec<Vec<Statement>> = parts.into_values().collect();
 
-    // Where each named value is defined (`None`: the prologue) and every part reading it.
-    let mut defined: BTreeMap<usize, Option<usize>> = BTreeMap::new();
-    let mut readers: BTreeMap<usize, BTreeSet<usize>> = BTreeMap::new();
+    // Where each named value is defined (`None`: the prologue) and every part reading it,
+    // ascending (parts are visited in order).
+    let mut defined: Vec<Option<usize>> = vec![None; program.instrs.len()];
+    let mut readers: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
     for (p, statements) in parts.iter().enumerate() {
         for &statement in statements {
             let mut reads = Vec::new();
             match statement {
                 Statement::Let(i) => {
-                    defined.insert(i, Some(p));
+                    defined[i] = Some(p);
                     for operand in program.instrs[i].operands() {
                         values_read(program, named, prologue, operand, &mut reads);
                     }
@@ -99,54 +101,53 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
                 }
             }
             for value in reads {
-                readers.entry(value).or_default().insert(p);
+                if readers[value].last() != Some(&p) {
+                    readers[value].push(p);
+                }
             }
         }
     }
-    let imports_of = |value: usize, reading: &BTreeSet<usize>| -> Vec<usize> {
-        let home = defined.get(&value).copied().flatten();
-        reading
-            .iter()
-            .copied()
-            .filter(|&p| Some(p) != home)
-            .collect()
-    };
     let mut imports: Vec<Vec<usize>> = vec![Vec::new(); parts.len()];
     // (part defining it, +1 so that the prologue is 0; last part reading it; value)
     let mut travelling: Vec<(usize, usize, usize)> = Vec::new();
-    for (&value, reading) in &readers {
-        let foreign = imports_of(value, reading);
-        if foreign.is_empty() {
+    for (value, reading) in readers.iter().enumerate() {
+        let home = defined[value];
+        let mut foreign = reading
+            .iter()
+            .copied()
+            .filter(|&p| Some(p) != home)
+            .peekable();
+        if foreign.peek().is_none() {
             continue;
         }
-        for &p in &foreign {
+        for p in foreign {
             imports[p].push(value);
         }
-        let home = defined.get(&value).copied().flatten().map_or(0, |p| p + 1);
         let last = *reading.last().expect("read by a part");
-        travelling.push((home, last, value));
+        travelling.push((home.map_or(0, |p| p + 1), last, value));
     }
     travelling.sort_unstable();
 
     // Slots after the outputs', each reused once every part reading its value has run.
     let mut slots = BTreeMap::new();
     let mut free: BTreeSet<usize> = BTreeSet::new();
-    let mut busy: Vec<(usize, usize)> = Vec::new();
+    // (part last reading the value in it, slot), the earliest-freed first.
+    let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
     let mut len = program.outputs.len();
     for (home, last, value) in travelling {
-        busy.retain(|&(last_read, slot)| {
-            // Written in part `home − 1`, after every read of a value last read before it.
-            let done = last_read + 1 < home;
-            if done {
-                free.insert(slot);
+        // Written in part `home − 1`, after every read of a value last read before it.
+        while let Some(&Reverse((last_read, slot))) = busy.peek() {
+            if last_read + 1 >= home {
+                break;
             }
-            !done
-        });
+            busy.pop();
+            free.insert(slot);
+        }
         let slot = free.pop_first().unwrap_or_else(|| {
             len += 1;
             len - 1
         });
-        busy.push((last, slot));
+        busy.push(Reverse((last, slot)));
         slots.insert(value, slot);
     }
     Some(SplitPlan {

@@ -153,7 +153,7 @@ fn split(w: &DMatrix<f64>) -> (Vec<usize>, Vec<usize>) {
         for _ in 0..2 {
             for b in &basis {
                 let projection = b.dot(&residual);
-                residual -= b * projection;
+                residual.axpy(-projection, b, 1.0);
             }
         }
         let size = residual.norm();

@@ -128,19 +128,17 @@ fn combine(g: &mut ExprGraph, partials: &[Vec<Id>], weights: &[(usize, Id)], n: 
         .collect()
 }
 
-/// The Jacobian of `outputs` with respect to the symbols `make(0..nv)` (velocities or
-/// accelerations): row i, column k.
+/// The Jacobian of `outputs` with respect to the symbols of `differentiators` (one per
+/// column): row i, column k. Differentiators kept from one call to the next differentiate
+/// what earlier outputs shared with these only once.
 pub fn symbol_jacobian(
     g: &mut ExprGraph,
     outputs: &[Id],
-    nv: usize,
-    make: fn(u16) -> Symbol,
+    differentiators: &mut [Differentiator],
 ) -> Vec<Vec<Id>> {
-    let columns: Vec<Vec<Id>> = (0..nv)
-        .map(|k| {
-            let mut d = Differentiator::new(make(k as u16));
-            outputs.iter().map(|&o| d.derivative(g, o)).collect()
-        })
+    let columns: Vec<Vec<Id>> = differentiators
+        .iter_mut()
+        .map(|d| outputs.iter().map(|&o| d.derivative(g, o)).collect())
         .collect();
     transpose(&columns, outputs.len())
 }

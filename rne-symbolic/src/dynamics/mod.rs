@@ -17,7 +17,7 @@ mod kinematics;
 mod ldlt;
 pub mod regressor;
 
-use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
+use crate::expr::{Differentiator, ExprGraph, Id, Mat3, Symbol, Vec3};
 use crate::model::{Frame, RobotModel, StateLayout};
 use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
@@ -57,6 +57,9 @@ pub struct SymbolicDynamics {
     forward_dynamics: Option<Vec<Id>>,
     mass_matrix_inverse: Option<Vec<Vec<Id>>>,
     inverse_dynamics_derivatives: Option<(Matrix, Matrix)>,
+    /// The sweep the state Jacobians of the torques are built by, once known
+    /// ([`Self::with_derivative_sweep`], [`Self::inverse_dynamics_derivatives`]).
+    derivative_sweep: Option<derivatives::Sweep>,
     frames: Vec<Frame>,
     /// The bodies' standard parameters when they replace the links' inertias
     /// ([`Self::with_standard_parameters`]).
@@ -83,6 +86,7 @@ impl SymbolicDynamics {
             forward_dynamics: None,
             mass_matrix_inverse: None,
             inverse_dynamics_derivatives: None,
+            derivative_sweep: None,
             bodies: None,
         }
     }
@@ -101,6 +105,20 @@ impl SymbolicDynamics {
     pub fn with_friction(mut self) -> SymbolicDynamics {
         self.friction = true;
         self
+    }
+
+    /// The dynamics whose torque derivatives are built by `sweep` without trying the other:
+    /// the sweep [`Self::derivative_sweep`] reported for dynamics of the same model and scene,
+    /// whose torques have the same expression DAG and so the same costs, is the one
+    /// [`Self::inverse_dynamics_derivatives`] would choose.
+    pub fn with_derivative_sweep(mut self, sweep: derivatives::Sweep) -> SymbolicDynamics {
+        self.derivative_sweep = Some(sweep);
+        self
+    }
+
+    /// The sweep the torque derivatives were built by, once they have been.
+    pub fn derivative_sweep(&self) -> Option<derivatives::Sweep> {
+        self.derivative_sweep
     }
 
     /// Whether friction is part of the inverse and forward dynamics.
@@ -387,28 +405,44 @@ impl SymbolicDynamics {
     /// (∂τ/∂q, ∂τ/∂q̇), NV × NV each, row i the derivatives of τ_i; ∂/∂q in the tangent space
     /// ([`derivatives`]). ∂τ/∂q̈ is M.
     ///
-    /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), each
-    /// in a copy of the graph; the one of lower [`OpCount::cost`](crate::OpCount::cost) is kept.
+    /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), one
+    /// after the other in the graph (the first taken out while the second is tried,
+    /// [`ExprGraph::split_off`]); the one of lower [`OpCount::cost`](crate::OpCount::cost) is
+    /// kept, the forward sweep on a tie. A sweep known beforehand
+    /// ([`Self::with_derivative_sweep`]) is built alone.
     pub fn inverse_dynamics_derivatives(&mut self) -> (Matrix, Matrix) {
         if let Some(d) = &self.inverse_dynamics_derivatives {
             return d.clone();
         }
         let tau = self.inverse_dynamics();
         let layout = self.layout();
-        let build = |sweep| {
-            let mut g = self.model.graph.clone();
-            let (dq, dv) = derivatives::state_jacobians(&mut g, &tau, layout, sweep);
-            let cost = g.op_count(&[dq.concat(), dv.concat()].concat()).cost();
-            (cost, g, dq, dv)
+        let g = &mut self.model.graph;
+        let (sweep, dq, dv) = match self.derivative_sweep {
+            Some(sweep) => {
+                let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep);
+                (sweep, dq, dv)
+            }
+            None => {
+                let start = g.len();
+                let build = |g: &mut ExprGraph, sweep| {
+                    let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep);
+                    let cost = g.op_count(&[dq.concat(), dv.concat()].concat()).cost();
+                    (cost, sweep, dq, dv)
+                };
+                let forward = build(g, derivatives::Sweep::Forward);
+                let forward_nodes = g.split_off(start);
+                let reverse = build(g, derivatives::Sweep::Reverse);
+                let (_, sweep, dq, dv) = if reverse.0 < forward.0 {
+                    reverse
+                } else {
+                    g.split_off(start);
+                    g.restore(forward_nodes);
+                    forward
+                };
+                (sweep, dq, dv)
+            }
         };
-        let forward = build(derivatives::Sweep::Forward);
-        let reverse = build(derivatives::Sweep::Reverse);
-        let (_, graph, dq, dv) = if reverse.0 < forward.0 {
-            reverse
-        } else {
-            forward
-        };
-        self.model.graph = graph;
+        self.derivative_sweep = Some(sweep);
         self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
         (dq, dv)
     }
@@ -474,6 +508,11 @@ impl SymbolicDynamics {
         let g = &mut self.model.graph;
         let poses = energy::link_poses(g, &self.model.links, &motion);
         let velocities = energy::link_velocities(g, &self.model.links, &motion);
+        // One differentiator per velocity for every frame: the frames of a chain share the
+        // velocities of the links before them, differentiated once.
+        let mut differentiators: Vec<Differentiator> = (0..nv)
+            .map(|k| Differentiator::new(Symbol::Velocity(k as u16)))
+            .collect();
         selected
             .iter()
             .map(|&f| {
@@ -482,7 +521,7 @@ impl SymbolicDynamics {
                     Some(b) => kinematics::frame_velocity(g, &poses[b].0, velocities[b], frame),
                     None => [g.zero(); 6],
                 };
-                derivatives::symbol_jacobian(g, &velocity, nv, Symbol::Velocity)
+                derivatives::symbol_jacobian(g, &velocity, &mut differentiators)
             })
             .collect()
     }

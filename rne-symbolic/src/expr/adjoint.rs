@@ -22,29 +22,36 @@ impl ExprGraph {
     /// id), so the result depends on the graph alone.
     pub fn gradient(&mut self, expr: Id, wrt: &[Symbol]) -> Vec<Id> {
         let nodes = self.reachable(&[expr]);
-        let mut depends = vec![false; expr.index() + 1];
-        for &id in &nodes {
-            depends[id.index()] = match self.node(id) {
+        // Tables by position in `nodes`, which is much shorter than the graph below `expr`
+        // when other kernels' nodes sit in between.
+        let mut position = vec![u32::MAX; expr.index() + 1];
+        for (k, id) in nodes.iter().enumerate() {
+            position[id.index()] = k as u32;
+        }
+        let at = |id: Id| position[id.index()] as usize;
+        let mut depends = vec![false; nodes.len()];
+        for (k, &id) in nodes.iter().enumerate() {
+            depends[k] = match self.node(id) {
                 Node::Symbol(s) => wrt.contains(&s),
-                node => node.children().any(|c| depends[c.index()]),
+                node => node.children().any(|c| depends[at(c)]),
             };
         }
-        let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); expr.index() + 1];
-        if depends[expr.index()] {
+        let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); nodes.len()];
+        if depends[at(expr)] {
             let one = self.one();
-            contributions[expr.index()].push(one);
+            contributions[at(expr)].push(one);
         }
         let zero = self.zero();
         let mut gradient = vec![zero; wrt.len()];
         for &id in nodes.iter().rev() {
-            if !depends[id.index()] {
+            if !depends[at(id)] {
                 continue;
             }
-            let terms = std::mem::take(&mut contributions[id.index()]);
+            let terms = std::mem::take(&mut contributions[at(id)]);
             let adjoint = self.sum(terms);
             let mut pass = |child: Id, value: Id| {
-                if depends[child.index()] {
-                    contributions[child.index()].push(value);
+                if depends[at(child)] {
+                    contributions[at(child)].push(value);
                 }
             };
             match self.node(id) {
@@ -59,18 +66,18 @@ impl ExprGraph {
                 }
                 Node::Neg(a) => pass(a, self.neg(adjoint)),
                 Node::Mul(a, b) => {
-                    if depends[a.index()] {
+                    if depends[at(a)] {
                         pass(a, self.mul(adjoint, b));
                     }
-                    if depends[b.index()] {
+                    if depends[at(b)] {
                         pass(b, self.mul(adjoint, a));
                     }
                 }
                 Node::Div(a, b) => {
-                    if depends[a.index()] {
+                    if depends[at(a)] {
                         pass(a, self.div(adjoint, b));
                     }
-                    if depends[b.index()] {
+                    if depends[at(b)] {
                         let scaled = self.mul(adjoint, id);
                         let quotient = self.div(scaled, b);
                         pass(b, self.neg(quotient));

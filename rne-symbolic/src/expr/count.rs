@@ -86,14 +86,18 @@ impl ExprGraph {
         let nodes = self.reachable(outputs);
         let mut count = OpCount::default();
         // A negation is free when every use of it is an addition (which becomes a subtraction).
-        let mut materialised: std::collections::HashSet<Id> = outputs.iter().copied().collect();
+        let mut materialised = vec![false; nodes.last().map_or(0, |id| id.index() + 1)];
+        for &o in outputs {
+            materialised[o.index()] = true;
+        }
         for &id in &nodes {
             let node = self.node(id);
             if !matches!(node, Node::Add(..)) {
-                materialised.extend(
-                    node.children()
-                        .filter(|&c| matches!(self.node(c), Node::Neg(_))),
-                );
+                for c in node.children() {
+                    if matches!(self.node(c), Node::Neg(_)) {
+                        materialised[c.index()] = true;
+                    }
+                }
             }
         }
         for &id in &nodes {
@@ -102,7 +106,7 @@ impl ExprGraph {
                 Node::Add(..) => count.add += 1,
                 Node::Mul(..) => count.mul += 1,
                 Node::Div(..) => count.div += 1,
-                Node::Neg(_) => count.neg += usize::from(materialised.contains(&id)),
+                Node::Neg(_) => count.neg += usize::from(materialised[id.index()]),
                 Node::Sin(_) => count.sin += 1,
                 Node::Cos(_) => count.cos += 1,
                 Node::Sqrt(_) => count.sqrt += 1,

@@ -1,16 +1,20 @@
 //! Symbolic differentiation.
 
-use std::collections::HashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::graph::ExprGraph;
 use super::node::{Id, Node, Symbol};
 
 /// Differentiates expressions of a graph with respect to one symbol, remembering the
 /// derivative of every node it has visited so that the derivatives of many outputs share work.
+///
+/// The nodes already differentiated are closed under taking children, so each call visits
+/// only the nodes below `expr` that no earlier call reached: differentiating k outputs costs
+/// the size of their union, not k times the graph.
 #[derive(Debug)]
 pub struct Differentiator {
     wrt: Symbol,
-    memo: HashMap<Id, Id>,
+    memo: FxHashMap<Id, Id>,
 }
 
 impl Differentiator {
@@ -18,7 +22,7 @@ impl Differentiator {
     pub fn new(wrt: Symbol) -> Differentiator {
         Differentiator {
             wrt,
-            memo: HashMap::new(),
+            memo: FxHashMap::default(),
         }
     }
 
@@ -27,10 +31,7 @@ impl Differentiator {
         if let Some(&d) = self.memo.get(&expr) {
             return d;
         }
-        for id in graph.reachable(&[expr]) {
-            if self.memo.contains_key(&id) {
-                continue;
-            }
+        for id in self.new_nodes(graph, expr) {
             let d = |c: Id| self.memo[&c];
             let derivative = match graph.node(id) {
                 Node::Const(_) => graph.zero(),
@@ -81,6 +82,25 @@ impl Differentiator {
             self.memo.insert(id, derivative);
         }
         self.memo[&expr]
+    }
+
+    /// The nodes below `expr` (itself included) without a derivative yet, in increasing id
+    /// order (children first): a depth-first walk that stops at differentiated nodes.
+    fn new_nodes(&self, graph: &ExprGraph, expr: Id) -> Vec<Id> {
+        let mut seen: FxHashSet<Id> = FxHashSet::default();
+        let mut stack = vec![expr];
+        seen.insert(expr);
+        let mut found = Vec::new();
+        while let Some(id) = stack.pop() {
+            found.push(id);
+            for child in graph.node(id).children() {
+                if !self.memo.contains_key(&child) && seen.insert(child) {
+                    stack.push(child);
+                }
+            }
+        }
+        found.sort_unstable();
+        found
     }
 }
 

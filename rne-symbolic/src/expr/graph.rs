@@ -1,6 +1,6 @@
 //! The hash-consed expression DAG and its simplifying constructors.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 use std::f64::consts::FRAC_PI_2;
 
 use super::node::{Constant, Id, Node, Symbol};
@@ -9,7 +9,7 @@ use super::symbols::SymbolTable;
 /// A hash-consed directed acyclic graph of scalar expressions.
 ///
 /// Nodes live in an arena and are never removed. Every node is unique (structural sharing
-/// through a `HashMap<Node, Id>` memo), and its children always come earlier in the arena, so
+/// through an FxHash `HashMap<Node, Id>` memo), and its children always come earlier in the arena, so
 /// `0..len()` is a topological order. The constructors (`add`, `mul`, `sin`, ...) fold
 /// constants and apply identities that are exact in real arithmetic and never increase the
 /// operation count: `x·0 = 0`, `x·1 = x`, `x + 0 = x`, `x + (−x) = 0`, `−(−x) = x`,
@@ -18,7 +18,7 @@ use super::symbols::SymbolTable;
 #[derive(Clone, Debug, Default)]
 pub struct ExprGraph {
     nodes: Vec<Node>,
-    memo: HashMap<Node, Id>,
+    memo: FxHashMap<Node, Id>,
     symbols: SymbolTable,
 }
 
@@ -27,7 +27,7 @@ impl ExprGraph {
     pub fn new(symbols: SymbolTable) -> ExprGraph {
         ExprGraph {
             nodes: Vec::new(),
-            memo: HashMap::new(),
+            memo: FxHashMap::default(),
             symbols,
         }
     }
@@ -73,6 +73,32 @@ impl ExprGraph {
     /// Whether `id` is the constant one.
     pub fn is_one(&self, id: Id) -> bool {
         self.as_const(id) == Some(1.0)
+    }
+
+    /// Removes the nodes built since the graph had `len` of them and returns them in order:
+    /// the graph is as it was then, and [`ExprGraph::restore`] puts them back at the same ids.
+    /// Trying two constructions one after the other costs the nodes of one, not a copy of
+    /// the graph.
+    pub fn split_off(&mut self, len: usize) -> Vec<Node> {
+        let tail = self.nodes.split_off(len);
+        for node in &tail {
+            self.memo.remove(node);
+        }
+        tail
+    }
+
+    /// Appends nodes [`ExprGraph::split_off`] removed, when the graph has again the length it
+    /// had then: each gets back its id.
+    pub fn restore(&mut self, nodes: Vec<Node>) {
+        for node in nodes {
+            let id = Id::from_index(self.nodes.len());
+            debug_assert!(
+                !self.memo.contains_key(&node),
+                "restored onto another graph"
+            );
+            self.nodes.push(node);
+            self.memo.insert(node, id);
+        }
     }
 
     fn intern(&mut self, node: Node) -> Id {

@@ -1,7 +1,5 @@
 //! Substituting expressions for symbols, in place.
 
-use std::collections::HashMap;
-
 use super::graph::ExprGraph;
 use super::node::{Id, Node, Symbol};
 
@@ -10,9 +8,10 @@ impl ExprGraph {
     /// of this graph), rebuilt through the simplifying constructors so that constants fold
     /// again (`(x + q)|q=0` is `x`). Symbols without an image stay.
     pub fn substitute(&mut self, roots: &[Id], image: impl Fn(Symbol) -> Option<Id>) -> Vec<Id> {
-        let mut rebuilt: HashMap<Id, Id> = HashMap::new();
-        for id in self.reachable(roots) {
-            let r = |c: Id| rebuilt[&c];
+        let nodes = self.reachable(roots);
+        let mut rebuilt = vec![None; nodes.last().map_or(0, |id| id.index() + 1)];
+        for id in nodes {
+            let r = |c: Id| rebuilt[c.index()].expect("children are rebuilt first");
             let node = self.node(id);
             let new = match node {
                 Node::Const(_) => id,
@@ -26,9 +25,12 @@ impl ExprGraph {
                 Node::Sqrt(a) => self.sqrt(r(a)),
                 Node::Sign(a) => self.sign(r(a)),
             };
-            rebuilt.insert(id, new);
+            rebuilt[id.index()] = Some(new);
         }
-        roots.iter().map(|r| rebuilt[r]).collect()
+        roots
+            .iter()
+            .map(|r| rebuilt[r.index()].expect("roots are rebuilt"))
+            .collect()
     }
 }
 
