@@ -79,12 +79,7 @@ impl Program {
             Operand::Const(_) | Operand::Input(_) => 0,
         };
         for &instr in &self.instrs {
-            let operands = instr
-                .operands()
-                .into_iter()
-                .map(|o| at(o, &ready))
-                .max()
-                .unwrap_or(0);
+            let operands = instr.operands().map(|o| at(o, &ready)).max().unwrap_or(0);
             ready.push(operands + instr_cycles(instr));
         }
         self.outputs

@@ -171,7 +171,7 @@ impl Program {
                 Instr::Add(x, y) => (sum(x, y, &ready), x, y, false),
                 Instr::Sub(x, y) => (sum(x, y, &ready), x, y, true),
                 _ => {
-                    let operands = instr.operands().into_iter().map(|o| at(o, &ready)).max();
+                    let operands = instr.operands().map(|o| at(o, &ready)).max();
                     ready.push(operands.unwrap_or(0) + instr_cycles(*instr));
                     continue;
                 }
@@ -184,7 +184,7 @@ impl Program {
                         (true, true) => Instr::MulSub(a, b, addend),
                         (true, false) => Instr::NegMulAdd(a, b, addend),
                     };
-                    let operands = fused.operands().into_iter().map(|o| at(o, ready)).max();
+                    let operands = fused.operands().map(|o| at(o, ready)).max();
                     (operands.unwrap_or(0) + instr_cycles(fused), t, fused)
                 })
             };
