@@ -72,9 +72,9 @@ impl BaseParameters {
                 }
             }
         }
-        let nearest = w.map(DoubleDouble::to_f64);
-        let (independent, dependent) = split(&nearest);
-        let k = Refinement::new(&nearest, &independent, &dependent).refine(&w);
+        let split = Split::of(&w.map(DoubleDouble::to_f64));
+        let (independent, dependent) = (split.independent.clone(), split.dependent.clone());
+        let k = Refinement::new(split).refine(&w);
         BaseParameters {
             independent,
             dependent,
@@ -84,8 +84,9 @@ impl BaseParameters {
 
     /// The base parameters of a stacked regressor W.
     pub fn from_stacked(w: &DMatrix<f64>) -> BaseParameters {
-        let (independent, dependent) = split(w);
-        let k = Refinement::new(w, &independent, &dependent).k();
+        let split = Split::of(w);
+        let (independent, dependent) = (split.independent.clone(), split.dependent.clone());
+        let k = Refinement::new(split).k();
         BaseParameters {
             independent,
             dependent,
@@ -141,103 +142,129 @@ fn scale(w: &DMatrix<f64>) -> f64 {
         .max(f64::MIN_POSITIVE)
 }
 
-/// The columns of W kept (independent of those before them) and regrouped (dependent).
-fn split(w: &DMatrix<f64>) -> (Vec<usize>, Vec<usize>) {
-    let scale = scale(w);
-    let mut basis: Vec<DVector<f64>> = Vec::new();
-    let (mut independent, mut dependent) = (Vec::new(), Vec::new());
-    for c in 0..w.ncols() {
-        let column = w.column(c).into_owned();
-        let mut residual = column.clone();
-        // Gram–Schmidt twice ("twice is enough", Giraud et al. 2005).
-        for _ in 0..2 {
-            for b in &basis {
-                let projection = b.dot(&residual);
-                residual.axpy(-projection, b, 1.0);
+/// Gram–Schmidt on W's columns in order: the columns kept (independent of those before them)
+/// and regrouped (dependent), with the factorisation W₁ = Q₁ R₁₁, W₂ = Q₁ R₁₂ it builds on the
+/// way, so that K = R₁₁⁻¹ R₁₂ needs no other decomposition.
+struct Split {
+    independent: Vec<usize>,
+    dependent: Vec<usize>,
+    /// Q₁: the orthonormal basis, one column per kept column of W.
+    q1: DMatrix<f64>,
+    /// R₁₁: upper triangular, the kept columns in the basis.
+    r11: DMatrix<f64>,
+    /// R₁₂: the regrouped columns in the basis.
+    r12: DMatrix<f64>,
+}
+
+impl Split {
+    fn of(w: &DMatrix<f64>) -> Split {
+        let scale = scale(w);
+        let mut basis: Vec<DVector<f64>> = Vec::new();
+        let (mut independent, mut dependent) = (Vec::new(), Vec::new());
+        let (mut kept, mut regrouped) = (Vec::new(), Vec::new());
+        for c in 0..w.ncols() {
+            let column = w.column(c).into_owned();
+            let mut residual = column.clone();
+            let mut coefficients = vec![0.0; basis.len()];
+            // Gram–Schmidt twice ("twice is enough", Giraud et al. 2005).
+            for _ in 0..2 {
+                for (b, q) in basis.iter().enumerate() {
+                    let projection = q.dot(&residual);
+                    residual.axpy(-projection, q, 1.0);
+                    coefficients[b] += projection;
+                }
+            }
+            let size = residual.norm();
+            if size > DEPENDENCE_TOLERANCE * column.norm().max(scale) {
+                basis.push(residual / size);
+                coefficients.push(size);
+                kept.push(coefficients);
+                independent.push(c);
+            } else {
+                regrouped.push(coefficients);
+                dependent.push(c);
             }
         }
-        let size = residual.norm();
-        if size > DEPENDENCE_TOLERANCE * column.norm().max(scale) {
-            basis.push(residual / size);
-            independent.push(c);
-        } else {
-            dependent.push(c);
+        let nb = basis.len();
+        let r = |columns: &[Vec<f64>]| {
+            DMatrix::from_fn(nb, columns.len(), |i, j| {
+                columns[j].get(i).copied().unwrap_or(0.0)
+            })
+        };
+        Split {
+            q1: if basis.is_empty() {
+                DMatrix::zeros(w.nrows(), 0)
+            } else {
+                DMatrix::from_columns(&basis)
+            },
+            r11: r(&kept),
+            r12: r(&regrouped),
+            independent,
+            dependent,
         }
     }
-    (independent, dependent)
+
+    /// X of W₁ X = B in the least-squares sense: R₁₁⁻¹ Q₁ᵀ B.
+    fn solve(&self, b: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+        self.r11.solve_upper_triangular(&self.q1.tr_mul(b))
+    }
 }
 
 /// Most corrections [`Refinement::refine`] applies; each gains about 16 digits less the
 /// digits W₁'s condition number costs, and it stops when K's `f64` values no longer change.
 const REFINEMENT_STEPS: usize = 4;
 
-/// K of W₁ K = W₂, a consistent system (W₂'s columns are combinations of W₁'s): the least
-/// squares solution in `f64` by the SVD of W₁ (of full column rank by construction), entries
-/// below [`SNAP_TOLERANCE`] set to exactly zero.
+/// K of W₁ K = W₂, a consistent system (W₂'s columns are combinations of W₁'s, which have
+/// full column rank by construction): R₁₁⁻¹ R₁₂ from the [`Split`], entries below
+/// [`SNAP_TOLERANCE`] set to exactly zero.
 struct Refinement {
-    independent: Vec<usize>,
-    dependent: Vec<usize>,
-    svd: Option<nalgebra::SVD<f64, nalgebra::Dyn, nalgebra::Dyn>>,
-    tolerance: f64,
+    split: Split,
     k: DMatrix<f64>,
 }
 
 impl Refinement {
-    fn new(w: &DMatrix<f64>, independent: &[usize], dependent: &[usize]) -> Refinement {
-        let tolerance = f64::EPSILON * scale(w);
-        let mut refinement = Refinement {
-            independent: independent.to_vec(),
-            dependent: dependent.to_vec(),
-            svd: None,
-            tolerance,
-            k: DMatrix::zeros(independent.len(), dependent.len()),
-        };
-        if dependent.is_empty() || independent.is_empty() {
-            return refinement;
-        }
-        let w1 = DMatrix::from_fn(w.nrows(), independent.len(), |i, j| w[(i, independent[j])]);
-        let w2 = DMatrix::from_fn(w.nrows(), dependent.len(), |i, j| w[(i, dependent[j])]);
-        let svd = w1.svd(true, true);
-        if let Ok(k) = svd.solve(&w2, tolerance) {
-            refinement.k = k;
-        }
-        refinement.svd = Some(svd);
-        let largest = refinement.k.amax();
-        refinement.k.apply(|x| {
+    fn new(split: Split) -> Refinement {
+        let (nb, nd) = (split.independent.len(), split.dependent.len());
+        let mut k = split
+            .r11
+            .solve_upper_triangular(&split.r12)
+            .unwrap_or_else(|| DMatrix::zeros(nb, nd));
+        let largest = k.amax();
+        k.apply(|x| {
             *x = if x.abs() <= SNAP_TOLERANCE * largest.max(1.0) {
                 0.0
             } else {
                 *x
             }
         });
-        refinement
+        Refinement { split, k }
     }
 
     /// Iterative refinement (Wilkinson; Higham, *Accuracy and Stability of Numerical
     /// Algorithms*, 2nd ed., 2002, §12.1) of K against W in double-double: the residual
     /// R = W₂ − W₁ K is formed in double-double and the correction solved in `f64` with the
-    /// same SVD. The zeros of K stay zeros (they are structural: no regrouping), so the
-    /// residual costs one product per row and non-zero coefficient.
+    /// same factorisation. The zeros of K stay zeros (they are structural: no regrouping), so
+    /// the residual costs one product per row and non-zero coefficient.
     fn refine(mut self, w: &DMatrix<DoubleDouble>) -> Vec<Vec<f64>> {
-        let Some(svd) = &self.svd else {
-            return self.k();
-        };
         let (nb, nd) = self.k.shape();
+        let (independent, dependent) = (&self.split.independent, &self.split.dependent);
         let mut k: Vec<DoubleDouble> = self.k.iter().map(|&x| DoubleDouble::from_f64(x)).collect();
         let nonzero: Vec<(usize, usize)> = (0..nd)
             .flat_map(|d| (0..nb).map(move |b| (b, d)))
             .filter(|&(b, d)| self.k[(b, d)] != 0.0)
             .collect();
         for _ in 0..REFINEMENT_STEPS {
-            let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
+            if nonzero.is_empty() {
+                break;
+            }
+            let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, dependent[d])]);
             for &(b, d) in &nonzero {
                 let coefficient = k[b + nb * d];
                 for i in 0..w.nrows() {
-                    residual[(i, d)] -= w[(i, self.independent[b])] * coefficient;
+                    residual[(i, d)] -= w[(i, independent[b])] * coefficient;
                 }
             }
-            let Ok(correction) = svd.solve(&residual.map(DoubleDouble::to_f64), self.tolerance)
-            else {
+            let Some(correction) = self.split.solve(&residual.map(DoubleDouble::to_f64)) else {
                 break;
             };
             let mut changed = false;
