@@ -41,7 +41,7 @@ impl BaseParameters {
     /// the model's graph; parameters at their values) from `samples` seeded random states.
     ///
     /// The regressor is evaluated in double-double and K refined against it (iterative
-    /// refinement, `Refinement::refine`), so each coefficient is the `f64` nearest to the
+    /// refinement, `Split::refine`), so each coefficient is the `f64` nearest to the
     /// exact one for the model's data: the planar elbow's l₁² is `0.09`, not
     /// `0.09000000000000029`.
     pub fn find(model: &RobotModel, y: &[Vec<Id>], samples: usize) -> BaseParameters {
@@ -73,25 +73,15 @@ impl BaseParameters {
             }
         }
         let split = Split::of(&w.map(DoubleDouble::to_f64));
-        let (independent, dependent) = (split.independent.clone(), split.dependent.clone());
-        let k = Refinement::new(split).refine(&w);
-        BaseParameters {
-            independent,
-            dependent,
-            k,
-        }
+        let k = split.refine(split.coefficients(), &w);
+        split.into_base_parameters(k)
     }
 
     /// The base parameters of a stacked regressor W.
     pub fn from_stacked(w: &DMatrix<f64>) -> BaseParameters {
         let split = Split::of(w);
-        let (independent, dependent) = (split.independent.clone(), split.dependent.clone());
-        let k = Refinement::new(split).k();
-        BaseParameters {
-            independent,
-            dependent,
-            k,
-        }
+        let k = split.coefficients();
+        split.into_base_parameters(k)
     }
 
     /// Number of base parameters.
@@ -208,26 +198,15 @@ impl Split {
     fn solve(&self, b: &DMatrix<f64>) -> Option<DMatrix<f64>> {
         self.r11.solve_upper_triangular(&self.q1.tr_mul(b))
     }
-}
 
-/// Most corrections [`Refinement::refine`] applies; each gains about 16 digits less the
-/// digits W₁'s condition number costs, and it stops when K's `f64` values no longer change.
-const REFINEMENT_STEPS: usize = 4;
-
-/// K of W₁ K = W₂, a consistent system (W₂'s columns are combinations of W₁'s, which have
-/// full column rank by construction): R₁₁⁻¹ R₁₂ from the [`Split`], entries below
-/// [`SNAP_TOLERANCE`] set to exactly zero.
-struct Refinement {
-    split: Split,
-    k: DMatrix<f64>,
-}
-
-impl Refinement {
-    fn new(split: Split) -> Refinement {
-        let (nb, nd) = (split.independent.len(), split.dependent.len());
-        let mut k = split
+    /// K of W₁ K = W₂, a consistent system (W₂'s columns are combinations of W₁'s, which have
+    /// full column rank by construction): R₁₁⁻¹ R₁₂, entries below [`SNAP_TOLERANCE`] set to
+    /// exactly zero.
+    fn coefficients(&self) -> DMatrix<f64> {
+        let (nb, nd) = (self.independent.len(), self.dependent.len());
+        let mut k = self
             .r11
-            .solve_upper_triangular(&split.r12)
+            .solve_upper_triangular(&self.r12)
             .unwrap_or_else(|| DMatrix::zeros(nb, nd));
         let largest = k.amax();
         k.apply(|x| {
@@ -237,58 +216,63 @@ impl Refinement {
                 *x
             }
         });
-        Refinement { split, k }
+        k
     }
 
     /// Iterative refinement (Wilkinson; Higham, *Accuracy and Stability of Numerical
     /// Algorithms*, 2nd ed., 2002, §12.1) of K against W in double-double: the residual
     /// R = W₂ − W₁ K is formed in double-double and the correction solved in `f64` with the
-    /// same factorisation. The zeros of K stay zeros (they are structural: no regrouping), so
-    /// the residual costs one product per row and non-zero coefficient.
-    fn refine(mut self, w: &DMatrix<DoubleDouble>) -> Vec<Vec<f64>> {
-        let (nb, nd) = self.k.shape();
-        let (independent, dependent) = (&self.split.independent, &self.split.dependent);
-        let mut k: Vec<DoubleDouble> = self.k.iter().map(|&x| DoubleDouble::from_f64(x)).collect();
+    /// same factors ([`Split::solve`]). The zeros of K stay zeros (they are structural: no
+    /// regrouping), so the residual costs one product per row and non-zero coefficient.
+    fn refine(&self, k: DMatrix<f64>, w: &DMatrix<DoubleDouble>) -> DMatrix<f64> {
+        let (nb, nd) = k.shape();
         let nonzero: Vec<(usize, usize)> = (0..nd)
             .flat_map(|d| (0..nb).map(move |b| (b, d)))
-            .filter(|&(b, d)| self.k[(b, d)] != 0.0)
+            .filter(|&(b, d)| k[(b, d)] != 0.0)
             .collect();
+        let mut refined = k.map(DoubleDouble::from_f64);
         for _ in 0..REFINEMENT_STEPS {
             if nonzero.is_empty() {
                 break;
             }
-            let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, dependent[d])]);
+            let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
             for &(b, d) in &nonzero {
-                let coefficient = k[b + nb * d];
+                let coefficient = refined[(b, d)];
                 for i in 0..w.nrows() {
-                    residual[(i, d)] -= w[(i, independent[b])] * coefficient;
+                    residual[(i, d)] -= w[(i, self.independent[b])] * coefficient;
                 }
             }
-            let Some(correction) = self.split.solve(&residual.map(DoubleDouble::to_f64)) else {
+            let Some(correction) = self.solve(&residual.map(DoubleDouble::to_f64)) else {
                 break;
             };
             let mut changed = false;
             for &(b, d) in &nonzero {
-                let refined = k[b + nb * d] + DoubleDouble::from_f64(correction[(b, d)]);
-                changed |= refined.to_f64() != k[b + nb * d].to_f64();
-                k[b + nb * d] = refined;
+                let next = refined[(b, d)] + DoubleDouble::from_f64(correction[(b, d)]);
+                changed |= next.to_f64() != refined[(b, d)].to_f64();
+                refined[(b, d)] = next;
             }
             if !changed {
                 break;
             }
         }
-        self.k = DMatrix::from_fn(nb, nd, |b, d| k[b + nb * d].to_f64());
-        self.k()
+        refined.map(DoubleDouble::to_f64)
     }
 
-    /// K, one row per base parameter.
-    fn k(&self) -> Vec<Vec<f64>> {
-        self.k
-            .row_iter()
-            .map(|row| row.iter().copied().collect())
-            .collect()
+    /// The base parameters with regrouping coefficients `k`.
+    fn into_base_parameters(self, k: DMatrix<f64>) -> BaseParameters {
+        BaseParameters {
+            independent: self.independent,
+            dependent: self.dependent,
+            k: k.row_iter()
+                .map(|row| row.iter().copied().collect())
+                .collect(),
+        }
     }
 }
+
+/// Most corrections [`Split::refine`] applies; each gains about 16 digits less the digits
+/// W₁'s condition number costs, and it stops when K's `f64` values no longer change.
+const REFINEMENT_STEPS: usize = 4;
 
 /// Rust identifiers for parameter names, deterministically: every character other than an
 /// ASCII letter, digit or `_` becomes `_` (`link2.IzzR` → `link2_IzzR`), a name that does not
