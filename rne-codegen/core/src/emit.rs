@@ -216,18 +216,25 @@ impl Emitter<'_> {
         }
     }
 
-    /// `sin`, `cos`, `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that
-    /// `f64` kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`.
-    fn write_call(&self, method: &str, args: &[Operand], out: &mut TokenStream) {
+    /// `Real::method(args)`, each argument negated where its flag says so. `sin`, `cos`,
+    /// `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that `f64`
+    /// kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`; so does
+    /// `mul_add` (`fma: true`), whose variants fold a negated product or addend.
+    fn write_call(&self, method: &str, args: &[(Operand, bool)], out: &mut TokenStream) {
         out.extend(self.real.clone());
         push_path_separator(out);
         out.extend([TokenTree::Ident(Ident::new(method, Span::call_site()))]);
         let mut inner = TokenStream::new();
-        for (k, &a) in args.iter().enumerate() {
+        for (k, &(a, negated)) in args.iter().enumerate() {
             if k > 0 {
                 push_punct(&mut inner, ',');
             }
-            self.write(a, &mut inner);
+            if negated {
+                push_punct(&mut inner, '-');
+                self.write_at_least(a, Precedence::Unary, &mut inner);
+            } else {
+                self.write(a, &mut inner);
+            }
         }
         out.extend([parenthesised(inner)]);
     }
@@ -252,45 +259,20 @@ impl Emitter<'_> {
                 push_punct(out, '-');
                 self.write_at_least(a, Unary, out);
             }
-            Instr::Sin(a) => self.write_call("sin", &[a], out),
-            Instr::Cos(a) => self.write_call("cos", &[a], out),
-            Instr::Sqrt(a) => self.write_call("sqrt", &[a], out),
-            Instr::Sign(a) => self.write_call("sign", &[a], out),
-            Instr::MulAdd(a, b, c) => self.write_mul_add(a, b, c, false, false, out),
-            Instr::MulSub(a, b, c) => self.write_mul_add(a, b, c, false, true, out),
-            Instr::NegMulAdd(a, b, c) => self.write_mul_add(a, b, c, true, false, out),
-        }
-    }
-
-    /// `Real::mul_add(a, b, c)`, with `a` or `c` negated (`fma: true`; the negations fold
-    /// into the fused instruction's variants).
-    fn write_mul_add(
-        &self,
-        a: Operand,
-        b: Operand,
-        c: Operand,
-        negate_a: bool,
-        negate_c: bool,
-        out: &mut TokenStream,
-    ) {
-        let signed = |o: Operand, negate: bool, inner: &mut TokenStream| {
-            if negate {
-                push_punct(inner, '-');
-                self.write_at_least(o, Precedence::Unary, inner);
-            } else {
-                self.write(o, inner);
+            Instr::Sin(a) => self.write_call("sin", &[(a, false)], out),
+            Instr::Cos(a) => self.write_call("cos", &[(a, false)], out),
+            Instr::Sqrt(a) => self.write_call("sqrt", &[(a, false)], out),
+            Instr::Sign(a) => self.write_call("sign", &[(a, false)], out),
+            Instr::MulAdd(a, b, c) => {
+                self.write_call("mul_add", &[(a, false), (b, false), (c, false)], out)
             }
-        };
-        out.extend(self.real.clone());
-        push_path_separator(out);
-        out.extend([TokenTree::Ident(Ident::new("mul_add", Span::call_site()))]);
-        let mut inner = TokenStream::new();
-        signed(a, negate_a, &mut inner);
-        push_punct(&mut inner, ',');
-        self.write(b, &mut inner);
-        push_punct(&mut inner, ',');
-        signed(c, negate_c, &mut inner);
-        out.extend([parenthesised(inner)]);
+            Instr::MulSub(a, b, c) => {
+                self.write_call("mul_add", &[(a, false), (b, false), (c, true)], out)
+            }
+            Instr::NegMulAdd(a, b, c) => {
+                self.write_call("mul_add", &[(a, true), (b, false), (c, false)], out)
+            }
+        }
     }
 
     /// The sines and cosines of the joint angles the kernel uses (a mass matrix never needs
