@@ -8,9 +8,9 @@ use super::symbols::SymbolTable;
 
 /// A hash-consed directed acyclic graph of scalar expressions.
 ///
-/// Nodes live in an arena and are never removed. Every node is unique (structural sharing
-/// through an FxHash `HashMap<Node, Id>` memo), and its children always come earlier in the arena, so
-/// `0..len()` is a topological order. The constructors (`add`, `mul`, `sin`, ...) fold
+/// Nodes live in an arena; only [`ExprGraph::split_off`] removes them, the newest first. Every
+/// node is unique (structural sharing through an FxHash `HashMap<Node, Id>` memo), and its
+/// children always come earlier in the arena, so `0..len()` is a topological order. The constructors (`add`, `mul`, `sin`, ...) fold
 /// constants and apply identities that are exact in real arithmetic and never increase the
 /// operation count: `x·0 = 0`, `x·1 = x`, `x + 0 = x`, `x + (−x) = 0`, `−(−x) = x`,
 /// `sin(kπ/2)` and `cos(kπ/2)` exactly, and negations pulled outwards (`(−a)·b = −(a·b)`)
