@@ -18,8 +18,7 @@ fn batched_angles(kernel: Kernel, scalar: ScalarType, gravity: [f64; 3]) -> Vec<
     };
     let source = generate_from_path(&puma560(), &scene)
         .unwrap()
-        .items
-        .to_string()
+        .source
         .replace(' ', "");
     let start =
         source.find("sin_cos_array(&[").expect("a batched sin_cos") + "sin_cos_array(&[".len();

@@ -39,7 +39,7 @@ fn the_large_kernels_of_the_chain_are_emitted_in_parts() {
             ..Scene::default()
         };
         let module = generate_from_path(&path, &scene).expect("the fixture generates");
-        module.items.to_string()
+        module.source
     };
     assert!(
         emitted(Kernel::CoriolisMatrix).contains("mod part1"),

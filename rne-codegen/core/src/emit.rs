@@ -1,4 +1,4 @@
-//! Emission of a [`Program`] as a straight-line Rust function with `quote`.
+//! Emission of a [`Program`] as a straight-line Rust function, written as source text.
 //!
 //! A result used more than once becomes a `let` binding; a result used once is written
 //! inline where it is used, so the text follows the expression's shape. Operator precedence
@@ -8,14 +8,21 @@
 //! the runtime's `Real::sin_cos` (or `Real::sin_cos_array` for several), at the top of the
 //! function.
 //!
+//! The body is appended to one `String` rather than built as a token stream: a kernel of a
+//! million operations is tens of megabytes of text, where a `proc_macro2::TokenStream` of it
+//! (one heap object per token) took gigabytes; the macro lexes the text once
+//! ([`GeneratedModule::items`](crate::GeneratedModule::items)). Signatures and the other small
+//! items are still written with `quote`.
+//!
 //! Emitted code names nothing but `core` and the runtime, which it reaches through the path
 //! in [`EmitContext::runtime`] (`::rne_codegen::__private` unless the `crate:` setting says
 //! otherwise).
 
 use std::collections::BTreeMap;
+use std::fmt::Write;
 
-use proc_macro2::{Delimiter, Group, Ident, Literal, Punct, Spacing, Span, TokenStream, TokenTree};
-use quote::{format_ident, quote};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
 use rne_symbolic::{Symbol, SymbolTable};
 
 use crate::kernel::{Dims, Input, Kernel};
@@ -48,121 +55,89 @@ enum Precedence {
     Atom = 4,
 }
 
+/// The name of a joint's sine or cosine in the emitted code: `s3` is the sine of joint 3.
+#[derive(Copy, Clone, Debug)]
+struct TrigName {
+    /// `'s'` or `'c'`.
+    function: char,
+    /// The joint's number, from 1.
+    joint: u32,
+}
+
 struct Emitter<'a> {
     program: &'a Program,
     ctx: EmitContext<'a>,
-    /// Name of each materialised temporary.
-    names: Vec<Option<Ident>>,
+    /// Number `n` of each materialised temporary `tn`.
+    names: Vec<Option<u32>>,
     /// `sin`/`cos` of joint k: which of the two are used.
     trig: BTreeMap<u16, (bool, bool)>,
     /// Whether the kernel reads standard parameters (`base_parameters`), which its program
     /// holds as `Symbol::Parameter(i)` = `standard[i]`.
     reads_standard: bool,
     /// `<path to the runtime>::Real`.
-    real: TokenStream,
-}
-
-/// `(tokens)`.
-fn parenthesised(tokens: TokenStream) -> TokenTree {
-    TokenTree::Group(Group::new(Delimiter::Parenthesis, tokens))
-}
-
-/// One punctuation character, as `quote!` writes an operator.
-fn push_punct(out: &mut TokenStream, c: char) {
-    out.extend([TokenTree::Punct(Punct::new(c, Spacing::Alone))]);
-}
-
-/// `::`, as `quote!` writes it.
-fn push_path_separator(out: &mut TokenStream) {
-    out.extend([
-        TokenTree::Punct(Punct::new(':', Spacing::Joint)),
-        TokenTree::Punct(Punct::new(':', Spacing::Alone)),
-    ]);
+    real: String,
 }
 
 impl Emitter<'_> {
-    /// `<path to the runtime>::Real`.
-    fn real(&self) -> TokenStream {
-        self.real.clone()
-    }
-
-    fn scalar_type(&self) -> TokenStream {
-        match self.ctx.scalar {
-            ScalarType::F64 => quote!(f64),
-            ScalarType::F32 => quote!(f32),
-            ScalarType::Generic => quote!(T),
-        }
-    }
-
-    fn constant(&self, c: f64) -> (TokenStream, Precedence) {
-        let magnitude = if c.is_finite() {
-            let lit = Literal::f64_unsuffixed(c.abs());
-            let real = self.real();
-            match self.ctx.scalar {
-                ScalarType::Generic => quote!(<T as #real>::from_f64(#lit)),
-                _ => quote!(#lit),
-            }
-        } else {
-            let special = if c.is_nan() {
-                quote!(NAN)
-            } else {
-                quote!(INFINITY)
-            };
-            let real = self.real();
-            match self.ctx.scalar {
-                ScalarType::F32 => quote!(f32::#special),
-                ScalarType::F64 => quote!(f64::#special),
-                ScalarType::Generic => quote!(<T as #real>::from_f64(f64::#special)),
-            }
-        };
+    fn constant(&self, c: f64, out: &mut String) {
         if c.is_sign_negative() && !c.is_nan() {
-            (quote!(-#magnitude), Precedence::Unary)
+            out.push('-');
+        }
+        let generic = self.ctx.scalar == ScalarType::Generic;
+        if generic {
+            write!(out, "<T as {}>::from_f64(", self.real).expect("writing to a String");
+        }
+        if c.is_finite() {
+            // As `proc_macro2::Literal::f64_unsuffixed` writes it: shortest round trip, never
+            // an exponent, always a point.
+            let start = out.len();
+            write!(out, "{}", c.abs()).expect("writing to a String");
+            if !out[start..].contains('.') {
+                out.push_str(".0");
+            }
         } else {
-            (magnitude, Precedence::Atom)
+            let special = if c.is_nan() { "NAN" } else { "INFINITY" };
+            let float = if self.ctx.scalar == ScalarType::F32 {
+                "f32"
+            } else {
+                "f64"
+            };
+            write!(out, "{float}::{special}").expect("writing to a String");
+        }
+        if generic {
+            out.push(')');
         }
     }
 
-    fn input(&self, s: Symbol) -> TokenStream {
-        let index = |k: u16| Literal::usize_unsuffixed(k as usize);
-        match s {
-            Symbol::Position(k) => {
-                let k = index(k);
-                quote!(q[#k])
-            }
-            Symbol::Velocity(k) => {
-                let k = index(k);
-                quote!(qd[#k])
-            }
-            Symbol::Acceleration(k) => {
-                let k = index(k);
-                quote!(qdd[#k])
-            }
-            Symbol::Force(k) => {
-                let k = index(k);
-                quote!(tau[#k])
-            }
-            Symbol::Parameter(i) if self.reads_standard => {
-                let i = index(i);
-                quote!(standard[#i])
-            }
+    fn input(&self, s: Symbol, out: &mut String) {
+        let written = match s {
+            Symbol::Position(k) => write!(out, "q[{k}]"),
+            Symbol::Velocity(k) => write!(out, "qd[{k}]"),
+            Symbol::Acceleration(k) => write!(out, "qdd[{k}]"),
+            Symbol::Force(k) => write!(out, "tau[{k}]"),
+            Symbol::Parameter(i) if self.reads_standard => write!(out, "standard[{i}]"),
             Symbol::Parameter(_) => {
                 let field = parameter_ident(&self.ctx.symbols.name(s));
-                let real = self.real();
                 match self.ctx.scalar {
-                    ScalarType::F64 => quote!(p.#field),
-                    ScalarType::F32 => quote!((p.#field as f32)),
-                    ScalarType::Generic => quote!(<T as #real>::from_f64(p.#field)),
+                    ScalarType::F64 => write!(out, "p.{field}"),
+                    ScalarType::F32 => write!(out, "(p.{field} as f32)"),
+                    ScalarType::Generic => write!(out, "<T as {}>::from_f64(p.{field})", self.real),
                 }
             }
-        }
+        };
+        written.expect("writing to a String");
     }
 
-    fn joint_trig(&self, instr: Instr) -> Option<Ident> {
-        match instr {
-            Instr::Sin(Operand::Input(Symbol::Position(k))) => Some(format_ident!("s{}", k + 1)),
-            Instr::Cos(Operand::Input(Symbol::Position(k))) => Some(format_ident!("c{}", k + 1)),
-            _ => None,
-        }
+    fn joint_trig(&self, instr: Instr) -> Option<TrigName> {
+        let (function, k) = match instr {
+            Instr::Sin(Operand::Input(Symbol::Position(k))) => ('s', k),
+            Instr::Cos(Operand::Input(Symbol::Position(k))) => ('c', k),
+            _ => return None,
+        };
+        Some(TrigName {
+            function,
+            joint: u32::from(k) + 1,
+        })
     }
 
     /// How tightly operand `o` binds as written.
@@ -186,33 +161,35 @@ impl Emitter<'_> {
         }
     }
 
-    /// The tokens of operand `o` (a name, a constant, an input, or an unnamed instruction
-    /// written out), appended to `out`: every token is pushed once, so writing a kernel
-    /// takes time linear in its text.
-    fn write(&self, o: Operand, out: &mut TokenStream) {
+    /// Operand `o` (a name, a constant, an input, or an unnamed instruction written out),
+    /// appended to `out`: every character is written once, so writing a kernel takes time
+    /// linear in its text.
+    fn write(&self, o: Operand, out: &mut String) {
         match o {
-            Operand::Const(c) => out.extend(self.constant(c).0),
-            Operand::Input(s) => out.extend(self.input(s)),
-            Operand::Temp(t) => match &self.names[t as usize] {
-                Some(name) => out.extend([TokenTree::Ident(name.clone())]),
+            Operand::Const(c) => self.constant(c, out),
+            Operand::Input(s) => self.input(s, out),
+            Operand::Temp(t) => match self.names[t as usize] {
+                Some(n) => write!(out, "t{n}").expect("writing to a String"),
                 None => self.write_instr(self.program.instrs[t as usize], out),
             },
         }
     }
 
-    /// The tokens of `o` as a `TokenStream` of its own.
-    fn operand(&self, o: Operand) -> TokenStream {
-        let mut tokens = TokenStream::new();
-        self.write(o, &mut tokens);
-        tokens
+    /// Operand `o` as a `String` of its own.
+    fn operand(&self, o: Operand) -> String {
+        let mut text = String::new();
+        self.write(o, &mut text);
+        text
     }
 
     /// `o`, parenthesised when it binds less tightly than `min`.
-    fn write_at_least(&self, o: Operand, min: Precedence, out: &mut TokenStream) {
+    fn write_at_least(&self, o: Operand, min: Precedence, out: &mut String) {
         if self.precedence(o) >= min {
             self.write(o, out);
         } else {
-            out.extend([parenthesised(self.operand(o))]);
+            out.push('(');
+            self.write(o, out);
+            out.push(')');
         }
     }
 
@@ -220,43 +197,41 @@ impl Emitter<'_> {
     /// `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that `f64`
     /// kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`; so does
     /// `mul_add` (`fma: true`), whose variants fold a negated product or addend.
-    fn write_call(&self, method: &str, args: &[(Operand, bool)], out: &mut TokenStream) {
-        out.extend(self.real.clone());
-        push_path_separator(out);
-        out.extend([TokenTree::Ident(Ident::new(method, Span::call_site()))]);
-        let mut inner = TokenStream::new();
+    fn write_call(&self, method: &str, args: &[(Operand, bool)], out: &mut String) {
+        write!(out, "{}::{method}(", self.real).expect("writing to a String");
         for (k, &(a, negated)) in args.iter().enumerate() {
             if k > 0 {
-                push_punct(&mut inner, ',');
+                out.push_str(", ");
             }
             if negated {
-                push_punct(&mut inner, '-');
-                self.write_at_least(a, Precedence::Unary, &mut inner);
+                out.push('-');
+                self.write_at_least(a, Precedence::Unary, out);
             } else {
-                self.write(a, &mut inner);
+                self.write(a, out);
             }
         }
-        out.extend([parenthesised(inner)]);
+        out.push(')');
     }
 
-    fn write_instr(&self, instr: Instr, out: &mut TokenStream) {
+    fn write_instr(&self, instr: Instr, out: &mut String) {
         if let Some(name) = self.joint_trig(instr) {
-            out.extend([TokenTree::Ident(name)]);
+            write!(out, "{}{}", name.function, name.joint).expect("writing to a String");
             return;
         }
         use Precedence::*;
-        let mut binary = |a: Operand, op: char, b: Operand, left: Precedence, right: Precedence| {
+        // A space on both sides of the operator: `a - -b` must not lex as anything else.
+        let mut binary = |a: Operand, op: &str, b: Operand, left: Precedence, right: Precedence| {
             self.write_at_least(a, left, out);
-            push_punct(out, op);
+            out.push_str(op);
             self.write_at_least(b, right, out);
         };
         match instr {
-            Instr::Add(a, b) => binary(a, '+', b, Sum, Product),
-            Instr::Sub(a, b) => binary(a, '-', b, Sum, Product),
-            Instr::Mul(a, b) => binary(a, '*', b, Product, Unary),
-            Instr::Div(a, b) => binary(a, '/', b, Product, Unary),
+            Instr::Add(a, b) => binary(a, " + ", b, Sum, Product),
+            Instr::Sub(a, b) => binary(a, " - ", b, Sum, Product),
+            Instr::Mul(a, b) => binary(a, " * ", b, Product, Unary),
+            Instr::Div(a, b) => binary(a, " / ", b, Product, Unary),
             Instr::Neg(a) => {
-                push_punct(out, '-');
+                out.push('-');
                 self.write_at_least(a, Unary, out);
             }
             Instr::Sin(a) => self.write_call("sin", &[(a, false)], out),
@@ -280,44 +255,46 @@ impl Emitter<'_> {
     /// else one. `f64` and `f32` evaluate the array in `f64`, two lanes per vector
     /// instruction, so an odd count is padded with a repeat of the last angle: a lane of its
     /// own costs more than a pair. Generic kernels, mostly evaluated in double-double, are not.
-    fn trig_bindings(&self) -> TokenStream {
+    fn write_trig_bindings(&self, out: &mut String) {
+        let angle = |k: u16| {
+            let mut text = String::new();
+            self.input(Symbol::Position(k), &mut text);
+            text
+        };
         if self.trig.len() >= 2 {
-            let mut angles: Vec<TokenStream> = self
-                .trig
-                .keys()
-                .map(|&k| self.input(Symbol::Position(k)))
-                .collect();
+            let mut angles: Vec<String> = self.trig.keys().map(|&k| angle(k)).collect();
             if self.ctx.scalar != ScalarType::Generic && angles.len() % 2 == 1 {
                 angles.push(angles[angles.len() - 1].clone());
             }
-            let lines = self
-                .trig
-                .iter()
-                .enumerate()
-                .map(|(lane, (&k, &(sin, cos)))| {
-                    let lane = Literal::usize_unsuffixed(lane);
-                    let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
-                    let s = sin.then(|| quote!(let #s = sin_q[#lane];));
-                    let c = cos.then(|| quote!(let #c = cos_q[#lane];));
-                    quote!(#s #c)
-                });
-            let real = self.real();
-            return quote! {
-                let (sin_q, cos_q) = #real::sin_cos_array(&[#(#angles),*]);
-                #(#lines)*
-            };
-        }
-        let real = self.real();
-        let lines = self.trig.iter().map(|(&k, &(sin, cos))| {
-            let (s, c) = (format_ident!("s{}", k + 1), format_ident!("c{}", k + 1));
-            let angle = self.input(Symbol::Position(k));
-            match (sin, cos) {
-                (true, true) => quote!(let (#s, #c) = #real::sin_cos(#angle);),
-                (true, false) => quote!(let #s = #real::sin(#angle);),
-                (false, _) => quote!(let #c = #real::cos(#angle);),
+            writeln!(
+                out,
+                "let (sin_q, cos_q) = {}::sin_cos_array(&[{}]);",
+                self.real,
+                angles.join(", ")
+            )
+            .expect("writing to a String");
+            for (lane, (&k, &(sin, cos))) in self.trig.iter().enumerate() {
+                let joint = k + 1;
+                if sin {
+                    writeln!(out, "let s{joint} = sin_q[{lane}];").expect("writing to a String");
+                }
+                if cos {
+                    writeln!(out, "let c{joint} = cos_q[{lane}];").expect("writing to a String");
+                }
             }
-        });
-        quote!(#(#lines)*)
+            return;
+        }
+        for (&k, &(sin, cos)) in &self.trig {
+            let (joint, angle, real) = (k + 1, angle(k), &self.real);
+            match (sin, cos) {
+                (true, true) => {
+                    writeln!(out, "let (s{joint}, c{joint}) = {real}::sin_cos({angle});")
+                }
+                (true, false) => writeln!(out, "let s{joint} = {real}::sin({angle});"),
+                (false, _) => writeln!(out, "let c{joint} = {real}::cos({angle});"),
+            }
+            .expect("writing to a String");
+        }
     }
 }
 
@@ -356,15 +333,19 @@ pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
     quote!(#arg: &[#t; #len])
 }
 
-/// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`:
-/// one straight-line function, or for a large program a function calling its parts in turn
-/// (module `split`: parts of about 1000 instructions above 15000).
-pub fn emit_kernel(
-    kernel: Kernel,
-    program: &Program,
-    dims: Dims,
-    ctx: EmitContext<'_>,
-) -> TokenStream {
+/// The arguments of `kernel` in scalar `t`, each followed by a comma.
+fn arguments(kernel: Kernel, t: &TokenStream) -> String {
+    kernel
+        .inputs()
+        .iter()
+        .map(|&input| format!("{}, ", argument(input, t)))
+        .collect()
+}
+
+/// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`,
+/// as Rust source: one straight-line function, or for a large program a function calling its
+/// parts in turn (module `split`: parts of about 1000 instructions above 15000).
+pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitContext<'_>) -> String {
     let uses = program.use_counts();
     let mut emitter = Emitter {
         program,
@@ -374,11 +355,11 @@ pub fn emit_kernel(
         reads_standard: kernel.inputs().contains(&Input::Standard),
         real: {
             let runtime = ctx.runtime;
-            quote!(#runtime::Real)
+            quote!(#runtime::Real).to_string()
         },
     };
     let mut prologue = vec![false; program.instrs.len()];
-    let mut next = 0usize;
+    let mut next = 0u32;
     for (t, &instr) in program.instrs.iter().enumerate() {
         if let Instr::Sin(Operand::Input(Symbol::Position(k)))
         | Instr::Cos(Operand::Input(Symbol::Position(k))) = instr
@@ -392,174 +373,148 @@ pub fn emit_kernel(
             continue;
         }
         if uses[t] >= 2 {
-            emitter.names[t] = Some(format_ident!("t{}", next));
+            emitter.names[t] = Some(next);
             next += 1;
         }
     }
-    let trig = emitter.trig_bindings();
     let layout = Layout::of(kernel, dims);
     assert_eq!(
         layout.len(),
         program.outputs.len(),
         "`{kernel}` computes one output per scalar of its result"
     );
+    let t = match ctx.scalar {
+        ScalarType::F64 => quote!(f64),
+        ScalarType::F32 => quote!(f32),
+        ScalarType::Generic => quote!(T),
+    };
+    let signature = format!(
+        "#[doc = {doc}]\n#[inline]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub fn {name}{generics}({params}{args}) -> {ret} {{\n",
+        doc = proc_macro2::Literal::string(kernel.summary()),
+        name = kernel.name(),
+        generics = emitter.generics(),
+        params = emitter.params(),
+        args = arguments(kernel, &t),
+        ret = layout.type_tokens(&t),
+    );
+    let mut out = signature;
+    emitter.write_trig_bindings(&mut out);
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
-    let (body, result) = match split::plan(program, &named, &prologue) {
+    match split::plan(program, &named, &prologue) {
         None => {
-            let mut body = TokenStream::new();
             for t in (0..program.instrs.len()).filter(|&t| named[t]) {
-                emitter.write_binding(t, &mut body);
+                emitter.write_binding(t, &mut out);
             }
             let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o));
-            (body, layout.value_tokens(&mut outputs))
+            layout.write_value(&mut outputs, &mut out);
         }
         Some(plan) => {
-            let body = emitter.parts(kernel, &plan);
+            emitter.write_parts(kernel, &plan, &t, &mut out);
             let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
-                Operand::Temp(_) => {
-                    let k = Literal::usize_unsuffixed(k);
-                    quote!(slots[#k])
-                }
+                Operand::Temp(_) => format!("slots[{k}]"),
                 _ => emitter.operand(o),
             });
-            (body, layout.value_tokens(&mut outputs))
-        }
-    };
-
-    let t = emitter.scalar_type();
-    let name = Ident::new(kernel.name(), Span::call_site());
-    let doc = kernel.summary();
-    let generics = emitter.generics();
-    let params = emitter.params();
-    let args = kernel.inputs().iter().map(|&input| argument(input, &t));
-    let ret = layout.type_tokens(&t);
-    quote! {
-        #[doc = #doc]
-        #[inline]
-        #[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]
-        pub fn #name #generics (#params #(#args),*) -> #ret {
-            #trig
-            #body
-            #result
+            layout.write_value(&mut outputs, &mut out);
         }
     }
+    out.push_str("\n}\n");
+    out
 }
 
 impl Emitter<'_> {
     /// `let t = …;` of named instruction `t`, appended to `out`.
-    fn write_binding(&self, t: usize, out: &mut TokenStream) {
-        let name = self.names[t].clone().expect("a named instruction");
-        out.extend([
-            TokenTree::Ident(Ident::new("let", Span::call_site())),
-            TokenTree::Ident(name),
-        ]);
-        push_punct(out, '=');
+    fn write_binding(&self, t: usize, out: &mut String) {
+        let n = self.names[t].expect("a named instruction");
+        write!(out, "let t{n} = ").expect("writing to a String");
         self.write_instr(self.program.instrs[t], out);
-        push_punct(out, ';');
+        out.push_str(";\n");
     }
 
     /// The name a named or prologue value is bound to.
-    fn value_name(&self, t: usize) -> Ident {
-        match &self.names[t] {
-            Some(name) => name.clone(),
-            None => self
-                .joint_trig(self.program.instrs[t])
-                .expect("a named or prologue value"),
+    fn value_name(&self, t: usize) -> String {
+        match self.names[t] {
+            Some(n) => format!("t{n}"),
+            None => {
+                let name = self
+                    .joint_trig(self.program.instrs[t])
+                    .expect("a named or prologue value");
+                format!("{}{}", name.function, name.joint)
+            }
         }
     }
 
     /// `<T: Real>` for a generic kernel.
-    fn generics(&self) -> TokenStream {
-        let real = self.real();
+    fn generics(&self) -> String {
         match self.ctx.scalar {
-            ScalarType::Generic => quote!(<T: #real>),
-            _ => quote!(),
+            ScalarType::Generic => format!("<T: {}>", self.real),
+            _ => String::new(),
         }
     }
 
-    /// `p: &Params,` with runtime or base parameters.
-    fn params(&self) -> TokenStream {
+    /// `p: &Params, ` with runtime or base parameters.
+    fn params(&self) -> &'static str {
         match self.ctx.parameters {
-            ParameterMode::Runtime | ParameterMode::Base => quote!(p: &Params,),
-            ParameterMode::Constant => quote!(),
+            ParameterMode::Runtime | ParameterMode::Base => "p: &Params, ",
+            ParameterMode::Constant => "",
         }
     }
 
     /// The body of a split kernel: the slot array, the prologue's values stored in it, and a
     /// call of each part, every part a function in a module of its own.
-    fn parts(&self, kernel: Kernel, plan: &SplitPlan) -> TokenStream {
-        let t = self.scalar_type();
-        let generics = self.generics();
-        let params = self.params();
-        let len = Literal::usize_unsuffixed(plan.len);
-        let slot = |value: usize| Literal::usize_unsuffixed(plan.slots[&value]);
-        let args: Vec<TokenStream> = kernel
-            .inputs()
-            .iter()
-            .map(|&input| argument(input, &t))
-            .collect();
-        let inputs: Vec<Ident> = kernel
-            .inputs()
-            .iter()
-            .map(|input| Ident::new(input.name(), Span::call_site()))
-            .collect();
-        let param = match self.ctx.parameters {
-            ParameterMode::Runtime | ParameterMode::Base => quote!(p,),
-            ParameterMode::Constant => quote!(),
-        };
+    fn write_parts(&self, kernel: Kernel, plan: &SplitPlan, t: &TokenStream, out: &mut String) {
         let zero = match self.ctx.scalar {
-            ScalarType::Generic => self.constant(0.0).0,
-            _ => quote!(0.0),
+            ScalarType::Generic => self.operand(Operand::Const(0.0)),
+            _ => "0.0".to_owned(),
         };
-        let stored = plan
+        let text = "writing to a String";
+        writeln!(out, "let mut slots = [{zero}; {}];", plan.len).expect(text);
+        for &value in plan
             .slots
             .keys()
             .filter(|&&value| self.names[value].is_none())
-            .map(|&value| {
-                let (name, slot) = (self.value_name(value), slot(value));
-                quote!(slots[#slot] = #name;)
-            });
-        let parts = plan.parts.iter().enumerate().map(|(p, statements)| {
-            let module = format_ident!("part{}", p);
-            let imports = plan.imports[p].iter().map(|&value| {
-                let (name, slot) = (self.value_name(value), slot(value));
-                quote!(let #name = slots[#slot];)
-            });
-            let mut body = TokenStream::new();
+        {
+            let name = self.value_name(value);
+            writeln!(out, "slots[{}] = {name};", plan.slots[&value]).expect(text);
+        }
+        let args = arguments(kernel, t);
+        let inputs: String = kernel
+            .inputs()
+            .iter()
+            .map(|input| format!("{}, ", input.name()))
+            .collect();
+        let param = match self.ctx.parameters {
+            ParameterMode::Runtime | ParameterMode::Base => "p, ",
+            ParameterMode::Constant => "",
+        };
+        for (p, statements) in plan.parts.iter().enumerate() {
+            writeln!(
+                out,
+                "mod part{p} {{\nuse super::*;\n#[inline(never)]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub(super) fn run{generics}({params}{args}slots: &mut [{t}; {len}]) {{",
+                generics = self.generics(),
+                params = self.params(),
+                len = plan.len,
+            )
+            .expect(text);
+            for &value in &plan.imports[p] {
+                let name = self.value_name(value);
+                writeln!(out, "let {name} = slots[{}];", plan.slots[&value]).expect(text);
+            }
             for &statement in statements {
                 match statement {
                     Statement::Let(i) => {
-                        self.write_binding(i, &mut body);
+                        self.write_binding(i, out);
                         if let Some(&s) = plan.slots.get(&i) {
-                            let (name, s) = (&self.names[i], Literal::usize_unsuffixed(s));
-                            body.extend(quote!(slots[#s] = #name;));
+                            writeln!(out, "slots[{s}] = {};", self.value_name(i)).expect(text);
                         }
                     }
                     Statement::Output { output, instr } => {
-                        let output = Literal::usize_unsuffixed(output);
-                        body.extend(quote!(slots[#output] =));
-                        self.write(Operand::Temp(instr as u32), &mut body);
-                        push_punct(&mut body, ';');
+                        write!(out, "slots[{output}] = ").expect(text);
+                        self.write(Operand::Temp(instr as u32), out);
+                        out.push_str(";\n");
                     }
                 }
             }
-            quote! {
-                mod #module {
-                    use super::*;
-                    #[inline(never)]
-                    #[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]
-                    pub(super) fn run #generics (#params #(#args,)* slots: &mut [#t; #len]) {
-                        #(#imports)*
-                        #body
-                    }
-                }
-                #module::run(#param #(#inputs,)* &mut slots);
-            }
-        });
-        quote! {
-            let mut slots = [#zero; #len];
-            #(#stored)*
-            #(#parts)*
+            writeln!(out, "}}\n}}\npart{p}::run({param}{inputs}&mut slots);").expect(text);
         }
     }
 }
@@ -594,9 +549,7 @@ mod tests {
             nv: 3,
             ..Dims::default()
         };
-        emit_kernel(Kernel::KineticEnergy, &program, dims, ctx)
-            .to_string()
-            .replace(' ', "")
+        emit_kernel(Kernel::KineticEnergy, &program, dims, ctx).replace(char::is_whitespace, "")
     }
 
     /// The function's body after its signature.

@@ -95,20 +95,30 @@ impl Layout {
         }
     }
 
-    /// The value built from `scalars`, taken in order (row-major, tuple parts in turn).
-    pub fn value_tokens(&self, scalars: &mut impl Iterator<Item = TokenStream>) -> TokenStream {
+    /// The value built from `scalars` (Rust expressions), taken in order (row-major, tuple
+    /// parts in turn), appended to `out` as source text.
+    pub fn write_value(&self, scalars: &mut impl Iterator<Item = String>, out: &mut String) {
         match self {
-            Layout::Scalar => scalars.next().expect("one scalar per output"),
+            Layout::Scalar => out.push_str(&scalars.next().expect("one scalar per output")),
             Layout::Array(element, size) => {
-                let elements: Vec<TokenStream> = (0..size.value)
-                    .map(|_| element.value_tokens(scalars))
-                    .collect();
-                quote!([#(#elements),*])
+                out.push('[');
+                for k in 0..size.value {
+                    if k > 0 {
+                        out.push_str(", ");
+                    }
+                    element.write_value(scalars, out);
+                }
+                out.push(']');
             }
             Layout::Tuple(parts) => {
-                let parts: Vec<TokenStream> =
-                    parts.iter().map(|p| p.value_tokens(scalars)).collect();
-                quote!((#(#parts),*))
+                out.push('(');
+                for (k, part) in parts.iter().enumerate() {
+                    if k > 0 {
+                        out.push_str(", ");
+                    }
+                    part.write_value(scalars, out);
+                }
+                out.push(')');
             }
         }
     }
@@ -181,14 +191,10 @@ mod tests {
     #[test]
     fn values_fill_row_major_and_tuples_in_turn() {
         let layout = Layout::of(Kernel::InverseDynamicsDerivatives, DIMS);
-        let mut scalars = (0..8).map(|i| {
-            let i = proc_macro2::Literal::usize_unsuffixed(i);
-            quote!(#i)
-        });
-        let value = layout
-            .value_tokens(&mut scalars)
-            .to_string()
-            .replace(' ', "");
+        let mut scalars = (0..8).map(|i| i.to_string());
+        let mut value = String::new();
+        layout.write_value(&mut scalars, &mut value);
+        let value = value.replace(' ', "");
         assert_eq!(value, "([[0,1],[2,3]],[[4,5],[6,7]])");
         assert!(scalars.next().is_none());
     }

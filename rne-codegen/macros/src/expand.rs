@@ -67,11 +67,16 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
             _ => syn::Error::new(module.robot.span(), e.to_string()),
         })?;
     let (generated, warnings) = generated;
+    let items = generated.items().map_err(|e| {
+        syn::Error::new(
+            module.robot.span(),
+            format!("rne generated a module that does not lex as Rust ({e}); please report this"),
+        )
+    })?;
     let CheckedModule {
         attrs, vis, name, ..
     } = module;
     let warnings = warning_docs(&warnings);
-    let items = generated.items;
     let tracked = path.to_string_lossy().into_owned();
     Ok(quote! {
         #(#attrs)*
