@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
+use rne_symbolic::dynamics::base_parameters::BaseParameters;
 use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, EmitContext};
@@ -187,77 +188,87 @@ pub fn generate(
     let ndof = dynamics.dof();
     let layout = dynamics.layout();
     let joints = dynamics.model.joint_names();
-    let mut kernels = Vec::new();
-    let mut functions = Vec::new();
     let outputs = scene.kernels();
-    let mut setup = match &base_mode {
-        Some(base) => KernelSetup {
-            frames: scene.frame_indices(dynamics.frames())?,
-            base_parameters: Some(base.clone()),
-            articulated: false,
-        },
-        None => KernelSetup {
-            frames: scene.frame_indices(dynamics.frames())?,
-            ..KernelSetup::new(&dynamics, &outputs)
-        },
+    let mut setup = KernelSetup {
+        frames: scene.frame_indices(dynamics.frames())?,
+        base_parameters: base_mode.clone(),
+        articulated: false,
     };
-    let (forward_dynamics_choice, mut chosen_forward_dynamics) =
-        if outputs.contains(&Kernel::ForwardDynamics) && articulated_applies(&dynamics) {
-            let (choice, built) =
-                choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics);
-            (Some(choice), Some(built))
-        } else {
-            (None, None)
-        };
-    setup.articulated = forward_dynamics_choice
-        .as_ref()
-        .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
+    // Found from the regressor at many states when a kernel reads them (and `parameters: base`
+    // has not found them already), on a second thread while the other kernels are built.
+    let finds_base_parameters = base_mode.is_none() && outputs.iter().any(|k| reads_base(*k));
     let parameter_names = dynamics.parameter_names();
+    let mut dims = Dims {
+        nv: layout.nv(),
+        nf: setup.frames.len(),
+        np: parameter_names.len(),
+        nb: setup
+            .base_parameters
+            .as_ref()
+            .map_or(0, BaseParameters::len),
+    };
+    let mut emitted: Vec<Option<(String, KernelReport)>> = vec![None; outputs.len()];
+    let emit = |built: BuiltKernel, kernel: Kernel, dims: Dims, start: Instant| {
+        emit_built(built, kernel, scene, &runtime, dims, start)
+    };
+    let (forward_dynamics_choice, dynamics) = std::thread::scope(|scope| {
+        let finding = finds_base_parameters.then(|| {
+            let scratch = dynamics.clone();
+            scope.spawn(move || scratch.base_parameters())
+        });
+        let (forward_dynamics_choice, mut chosen_forward_dynamics) =
+            if outputs.contains(&Kernel::ForwardDynamics) && articulated_applies(&dynamics) {
+                let (choice, built) =
+                    choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics);
+                (Some(choice), Some(built))
+            } else {
+                (None, None)
+            };
+        setup.articulated = forward_dynamics_choice
+            .as_ref()
+            .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
+        for (k, &kernel) in outputs.iter().enumerate() {
+            if finds_base_parameters && reads_base(kernel) {
+                continue;
+            }
+            let start = Instant::now();
+            let prebuilt = match kernel {
+                Kernel::ForwardDynamics => chosen_forward_dynamics.take(),
+                _ => None,
+            };
+            let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
+            // The sweep one derivative kernel chose is the one the next would (the same
+            // torques): it builds that one alone.
+            if let Some(sweep) = built.dynamics.derivative_sweep() {
+                dynamics = dynamics.with_derivative_sweep(sweep);
+            }
+            emitted[k] = Some(emit(built, kernel, dims, start));
+        }
+        if let Some(finding) = finding {
+            let base = finding
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+            dims.nb = base.len();
+            setup.base_parameters = Some(base);
+            for (k, &kernel) in outputs.iter().enumerate() {
+                if reads_base(kernel) {
+                    let start = Instant::now();
+                    let built = build_kernel_with(&dynamics, kernel, &setup);
+                    emitted[k] = Some(emit(built, kernel, dims, start));
+                }
+            }
+        }
+        (forward_dynamics_choice, dynamics)
+    });
+    let (functions, kernels): (Vec<String>, Vec<KernelReport>) = emitted
+        .into_iter()
+        .map(|e| e.expect("every kernel is emitted"))
+        .unzip();
     let base_parameter_names = setup
         .base_parameters
         .as_ref()
         .map(|base| base.names(&parameter_names))
         .unwrap_or_default();
-    let dims = Dims {
-        nv: layout.nv(),
-        nf: setup.frames.len(),
-        np: parameter_names.len(),
-        nb: base_parameter_names.len(),
-    };
-    for &kernel in &outputs {
-        let kernel_start = Instant::now();
-        let prebuilt = match kernel {
-            Kernel::ForwardDynamics => chosen_forward_dynamics.take(),
-            _ => None,
-        };
-        let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
-        // The sweep one derivative kernel chose is the one the next would (the same torques):
-        // it builds that one alone.
-        if let Some(sweep) = built.dynamics.derivative_sweep() {
-            dynamics = dynamics.with_derivative_sweep(sweep);
-        }
-        // The kernel's graph is not needed past its program: freed before emission, the
-        // largest kernels' graphs and token streams are not held at the same time.
-        let symbols = built.dynamics.model.graph.symbols().clone();
-        drop(built.dynamics);
-        let program = match scene.fma {
-            true => built.program.fuse_multiply_add(),
-            false => built.program,
-        };
-        let ctx = EmitContext {
-            symbols: &symbols,
-            scalar: scene.scalar,
-            parameters: scene.parameters,
-            runtime: &runtime,
-        };
-        functions.push(emit_kernel(kernel, &program, dims, ctx));
-        kernels.push(KernelReport {
-            kernel,
-            ops: program.op_count(),
-            critical_path: program.critical_path(),
-            generation_time: kernel_start.elapsed(),
-        });
-    }
 
     let ndof_lit = Literal::usize_unsuffixed(ndof);
     let nq_lit = Literal::usize_unsuffixed(layout.nq());
@@ -336,6 +347,43 @@ pub fn generate(
         forward_dynamics_choice,
         generation_time: start.elapsed(),
     })
+}
+
+/// Whether `kernel` is built from the base parameters.
+fn reads_base(kernel: Kernel) -> bool {
+    matches!(kernel, Kernel::BaseRegressor | Kernel::BaseParameters)
+}
+
+/// Emits a built kernel (its graph freed first: the largest kernels' graphs and text are not
+/// held at the same time) and reports it, timed from `start`.
+fn emit_built(
+    built: BuiltKernel,
+    kernel: Kernel,
+    scene: &Scene,
+    runtime: &TokenStream,
+    dims: Dims,
+    start: Instant,
+) -> (String, KernelReport) {
+    let symbols = built.dynamics.model.graph.symbols().clone();
+    drop(built.dynamics);
+    let program = match scene.fma {
+        true => built.program.fuse_multiply_add(),
+        false => built.program,
+    };
+    let ctx = EmitContext {
+        symbols: &symbols,
+        scalar: scene.scalar,
+        parameters: scene.parameters,
+        runtime,
+    };
+    let function = emit_kernel(kernel, &program, dims, ctx);
+    let report = KernelReport {
+        kernel,
+        ops: program.op_count(),
+        critical_path: program.critical_path(),
+        generation_time: start.elapsed(),
+    };
+    (function, report)
 }
 
 /// Builds `forward_dynamics` both ways and keeps the one `method` asks for, or with `Auto` the

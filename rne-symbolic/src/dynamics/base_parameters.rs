@@ -156,15 +156,23 @@ impl Split {
             let column = w.column(c).into_owned();
             let mut residual = column.clone();
             let mut coefficients = vec![0.0; basis.len()];
-            // Gram–Schmidt twice ("twice is enough", Giraud et al. 2005).
+            // Gram–Schmidt, repeated once when the projection cancelled more than a factor √2
+            // of the column (Daniel, Gragg, Kaufman and Stewart, Math. Comp. 30, 1976; "twice
+            // is enough", Giraud et al. 2005): a column far from the span is orthogonal after
+            // one pass, a dependent one after two.
+            let mut size = column.norm();
             for _ in 0..2 {
                 for (b, q) in basis.iter().enumerate() {
                     let projection = q.dot(&residual);
                     residual.axpy(-projection, q, 1.0);
                     coefficients[b] += projection;
                 }
+                let before = size;
+                size = residual.norm();
+                if size > std::f64::consts::FRAC_1_SQRT_2 * before {
+                    break;
+                }
             }
-            let size = residual.norm();
             if size > DEPENDENCE_TOLERANCE * column.norm().max(scale) {
                 basis.push(residual / size);
                 coefficients.push(size);
@@ -238,8 +246,9 @@ impl Split {
             let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
             for &(b, d) in &nonzero {
                 let coefficient = refined[(b, d)];
-                for i in 0..w.nrows() {
-                    residual[(i, d)] -= w[(i, self.independent[b])] * coefficient;
+                let kept = w.column(self.independent[b]);
+                for (r, &x) in residual.column_mut(d).iter_mut().zip(kept.iter()) {
+                    *r -= x * coefficient;
                 }
             }
             let Some(correction) = self.solve(&residual.map(DoubleDouble::to_f64)) else {

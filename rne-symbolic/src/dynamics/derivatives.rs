@@ -20,7 +20,13 @@
 //!
 //! Forward dynamics is differentiated through inverse dynamics: τ(q, q̇, FD(q, q̇, τ)) = τ
 //! gives ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ = FD(q, q̇, τ) (Carpentier & Mansard, "Analytical
-//! derivatives of rigid body dynamics algorithms", RSS 2018, §III.C).
+//! derivatives of rigid body dynamics algorithms", RSS 2018, §III.C), the product with M⁻¹
+//! taken through the LᵀDL factor of M when the tree branches (its structural zeros make that
+//! cheaper than the dense M⁻¹: G1's forward-dynamics derivatives drop from 228k to 174k
+//! multiplications) and as a product with M⁻¹ on a chain. The recursion is built
+//! once, reading the nodes of FD as its accelerations, and differentiated with those nodes
+//! held constant: they depend on the input torques u, which τ reads nowhere else, so no other
+//! path of τ passes through them.
 
 use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
 use crate::model::StateLayout;
@@ -40,12 +46,14 @@ pub enum Sweep {
 }
 
 /// `(∂outputs/∂q, ∂outputs/∂q̇)`, each `outputs.len()` × NV, row i the derivatives of
-/// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`.
+/// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`, the nodes `held`
+/// held constant ([`Differentiator::holding`]).
 pub fn state_jacobians(
     g: &mut ExprGraph,
     outputs: &[Id],
     layout: StateLayout,
     sweep: Sweep,
+    held: &[Id],
 ) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
     let symbols: Vec<Symbol> = (0..layout.nq())
         .map(|c| Symbol::Position(c as u16))
@@ -56,12 +64,15 @@ pub fn state_jacobians(
         Sweep::Forward => symbols
             .iter()
             .map(|&s| {
-                let mut d = Differentiator::new(s);
+                let mut d = Differentiator::holding(s, held, g);
                 outputs.iter().map(|&o| d.derivative(g, o)).collect()
             })
             .collect(),
         Sweep::Reverse => {
-            let rows: Vec<Vec<Id>> = outputs.iter().map(|&o| g.gradient(o, &symbols)).collect();
+            let rows: Vec<Vec<Id>> = outputs
+                .iter()
+                .map(|&o| g.gradient_holding(o, &symbols, held))
+                .collect();
             transpose(&rows, symbols.len())
         }
     };
@@ -165,6 +176,18 @@ pub fn inverse(g: &mut ExprGraph, m: &[Vec<Id>]) -> Vec<Vec<Id>> {
         }
     }
     inverse
+}
+
+/// `−M⁻¹ b` solved through the factor of M column by column; on a branching tree this skips
+/// the structural zeros of L that a product with the dense M⁻¹ ([`negated_product`]) cannot.
+pub fn negated_solve(g: &mut ExprGraph, factor: &LtdlFactor, b: &[Vec<Id>]) -> Vec<Vec<Id>> {
+    let columns: Vec<Vec<Id>> = (0..b.first().map_or(0, Vec::len))
+        .map(|k| {
+            let column: Vec<Id> = b.iter().map(|row| g.neg(row[k])).collect();
+            factor.solve(g, &column)
+        })
+        .collect();
+    transpose(&columns, b.len())
 }
 
 /// `−a b` for square matrices.

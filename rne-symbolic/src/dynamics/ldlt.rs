@@ -42,6 +42,12 @@ impl LtdlFactor {
         LtdlFactor { l, inverse_pivot }
     }
 
+    /// Whether L has a structural zero: the tree branches, so solving through the factor
+    /// skips work that a product with the dense M⁻¹ does.
+    pub fn is_sparse(&self, g: &ExprGraph) -> bool {
+        self.l.iter().flatten().any(|&l| g.is_zero(l))
+    }
+
     /// Solves M x = b: Lᵀ y = b (bottom-up), z = D⁻¹ y, L x = z (top-down).
     pub fn solve(&self, g: &mut ExprGraph, b: &[Id]) -> Vec<Id> {
         let n = b.len();

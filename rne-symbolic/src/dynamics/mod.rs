@@ -214,6 +214,20 @@ impl SymbolicDynamics {
     /// is included.
     pub fn inverse_dynamics(&mut self) -> Vec<Id> {
         let torques = self.full().torques.clone();
+        self.plus_friction(torques)
+    }
+
+    /// τ(q, q̇, q̈) with the accelerations `qdd` (velocity-sized nodes of the graph), plus the
+    /// joint friction when it is included.
+    fn inverse_dynamics_at(&mut self, qdd: Vec<Id>) -> Vec<Id> {
+        let qd = self.velocity_symbols(Symbol::Velocity);
+        let gravity = self.model.gravity;
+        let torques = self.run(qd, qdd, gravity).torques;
+        self.plus_friction(torques)
+    }
+
+    /// `torques` plus the joint friction when it is included.
+    fn plus_friction(&mut self, torques: Vec<Id>) -> Vec<Id> {
         if !self.friction {
             return torques;
         }
@@ -404,28 +418,36 @@ impl SymbolicDynamics {
 
     /// (∂τ/∂q, ∂τ/∂q̇), NV × NV each, row i the derivatives of τ_i; ∂/∂q in the tangent space
     /// ([`derivatives`]). ∂τ/∂q̈ is M.
-    ///
-    /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), one
-    /// after the other in the graph (the first taken out while the second is tried,
-    /// [`ExprGraph::split_off`]); the one of lower [`OpCount::cost`](crate::OpCount::cost) is
-    /// kept, the forward sweep on a tie. A sweep known beforehand
-    /// ([`Self::with_derivative_sweep`]) is built alone.
     pub fn inverse_dynamics_derivatives(&mut self) -> (Matrix, Matrix) {
         if let Some(d) = &self.inverse_dynamics_derivatives {
             return d.clone();
         }
         let tau = self.inverse_dynamics();
+        let (dq, dv) = self.state_jacobians(&tau, &[]);
+        self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
+        (dq, dv)
+    }
+
+    /// The state Jacobians of the torques `tau` with the nodes `held` constant
+    /// ([`derivatives::state_jacobians`]).
+    ///
+    /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), one
+    /// after the other in the graph (the first taken out while the second is tried,
+    /// [`ExprGraph::split_off`]); the one of lower [`OpCount::cost`](crate::OpCount::cost) is
+    /// kept, the forward sweep on a tie. A sweep known beforehand
+    /// ([`Self::with_derivative_sweep`]) is built alone; the one chosen is remembered.
+    fn state_jacobians(&mut self, tau: &[Id], held: &[Id]) -> (Matrix, Matrix) {
         let layout = self.layout();
         let g = &mut self.model.graph;
         let (sweep, dq, dv) = match self.derivative_sweep {
             Some(sweep) => {
-                let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep);
+                let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
                 (sweep, dq, dv)
             }
             None => {
                 let start = g.len();
                 let build = |g: &mut ExprGraph, sweep| {
-                    let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep);
+                    let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
                     let cost = g.op_count(&[dq.concat(), dv.concat()].concat()).cost();
                     (cost, sweep, dq, dv)
                 };
@@ -443,12 +465,12 @@ impl SymbolicDynamics {
             }
         };
         self.derivative_sweep = Some(sweep);
-        self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
         (dq, dv)
     }
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
-    /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x taken at that q̈ ([`derivatives`]).
+    /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x of the recursion run at that q̈ with q̈ held constant, the
+    /// product taken through the factor of M when it is sparse ([`derivatives`]).
     ///
     /// M⁻¹ and q̈ are built before the derivatives, so that the nodes of M⁻¹ come in the
     /// order [`Self::mass_matrix_inverse`] alone creates them in: the third output rounds
@@ -456,22 +478,18 @@ impl SymbolicDynamics {
     pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
         let inverse = self.mass_matrix_inverse();
         let qdd = self.forward_dynamics();
-        let (dq, dv) = self.inverse_dynamics_derivatives();
+        let tau = self.inverse_dynamics_at(qdd.clone());
+        let (dq, dv) = self.state_jacobians(&tau, &qdd);
+        let m = self.mass_matrix();
         let g = &mut self.model.graph;
-        let at_fd = |g: &mut ExprGraph, d: &[Vec<Id>]| -> Vec<Vec<Id>> {
-            let flat: Vec<Id> = d.concat();
-            let substituted = g.substitute(&flat, |s| match s {
-                Symbol::Acceleration(k) => Some(qdd[k as usize]),
-                _ => None,
-            });
-            substituted
-                .chunks(d.len().max(1))
-                .map(<[Id]>::to_vec)
-                .collect()
+        let factor = ldlt::LtdlFactor::new(g, &m);
+        let (dqdd_dq, dqdd_dv) = if factor.is_sparse(g) {
+            let dqdd_dq = derivatives::negated_solve(g, &factor, &dq);
+            (dqdd_dq, derivatives::negated_solve(g, &factor, &dv))
+        } else {
+            let dqdd_dq = derivatives::negated_product(g, &inverse, &dq);
+            (dqdd_dq, derivatives::negated_product(g, &inverse, &dv))
         };
-        let (dq, dv) = (at_fd(g, &dq), at_fd(g, &dv));
-        let dqdd_dq = derivatives::negated_product(g, &inverse, &dq);
-        let dqdd_dv = derivatives::negated_product(g, &inverse, &dv);
         (dqdd_dq, dqdd_dv, inverse)
     }
 

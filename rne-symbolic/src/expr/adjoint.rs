@@ -21,7 +21,13 @@ impl ExprGraph {
     /// A node's contributions are summed in the order its users are visited (decreasing
     /// id), so the result depends on the graph alone.
     pub fn gradient(&mut self, expr: Id, wrt: &[Symbol]) -> Vec<Id> {
-        let nodes = self.reachable(&[expr]);
+        self.gradient_holding(expr, wrt, &[])
+    }
+
+    /// [`gradient`](Self::gradient) with the nodes `held` constant: no adjoint flows into them
+    /// (as [`Differentiator::holding`](super::Differentiator::holding)).
+    pub fn gradient_holding(&mut self, expr: Id, wrt: &[Symbol], held: &[Id]) -> Vec<Id> {
+        let nodes = self.reachable_stopping_at(&[expr], held);
         // Tables by position in `nodes`, which is much shorter than the graph below `expr`
         // when other kernels' nodes sit in between.
         let mut position = vec![u32::MAX; expr.index() + 1];
@@ -29,12 +35,19 @@ impl ExprGraph {
             position[id.index()] = k as u32;
         }
         let at = |id: Id| position[id.index()] as usize;
+        let mut is_held = vec![false; nodes.len()];
+        for &h in held {
+            if h.index() < position.len() && position[h.index()] != u32::MAX {
+                is_held[at(h)] = true;
+            }
+        }
         let mut depends = vec![false; nodes.len()];
         for (k, &id) in nodes.iter().enumerate() {
-            depends[k] = match self.node(id) {
-                Node::Symbol(s) => wrt.contains(&s),
-                node => node.children().any(|c| depends[at(c)]),
-            };
+            depends[k] = !is_held[k]
+                && match self.node(id) {
+                    Node::Symbol(s) => wrt.contains(&s),
+                    node => node.children().any(|c| depends[at(c)]),
+                };
         }
         let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); nodes.len()];
         if depends[at(expr)] {
@@ -158,6 +171,27 @@ mod tests {
         assert_eq!(
             g.node(only_x[0]),
             Node::Mul(cos_y.min(cos_x), cos_y.max(cos_x))
+        );
+    }
+
+    /// A held node is an input of its own: ∂/∂x of `x·h + y` with h = sin(x·y) held is h,
+    /// in both modes, where the full derivative also has x·cos(x·y)·y.
+    #[test]
+    fn held_nodes_are_differentiated_as_constants_in_both_modes() {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y"]));
+        let held = g.parse_sexpr("(sin (* x y))").unwrap();
+        let expr = g.parse_sexpr("(+ (* x (sin (* x y))) y)").unwrap();
+        let (x, y) = (Symbol::Position(0), Symbol::Position(1));
+        let reverse = g.gradient_holding(expr, &[x, y], &[held]);
+        let forward =
+            [x, y].map(|s| Differentiator::holding(s, &[held], &mut g).derivative(&mut g, expr));
+        assert_eq!(reverse[0], held, "∂/∂x = h");
+        assert_eq!(forward[0], held, "∂/∂x = h");
+        assert!(g.is_one(reverse[1]) && g.is_one(forward[1]), "∂/∂y = 1");
+        let full = Differentiator::new(x).derivative(&mut g, expr);
+        assert_ne!(
+            full, held,
+            "without holding, h's own dependence on x counts"
         );
     }
 }

@@ -26,6 +26,18 @@ impl Differentiator {
         }
     }
 
+    /// A differentiator with respect to `wrt` that holds the nodes `held` constant: their
+    /// derivative is zero and nothing below them is visited. It is the partial derivative of
+    /// an expression that reads `held` as inputs of its own, as ∂τ/∂q at q̈ = FD(q, q̇, u) reads
+    /// q̈; sound when no other path of the expression passes through a held node.
+    pub fn holding(wrt: Symbol, held: &[Id], graph: &mut ExprGraph) -> Differentiator {
+        let zero = graph.zero();
+        Differentiator {
+            wrt,
+            memo: held.iter().map(|&h| (h, zero)).collect(),
+        }
+    }
+
     /// ∂expr/∂wrt, built in `graph` (chain rule; sin' = cos, cos' = −sin, sqrt' = 1/(2 sqrt)).
     pub fn derivative(&mut self, graph: &mut ExprGraph, expr: Id) -> Id {
         if let Some(&d) = self.memo.get(&expr) {

@@ -9,7 +9,6 @@ mod graph;
 mod linalg;
 mod node;
 mod sexpr;
-mod substitute;
 mod symbols;
 
 pub use count::OpCount;
