@@ -110,12 +110,18 @@ impl Emitter<'_> {
     }
 
     fn input(&self, s: Symbol, out: &mut String) {
-        let written = match s {
-            Symbol::Position(k) => write!(out, "q[{k}]"),
-            Symbol::Velocity(k) => write!(out, "qd[{k}]"),
-            Symbol::Acceleration(k) => write!(out, "qdd[{k}]"),
-            Symbol::Force(k) => write!(out, "tau[{k}]"),
-            Symbol::Parameter(i) if self.reads_standard => write!(out, "standard[{i}]"),
+        let mut element = |array: &str, index: u16| {
+            out.push_str(array);
+            out.push('[');
+            push_number(out, u32::from(index));
+            out.push(']');
+        };
+        match s {
+            Symbol::Position(k) => element("q", k),
+            Symbol::Velocity(k) => element("qd", k),
+            Symbol::Acceleration(k) => element("qdd", k),
+            Symbol::Force(k) => element("tau", k),
+            Symbol::Parameter(i) if self.reads_standard => element("standard", i),
             Symbol::Parameter(_) => {
                 let field = parameter_ident(&self.ctx.symbols.name(s));
                 match self.ctx.scalar {
@@ -123,9 +129,9 @@ impl Emitter<'_> {
                     ScalarType::F32 => write!(out, "(p.{field} as f32)"),
                     ScalarType::Generic => write!(out, "<T as {}>::from_f64(p.{field})", self.real),
                 }
+                .expect("writing to a String");
             }
-        };
-        written.expect("writing to a String");
+        }
     }
 
     fn joint_trig(&self, instr: Instr) -> Option<TrigName> {
@@ -169,7 +175,10 @@ impl Emitter<'_> {
             Operand::Const(c) => self.constant(c, out),
             Operand::Input(s) => self.input(s, out),
             Operand::Temp(t) => match self.names[t as usize] {
-                Some(n) => write!(out, "t{n}").expect("writing to a String"),
+                Some(n) => {
+                    out.push('t');
+                    push_number(out, n);
+                }
                 None => self.write_instr(self.program.instrs[t as usize], out),
             },
         }
@@ -298,6 +307,22 @@ impl Emitter<'_> {
     }
 }
 
+/// The decimal digits of `n`, appended to `out` without the formatting machinery (temporaries
+/// and array indices are most of a kernel's text).
+fn push_number(out: &mut String, mut n: u32) {
+    let mut digits = [0u8; 10];
+    let mut start = digits.len();
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend(digits[start..].iter().map(|&d| char::from(d)));
+}
+
 /// The Rust field name of a parameter (`r#` for keywords).
 pub fn parameter_ident(name: &str) -> Ident {
     if syn::parse_str::<Ident>(name).is_ok() {
@@ -397,7 +422,10 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         args = arguments(kernel, &t),
         ret = layout.type_tokens(&t),
     );
-    let mut out = signature;
+    // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
+    // text is seldom copied as it grows; the excess is returned below.
+    let mut out = String::with_capacity(signature.len() + 24 * program.instrs.len());
+    out.push_str(&signature);
     emitter.write_trig_bindings(&mut out);
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
     match split::plan(program, &named, &prologue) {
@@ -418,6 +446,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         }
     }
     out.push_str("\n}\n");
+    out.shrink_to_fit();
     out
 }
 
@@ -425,7 +454,9 @@ impl Emitter<'_> {
     /// `let t = …;` of named instruction `t`, appended to `out`.
     fn write_binding(&self, t: usize, out: &mut String) {
         let n = self.names[t].expect("a named instruction");
-        write!(out, "let t{n} = ").expect("writing to a String");
+        out.push_str("let t");
+        push_number(out, n);
+        out.push_str(" = ");
         self.write_instr(self.program.instrs[t], out);
         out.push_str(";\n");
     }
@@ -673,6 +704,15 @@ mod tests {
             even.contains("::rt::Real::sin_cos_array(&[q[0],q[1]])"),
             "{even}"
         );
+    }
+
+    #[test]
+    fn numbers_are_written_in_decimal() {
+        for n in [0, 7, 10, 909, 123_456, u32::MAX] {
+            let mut text = String::from("t");
+            push_number(&mut text, n);
+            assert_eq!(text, format!("t{n}"));
+        }
     }
 
     #[test]

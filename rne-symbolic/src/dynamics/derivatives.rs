@@ -21,9 +21,10 @@
 //! Forward dynamics is differentiated through inverse dynamics: τ(q, q̇, FD(q, q̇, τ)) = τ
 //! gives ∂q̈/∂x = −M⁻¹ ∂τ/∂x at q̈ = FD(q, q̇, τ) (Carpentier & Mansard, "Analytical
 //! derivatives of rigid body dynamics algorithms", RSS 2018, §III.C), the product with M⁻¹
-//! taken through the LᵀDL factor of M when the tree branches (its structural zeros make that
-//! cheaper than the dense M⁻¹: G1's forward-dynamics derivatives drop from 228k to 174k
-//! multiplications) and as a product with M⁻¹ on a chain. The recursion is built
+//! taken through the LᵀDL factor of M when the factor has structural zeros (a branching tree,
+//! or an arm whose geometry zeroes entries of M; they make the solve cheaper than the dense
+//! M⁻¹: G1's forward-dynamics derivatives drop from 228k to 174k multiplications) and as a
+//! product with M⁻¹ otherwise. The recursion is built
 //! once, reading the nodes of FD as its accelerations, and differentiated with those nodes
 //! held constant: they depend on the input torques u, which τ reads nowhere else, so no other
 //! path of τ passes through them.
@@ -178,8 +179,8 @@ pub fn inverse(g: &mut ExprGraph, m: &[Vec<Id>]) -> Vec<Vec<Id>> {
     inverse
 }
 
-/// `−M⁻¹ b` solved through the factor of M column by column; on a branching tree this skips
-/// the structural zeros of L that a product with the dense M⁻¹ ([`negated_product`]) cannot.
+/// `−M⁻¹ b` solved through the factor of M column by column, skipping the structural zeros of
+/// L that a product with the dense M⁻¹ ([`negated_product`]) cannot.
 pub fn negated_solve(g: &mut ExprGraph, factor: &LtdlFactor, b: &[Vec<Id>]) -> Vec<Vec<Id>> {
     let columns: Vec<Vec<Id>> = (0..b.first().map_or(0, Vec::len))
         .map(|k| {

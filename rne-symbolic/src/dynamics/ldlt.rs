@@ -42,8 +42,9 @@ impl LtdlFactor {
         LtdlFactor { l, inverse_pivot }
     }
 
-    /// Whether L has a structural zero: the tree branches, so solving through the factor
-    /// skips work that a product with the dense M⁻¹ does.
+    /// Whether L has a structural zero (the tree branches, or the geometry zeroes an entry of
+    /// M), so that solving through the factor skips work that a product with the dense M⁻¹
+    /// does.
     pub fn is_sparse(&self, g: &ExprGraph) -> bool {
         self.l.iter().flatten().any(|&l| g.is_zero(l))
     }
