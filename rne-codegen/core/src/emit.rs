@@ -34,15 +34,15 @@ use crate::split::{self, SplitPlan, Statement};
 /// What the emitter needs besides the program.
 #[derive(Clone, Copy, Debug)]
 pub struct EmitContext<'a> {
-    /// Joint and parameter names.
-    pub symbols: &'a SymbolTable,
+    /// The `Params` field of each parameter symbol, by index ([`parameter_fields`]).
+    pub fields: &'a [String],
     /// The scalar type.
     pub scalar: ScalarType,
     /// Constant or runtime parameters.
     pub parameters: ParameterMode,
-    /// The path of the runtime crate (`rne-runtime`) from the generated code
+    /// The path of the runtime crate (`rne-runtime`) from the generated code, as source text
     /// ([`Scene::runtime_path`](crate::Scene::runtime_path)).
-    pub runtime: &'a TokenStream,
+    pub runtime: &'a str,
 }
 
 /// Binding strength of an emitted expression; a child is parenthesised when it binds less
@@ -122,8 +122,8 @@ impl Emitter<'_> {
             Symbol::Acceleration(k) => element("qdd", k),
             Symbol::Force(k) => element("tau", k),
             Symbol::Parameter(i) if self.reads_standard => element("standard", i),
-            Symbol::Parameter(_) => {
-                let field = parameter_ident(&self.ctx.symbols.name(s));
+            Symbol::Parameter(i) => {
+                let field = &self.ctx.fields[usize::from(i)];
                 match self.ctx.scalar {
                     ScalarType::F64 => write!(out, "p.{field}"),
                     ScalarType::F32 => write!(out, "(p.{field} as f32)"),
@@ -307,6 +307,15 @@ impl Emitter<'_> {
     }
 }
 
+/// A doc string written as a Rust string literal: a string's `Debug` form is one.
+struct DocLiteral(&'static str);
+
+impl std::fmt::Display for DocLiteral {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}", self.0)
+    }
+}
+
 /// The decimal digits of `n`, appended to `out` without the formatting machinery (temporaries
 /// and array indices are most of a kernel's text).
 fn push_number(out: &mut String, mut n: u32) {
@@ -321,6 +330,17 @@ fn push_number(out: &mut String, mut n: u32) {
         }
     }
     out.extend(digits[start..].iter().map(|&d| char::from(d)));
+}
+
+/// The `Params` field of each parameter of `symbols`, by index, as source text (`r#` for
+/// keywords): worked out before emission, which writes text alone and so can run on any
+/// thread (inside the macro, `proc_macro2` reaches the compiler from the macro's thread only).
+pub fn parameter_fields(symbols: &SymbolTable) -> Vec<String> {
+    symbols
+        .parameters()
+        .iter()
+        .map(|name| parameter_ident(name).to_string())
+        .collect()
 }
 
 /// The Rust field name of a parameter (`r#` for keywords).
@@ -358,12 +378,20 @@ pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
     quote!(#arg: &[#t; #len])
 }
 
-/// The arguments of `kernel` in scalar `t`, each followed by a comma.
-fn arguments(kernel: Kernel, t: &TokenStream) -> String {
+/// The arguments of `kernel` in scalar `t`, each followed by a comma, as source text
+/// ([`argument`]).
+fn arguments(kernel: Kernel, t: &str) -> String {
     kernel
         .inputs()
         .iter()
-        .map(|&input| format!("{}, ", argument(input, t)))
+        .map(|&input| {
+            let len = match input {
+                Input::Q => "NQ",
+                Input::Standard => "NP",
+                _ => "NV",
+            };
+            format!("{}: &[{t}; {len}], ", input.name())
+        })
         .collect()
 }
 
@@ -378,10 +406,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         names: vec![None; program.instrs.len()],
         trig: BTreeMap::new(),
         reads_standard: kernel.inputs().contains(&Input::Standard),
-        real: {
-            let runtime = ctx.runtime;
-            quote!(#runtime::Real).to_string()
-        },
+        real: format!("{}::Real", ctx.runtime),
     };
     let mut prologue = vec![false; program.instrs.len()];
     let mut next = 0u32;
@@ -409,18 +434,18 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         "`{kernel}` computes one output per scalar of its result"
     );
     let t = match ctx.scalar {
-        ScalarType::F64 => quote!(f64),
-        ScalarType::F32 => quote!(f32),
-        ScalarType::Generic => quote!(T),
+        ScalarType::F64 => "f64",
+        ScalarType::F32 => "f32",
+        ScalarType::Generic => "T",
     };
     let signature = format!(
         "#[doc = {doc}]\n#[inline]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub fn {name}{generics}({params}{args}) -> {ret} {{\n",
-        doc = proc_macro2::Literal::string(kernel.summary()),
+        doc = DocLiteral(kernel.summary()),
         name = kernel.name(),
         generics = emitter.generics(),
         params = emitter.params(),
-        args = arguments(kernel, &t),
-        ret = layout.type_tokens(&t),
+        args = arguments(kernel, t),
+        ret = layout.type_text(t),
     );
     // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
     // text is seldom copied as it grows; the excess is returned below.
@@ -437,7 +462,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
             layout.write_value(&mut outputs, &mut out);
         }
         Some(plan) => {
-            emitter.write_parts(kernel, &plan, &t, &mut out);
+            emitter.write_parts(kernel, &plan, t, &mut out);
             let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
                 Operand::Temp(_) => format!("slots[{k}]"),
                 _ => emitter.operand(o),
@@ -492,7 +517,7 @@ impl Emitter<'_> {
 
     /// The body of a split kernel: the slot array, the prologue's values stored in it, and a
     /// call of each part, every part a function in a module of its own.
-    fn write_parts(&self, kernel: Kernel, plan: &SplitPlan, t: &TokenStream, out: &mut String) {
+    fn write_parts(&self, kernel: Kernel, plan: &SplitPlan, t: &str, out: &mut String) {
         let zero = match self.ctx.scalar {
             ScalarType::Generic => self.operand(Operand::Const(0.0)),
             _ => "0.0".to_owned(),
@@ -567,13 +592,11 @@ mod tests {
     }
 
     fn emit_outputs(instrs: Vec<Instr>, outputs: Vec<Operand>, scalar: ScalarType) -> String {
-        let symbols = SymbolTable::with_joints(["q1", "q2", "q3"]);
-        let runtime = quote!(::rt);
         let ctx = EmitContext {
-            symbols: &symbols,
+            fields: &[],
             scalar,
             parameters: ParameterMode::Constant,
-            runtime: &runtime,
+            runtime: "::rt",
         };
         let program = Program { instrs, outputs };
         let dims = Dims {

@@ -8,7 +8,7 @@ use quote::quote;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
 use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
-use crate::emit::{emit_kernel, is_valid_parameter_name, EmitContext};
+use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_fields, EmitContext};
 use crate::error::CodegenError;
 use crate::kernel::articulated_applies;
 use crate::kernel::{build_outputs, Dims, Kernel, KernelSetup};
@@ -195,10 +195,10 @@ pub fn generate(
         articulated: false,
     };
     // Found from the regressor at many states when a kernel reads them (and `parameters: base`
-    // has not found them already), on a second thread while the other kernels are built.
+    // has not found them already).
     let finds_base_parameters = base_mode.is_none() && outputs.iter().any(|k| reads_base(*k));
     let parameter_names = dynamics.parameter_names();
-    let mut dims = Dims {
+    let dims = Dims {
         nv: layout.nv(),
         nf: setup.frames.len(),
         np: parameter_names.len(),
@@ -208,14 +208,50 @@ pub fn generate(
             .map_or(0, BaseParameters::len),
     };
     let mut emitted: Vec<Option<(String, KernelReport)>> = vec![None; outputs.len()];
+    let runtime_text = runtime.to_string();
+    let fields = parameter_fields(dynamics.model.graph.symbols());
     let emit = |built: BuiltKernel, kernel: Kernel, dims: Dims, start: Instant| {
-        emit_built(built, kernel, scene, &runtime, dims, start)
+        emit_built(built, kernel, scene, &runtime_text, &fields, dims, start)
+    };
+    // Two threads: this one builds forward dynamics and the derivatives (the costliest
+    // kernels, and the derivatives share the choice of sweep); the other finds the base
+    // parameters when a kernel reads them and builds every other kernel. Each kernel is built
+    // from the same dynamics and setup on either thread, so the module does not depend on it.
+    let on_this_thread = |kernel: Kernel| {
+        matches!(
+            kernel,
+            Kernel::ForwardDynamics
+                | Kernel::InverseDynamicsDerivatives
+                | Kernel::ForwardDynamicsDerivatives
+        )
     };
     let (forward_dynamics_choice, dynamics) = std::thread::scope(|scope| {
-        let finding = finds_base_parameters.then(|| {
-            let scratch = dynamics.clone();
-            scope.spawn(move || scratch.base_parameters())
-        });
+        let other = {
+            let (dynamics, mut setup, mut dims) = (dynamics.clone(), setup.clone(), dims);
+            let kernels: Vec<(usize, Kernel)> = outputs
+                .iter()
+                .copied()
+                .enumerate()
+                .filter(|&(_, kernel)| !on_this_thread(kernel))
+                .collect();
+            let emit = &emit;
+            scope.spawn(move || {
+                if finds_base_parameters {
+                    let base = dynamics.base_parameters();
+                    dims.nb = base.len();
+                    setup.base_parameters = Some(base);
+                }
+                let emitted: Vec<(usize, (String, KernelReport))> = kernels
+                    .into_iter()
+                    .map(|(k, kernel)| {
+                        let start = Instant::now();
+                        let built = build_kernel_with(&dynamics, kernel, &setup);
+                        (k, emit(built, kernel, dims, start))
+                    })
+                    .collect();
+                (setup.base_parameters, emitted)
+            })
+        };
         let (forward_dynamics_choice, mut chosen_forward_dynamics) =
             if outputs.contains(&Kernel::ForwardDynamics) && articulated_applies(&dynamics) {
                 let (choice, built) =
@@ -228,7 +264,7 @@ pub fn generate(
             .as_ref()
             .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
         for (k, &kernel) in outputs.iter().enumerate() {
-            if finds_base_parameters && reads_base(kernel) {
+            if !on_this_thread(kernel) {
                 continue;
             }
             let start = Instant::now();
@@ -244,19 +280,14 @@ pub fn generate(
             }
             emitted[k] = Some(emit(built, kernel, dims, start));
         }
-        if let Some(finding) = finding {
-            let base = finding
-                .join()
-                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-            dims.nb = base.len();
-            setup.base_parameters = Some(base);
-            for (k, &kernel) in outputs.iter().enumerate() {
-                if reads_base(kernel) {
-                    let start = Instant::now();
-                    let built = build_kernel_with(&dynamics, kernel, &setup);
-                    emitted[k] = Some(emit(built, kernel, dims, start));
-                }
-            }
+        let (base_parameters, others) = other
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        for (k, function) in others {
+            emitted[k] = Some(function);
+        }
+        if finds_base_parameters {
+            setup.base_parameters = base_parameters;
         }
         (forward_dynamics_choice, dynamics)
     });
@@ -360,18 +391,18 @@ fn emit_built(
     built: BuiltKernel,
     kernel: Kernel,
     scene: &Scene,
-    runtime: &TokenStream,
+    runtime: &str,
+    fields: &[String],
     dims: Dims,
     start: Instant,
 ) -> (String, KernelReport) {
-    let symbols = built.dynamics.model.graph.symbols().clone();
     drop(built.dynamics);
     let program = match scene.fma {
         true => built.program.fuse_multiply_add(),
         false => built.program,
     };
     let ctx = EmitContext {
-        symbols: &symbols,
+        fields,
         scalar: scene.scalar,
         parameters: scene.parameters,
         runtime,

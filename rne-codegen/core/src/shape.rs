@@ -95,6 +95,24 @@ impl Layout {
         }
     }
 
+    /// The Rust type with scalar `t`, as source text ([`Layout::type_tokens`]).
+    pub fn type_text(&self, t: &str) -> String {
+        match self {
+            Layout::Scalar => t.to_owned(),
+            Layout::Array(element, size) => {
+                let length = match size.name {
+                    Some(name) => name.to_owned(),
+                    None => size.value.to_string(),
+                };
+                format!("[{}; {length}]", element.type_text(t))
+            }
+            Layout::Tuple(parts) => {
+                let parts: Vec<String> = parts.iter().map(|p| p.type_text(t)).collect();
+                format!("({})", parts.join(", "))
+            }
+        }
+    }
+
     /// The value built from `scalars` (Rust expressions), taken in order (row-major, tuple
     /// parts in turn), appended to `out` as source text.
     pub fn write_value(&self, scalars: &mut impl Iterator<Item = String>, out: &mut String) {
