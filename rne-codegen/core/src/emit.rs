@@ -34,7 +34,7 @@ use crate::split::{self, SplitPlan, Statement};
 /// What the emitter needs besides the program.
 #[derive(Clone, Copy, Debug)]
 pub struct EmitContext<'a> {
-    /// The `Params` field of each parameter symbol, by index ([`parameter_fields`]).
+    /// The `Params` field of each parameter symbol, by index (`parameter_fields`).
     pub fields: &'a [String],
     /// The scalar type.
     pub scalar: ScalarType,
