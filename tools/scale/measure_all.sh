@@ -1,6 +1,7 @@
 #!/bin/bash
 # Macro expansion time and release compile time of a module with every kernel (derivatives,
-# Jacobians and regressors included) for the Panda arm with its fingers (fixed base) and Talos
+# Jacobians and regressors included: this directory's crate with the feature `every-kernel`)
+# for the Panda arm with its fingers (fixed base) and Talos
 # (floating): issue 15's "report macro expansion time and rustc time of the generated modules
 # for Panda and a 30-joint humanoid (all kernels including derivatives)". The phases are
 # rustc's own (`-Z time-passes`, on the stable compiler through RUSTC_BOOTSTRAP=1, a
@@ -12,7 +13,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 robots=${ROBOTS_DIR:-$HOME/.cache/rne-pinocchio/venv/lib/python3.11/site-packages/cmeel.prefix/share/example-robot-data/robots}
-crate="$root/tools/scale/all"
+crate="$root/tools/scale"
 export CARGO_TARGET_DIR="$root/target/scale"
 export RUSTC_BOOTSTRAP=1
 uptime
@@ -26,6 +27,6 @@ measure() {
     grep -E "macro_expand_crate|\stotal$|cargo" | sed "s|^|$name: |")
   uptime
 }
-measure "panda (9 joints, fixed base)" "$root/rne-models/robots/panda.urdf" ""
-measure "talos_full_v2 (32 joints, floating)" "$robots/talos_data/robots/talos_full_v2.urdf" "--features floating"
+measure "panda (9 joints, fixed base)" "$root/rne-models/robots/panda.urdf" "--features every-kernel,fixed-base"
+measure "talos_full_v2 (32 joints, floating)" "$robots/talos_data/robots/talos_full_v2.urdf" "--features every-kernel"
 rm -f "$crate/robot.urdf"
