@@ -11,8 +11,9 @@
 //! The body is appended to one `String` rather than built as a token stream: a kernel of a
 //! million operations is tens of megabytes of text, where a `proc_macro2::TokenStream` of it
 //! (one heap object per token) took gigabytes; the macro lexes the text once
-//! ([`GeneratedModule::items`](crate::GeneratedModule::items)). Signatures and the other small
-//! items are still written with `quote`.
+//! ([`GeneratedModule::items`](crate::GeneratedModule::items)). The signatures are text too:
+//! emission uses no `proc_macro2`, which inside the macro reaches the compiler from the
+//! macro's thread only, so kernels can be emitted on any thread.
 //!
 //! Emitted code names nothing but `core` and the runtime, which it reaches through the path
 //! in [`EmitContext::runtime`] (`::rne_codegen::__private` unless the `crate:` setting says
@@ -22,7 +23,6 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
 use rne_symbolic::{Symbol, SymbolTable};
 
 use crate::kernel::{Dims, Input, Kernel};
@@ -62,6 +62,12 @@ struct TrigName {
     function: char,
     /// The joint's number, from 1.
     joint: u32,
+}
+
+impl std::fmt::Display for TrigName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}{}", self.function, self.joint)
+    }
 }
 
 struct Emitter<'a> {
@@ -224,7 +230,7 @@ impl Emitter<'_> {
 
     fn write_instr(&self, instr: Instr, out: &mut String) {
         if let Some(name) = self.joint_trig(instr) {
-            write!(out, "{}{}", name.function, name.joint).expect("writing to a String");
+            write!(out, "{name}").expect("writing to a String");
             return;
         }
         use Precedence::*;
@@ -265,11 +271,7 @@ impl Emitter<'_> {
     /// instruction, so an odd count is padded with a repeat of the last angle: a lane of its
     /// own costs more than a pair. Generic kernels, mostly evaluated in double-double, are not.
     fn write_trig_bindings(&self, out: &mut String) {
-        let angle = |k: u16| {
-            let mut text = String::new();
-            self.input(Symbol::Position(k), &mut text);
-            text
-        };
+        let angle = |k: u16| self.operand(Operand::Input(Symbol::Position(k)));
         if self.trig.len() >= 2 {
             let mut angles: Vec<String> = self.trig.keys().map(|&k| angle(k)).collect();
             if self.ctx.scalar != ScalarType::Generic && angles.len() % 2 == 1 {
@@ -369,29 +371,27 @@ pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
 /// The argument `input` of a kernel, in scalar `t`: `q: &[t; NQ]`, `standard: &[t; NP]`, or a
 /// velocity-sized array.
 pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
-    let arg = Ident::new(input.name(), Span::call_site());
-    let len = match input {
-        Input::Q => quote!(NQ),
-        Input::Standard => quote!(NP),
-        _ => quote!(NV),
-    };
-    quote!(#arg: &[#t; #len])
+    argument_text(input, &t.to_string())
+        .parse()
+        .expect("an argument is Rust")
 }
 
-/// The arguments of `kernel` in scalar `t`, each followed by a comma, as source text
-/// ([`argument`]).
+/// [`argument`] as source text.
+fn argument_text(input: Input, t: &str) -> String {
+    let len = match input {
+        Input::Q => "NQ",
+        Input::Standard => "NP",
+        _ => "NV",
+    };
+    format!("{}: &[{t}; {len}]", input.name())
+}
+
+/// The arguments of `kernel` in scalar `t`, each followed by a comma, as source text.
 fn arguments(kernel: Kernel, t: &str) -> String {
     kernel
         .inputs()
         .iter()
-        .map(|&input| {
-            let len = match input {
-                Input::Q => "NQ",
-                Input::Standard => "NP",
-                _ => "NV",
-            };
-            format!("{}: &[{t}; {len}], ", input.name())
-        })
+        .map(|&input| argument_text(input, t) + ", ")
         .collect()
 }
 
@@ -490,12 +490,10 @@ impl Emitter<'_> {
     fn value_name(&self, t: usize) -> String {
         match self.names[t] {
             Some(n) => format!("t{n}"),
-            None => {
-                let name = self
-                    .joint_trig(self.program.instrs[t])
-                    .expect("a named or prologue value");
-                format!("{}{}", name.function, name.joint)
-            }
+            None => self
+                .joint_trig(self.program.instrs[t])
+                .expect("a named or prologue value")
+                .to_string(),
         }
     }
 

@@ -1,8 +1,7 @@
 //! The Rust type a kernel returns and how its flat outputs fill it: scalars, arrays of the
 //! module's sizes (NV, NF, NP, NB) and tuples, nested.
 
-use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
+use proc_macro2::TokenStream;
 
 use crate::kernel::{Dims, Kernel, Shape};
 
@@ -79,23 +78,14 @@ impl Layout {
         self.len() == 0
     }
 
-    /// The Rust type, with scalar `t`.
+    /// The Rust type, with scalar `t` ([`Layout::type_text`] lexed).
     pub fn type_tokens(&self, t: &TokenStream) -> TokenStream {
-        match self {
-            Layout::Scalar => t.clone(),
-            Layout::Array(element, size) => {
-                let element = element.type_tokens(t);
-                let size = size.tokens();
-                quote!([#element; #size])
-            }
-            Layout::Tuple(parts) => {
-                let parts = parts.iter().map(|p| p.type_tokens(t));
-                quote!((#(#parts),*))
-            }
-        }
+        self.type_text(&t.to_string())
+            .parse()
+            .expect("a type is Rust")
     }
 
-    /// The Rust type with scalar `t`, as source text ([`Layout::type_tokens`]).
+    /// The Rust type with scalar `t`, as source text.
     pub fn type_text(&self, t: &str) -> String {
         match self {
             Layout::Scalar => t.to_owned(),
@@ -142,24 +132,10 @@ impl Layout {
     }
 }
 
-impl Size {
-    fn tokens(&self) -> TokenStream {
-        match self.name {
-            Some(name) => {
-                let name = Ident::new(name, Span::call_site());
-                quote!(#name)
-            }
-            None => {
-                let value = proc_macro2::Literal::usize_unsuffixed(self.value);
-                quote!(#value)
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use quote::quote;
 
     const DIMS: Dims = Dims {
         nv: 2,

@@ -162,9 +162,8 @@ fn transpose(columns: &[Vec<Id>], rows: usize) -> Vec<Vec<Id>> {
 }
 
 /// M⁻¹ from the LᵀDL factor of M, column by column (M x = e_j), symmetric: one `Id` per pair.
-pub fn inverse(g: &mut ExprGraph, m: &[Vec<Id>]) -> Vec<Vec<Id>> {
-    let n = m.len();
-    let factor = LtdlFactor::new(g, m);
+pub fn inverse(g: &mut ExprGraph, factor: &LtdlFactor) -> Vec<Vec<Id>> {
+    let n = factor.len();
     let (zero, one) = (g.zero(), g.one());
     let mut inverse = vec![vec![zero; n]; n];
     for j in 0..n {

@@ -42,6 +42,11 @@ impl LtdlFactor {
         LtdlFactor { l, inverse_pivot }
     }
 
+    /// The size of M.
+    pub fn len(&self) -> usize {
+        self.inverse_pivot.len()
+    }
+
     /// Whether L has a structural zero (the tree branches, or the geometry zeroes an entry of
     /// M), so that solving through the factor skips work that a product with the dense M⁻¹
     /// does.

@@ -55,6 +55,9 @@ pub struct SymbolicDynamics {
     kinetic_energy: Option<Id>,
     potential_energy: Option<Id>,
     forward_dynamics: Option<Vec<Id>>,
+    /// The LᵀDL factor of the mass matrix, shared by forward dynamics, M⁻¹ and the
+    /// forward-dynamics derivatives.
+    mass_matrix_factor: Option<ldlt::LtdlFactor>,
     mass_matrix_inverse: Option<Vec<Vec<Id>>>,
     inverse_dynamics_derivatives: Option<(Matrix, Matrix)>,
     /// The sweep the state Jacobians of the torques are built by, once known
@@ -84,6 +87,7 @@ impl SymbolicDynamics {
             kinetic_energy: None,
             potential_energy: None,
             forward_dynamics: None,
+            mass_matrix_factor: None,
             mass_matrix_inverse: None,
             inverse_dynamics_derivatives: None,
             derivative_sweep: None,
@@ -394,15 +398,27 @@ impl SymbolicDynamics {
         if let Some(f) = &self.forward_dynamics {
             return f.clone();
         }
-        let m = self.mass_matrix();
+        // M before the bias, so that the nodes keep the order the kernel has always had.
+        self.mass_matrix();
         let bias = self.bias_torques();
         let u = self.driving_forces();
         let g = &mut self.model.graph;
         let rhs: Vec<Id> = u.iter().zip(&bias).map(|(&u, &b)| g.sub(u, b)).collect();
-        let factor = ldlt::LtdlFactor::new(g, &m);
-        let qdd = factor.solve(g, &rhs);
+        let factor = self.mass_matrix_factor();
+        let qdd = factor.solve(&mut self.model.graph, &rhs);
         self.forward_dynamics = Some(qdd.clone());
         qdd
+    }
+
+    /// The LᵀDL factor of M, built the first time it is asked for.
+    fn mass_matrix_factor(&mut self) -> ldlt::LtdlFactor {
+        if let Some(factor) = &self.mass_matrix_factor {
+            return factor.clone();
+        }
+        let m = self.mass_matrix();
+        let factor = ldlt::LtdlFactor::new(&mut self.model.graph, &m);
+        self.mass_matrix_factor = Some(factor.clone());
+        factor
     }
 
     /// M(q)⁻¹, symmetric (one `Id` per pair), from the LᵀDL factorisation of M.
@@ -410,8 +426,8 @@ impl SymbolicDynamics {
         if let Some(m) = &self.mass_matrix_inverse {
             return m.clone();
         }
-        let m = self.mass_matrix();
-        let inverse = derivatives::inverse(&mut self.model.graph, &m);
+        let factor = self.mass_matrix_factor();
+        let inverse = derivatives::inverse(&mut self.model.graph, &factor);
         self.mass_matrix_inverse = Some(inverse.clone());
         inverse
     }
@@ -480,9 +496,8 @@ impl SymbolicDynamics {
         let qdd = self.forward_dynamics();
         let tau = self.inverse_dynamics_at(qdd.clone());
         let (dq, dv) = self.state_jacobians(&tau, &qdd);
-        let m = self.mass_matrix();
+        let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
-        let factor = ldlt::LtdlFactor::new(g, &m);
         let (dqdd_dq, dqdd_dv) = if factor.is_sparse(g) {
             let dqdd_dq = derivatives::negated_solve(g, &factor, &dq);
             (dqdd_dq, derivatives::negated_solve(g, &factor, &dv))

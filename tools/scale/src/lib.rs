@@ -41,31 +41,38 @@ every_kernel!(base: floating,);
 #[cfg(all(feature = "every-kernel", feature = "fixed-base"))]
 every_kernel!();
 
+/// The addresses of the named kernels of `robot`.
+macro_rules! addresses {
+    ($($kernel:ident),* $(,)?) => {
+        [$(robot::$kernel as *const () as usize),*]
+    };
+}
+
 /// The address of every kernel: rustc and LLVM compile each one, as a caller would make them.
 #[inline(never)]
 pub fn kernel_addresses() -> Vec<usize> {
-    let dynamics = [
-        robot::inverse_dynamics as *const () as usize,
-        robot::mass_matrix as *const () as usize,
-        robot::coriolis_matrix as *const () as usize,
-        robot::gravity_torques as *const () as usize,
-        robot::bias_torques as *const () as usize,
-        robot::forward_dynamics as *const () as usize,
-        robot::kinetic_energy as *const () as usize,
-        robot::potential_energy as *const () as usize,
+    let dynamics = addresses![
+        inverse_dynamics,
+        mass_matrix,
+        coriolis_matrix,
+        gravity_torques,
+        bias_torques,
+        forward_dynamics,
+        kinetic_energy,
+        potential_energy,
     ];
     #[cfg(feature = "every-kernel")]
-    let others = [
-        robot::inverse_dynamics_derivatives as *const () as usize,
-        robot::forward_dynamics_derivatives as *const () as usize,
-        robot::mass_matrix_inverse as *const () as usize,
-        robot::frame_placements as *const () as usize,
-        robot::frame_jacobians as *const () as usize,
-        robot::frame_jacobian_dot_qd as *const () as usize,
-        robot::friction_torques as *const () as usize,
-        robot::regressor as *const () as usize,
-        robot::base_regressor as *const () as usize,
-        robot::base_parameters as *const () as usize,
+    let others = addresses![
+        inverse_dynamics_derivatives,
+        forward_dynamics_derivatives,
+        mass_matrix_inverse,
+        frame_placements,
+        frame_jacobians,
+        frame_jacobian_dot_qd,
+        friction_torques,
+        regressor,
+        base_regressor,
+        base_parameters,
     ];
     #[cfg(not(feature = "every-kernel"))]
     let others: [usize; 0] = [];
