@@ -5,7 +5,7 @@ use wide::{f64x4, u64x4, CmpLt};
 
 use super::ops::{lane_arithmetic, lane_sign};
 use crate::real::Real;
-use crate::trig::{C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
+use crate::trig::{polynomial, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
 
 /// Four `f64` evaluated together (feature `simd`): a generic kernel called with `F64x4`
 /// computes four states per call.
@@ -55,14 +55,9 @@ impl F64x4 {
         let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
         let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
         let z = r * r;
-        let poly = |c: &[f64; 6]| {
-            c[..5]
-                .iter()
-                .rev()
-                .fold(splat(c[5]), |acc, &ci| splat(ci) + z * acc)
-        };
-        let sin = r + r * z * poly(&S);
-        let cos = splat(1.0) - (splat(0.5) * z - z * (z * poly(&C)));
+        let z2 = z * z;
+        let sin = r + r * z * polynomial(z, z2, S, splat);
+        let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
         // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
         // cosine (the scalar's bit operations).
         let swap = (quadrant & u64x4::splat(1)).cmp_eq(u64x4::splat(1));
