@@ -1,6 +1,8 @@
 //! States per second of the generic kernels in lanes: `f64`, `F64x4`, `F32x8`, and `F64x4`
 //! on two threads, for UR5 and the Panda arm, inverse dynamics, mass matrix and forward
-//! dynamics, through the runtime's batch helper on 1024 seeded states.
+//! dynamics, through the runtime's batch helper on 1024 seeded states; and `F64x4 packed`,
+//! the kernel alone on the same states already in lanes (what the helper's gathering and
+//! scattering cost is the difference).
 //!
 //! ```text
 //! RUSTFLAGS="-C target-cpu=native" cargo bench -p rne-tests --bench lanes
@@ -123,6 +125,18 @@ macro_rules! kernel_benches {
                 )
             })
         });
+        let packed: Vec<([F64x4; $n], [F64x4; $n], [F64x4; $n])> = $all
+            .chunks(F64x4::LANES)
+            .map(|group| batch::LaneData::gather(|i| &group[i]))
+            .collect();
+        let mut packed_out = vec![[F64x4::splat(0.0); $n]; packed.len()];
+        $group.bench_function(BenchmarkId::new("F64x4 packed", STATES), |b| {
+            b.iter(|| {
+                for (s, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
+                    *r = run(&s.0, &s.1, &s.2);
+                }
+            })
+        });
         $group.bench_function(
             BenchmarkId::new(format!("F64x4 x{THREADS} threads"), STATES),
             |b| {
@@ -161,6 +175,18 @@ macro_rules! mass_benches {
         });
         $group.bench_function(BenchmarkId::new("F64x4", STATES), |b| {
             b.iter(|| batch::evaluate(black_box(&$all), &mut out, |q: &[F64x4; $n]| run(q)))
+        });
+        let packed: Vec<[F64x4; $n]> = $all
+            .chunks(F64x4::LANES)
+            .map(|group| batch::LaneData::gather(|i| &group[i]))
+            .collect();
+        let mut packed_out = vec![[[F64x4::splat(0.0); $n]; $n]; packed.len()];
+        $group.bench_function(BenchmarkId::new("F64x4 packed", STATES), |b| {
+            b.iter(|| {
+                for (q, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
+                    *r = run(q);
+                }
+            })
         });
         $group.bench_function(
             BenchmarkId::new(format!("F64x4 x{THREADS} threads"), STATES),
