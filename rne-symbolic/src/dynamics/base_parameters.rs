@@ -41,9 +41,14 @@ impl BaseParameters {
     /// the model's graph; parameters at their values) from `samples` seeded random states.
     ///
     /// The regressor is evaluated in double-double and K refined against it (iterative
-    /// refinement, `Split::refine`), so each coefficient is the `f64` nearest to the
-    /// exact one for the model's data: the planar elbow's l₁² is `0.09`, not
-    /// `0.09000000000000029`.
+    /// refinement, `Split::refine`). For a column that is exactly dependent — the
+    /// regroupings that follow from the kinematic structure, all those of the built-in
+    /// robots — each coefficient is then the `f64` nearest to the exact one for the model's
+    /// data: the planar elbow's l₁² is `0.09`, not `0.09000000000000029`. A column that is
+    /// only nearly dependent (its residual below [`DEPENDENCE_TOLERANCE`] but not zero; a few
+    /// of Talos's, where refinement leaves corrections near 1e-11) is regrouped as well,
+    /// since the data cannot identify it, with its least-squares coefficient over the
+    /// sampled states: its last digits depend on the samples.
     pub fn find(model: &RobotModel, y: &[Vec<Id>], samples: usize) -> BaseParameters {
         let (graph, layout) = (&model.graph, model.state_layout());
         let columns = y.first().map_or(0, Vec::len);

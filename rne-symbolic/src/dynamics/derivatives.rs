@@ -27,9 +27,9 @@
 //! product with M⁻¹ otherwise. The recursion is built
 //! once, reading the nodes of FD as its accelerations, and differentiated with those nodes
 //! held constant: they depend on the input torques u, which τ reads nowhere else, so no other
-//! path of τ passes through them.
+//! path of τ passes through them (asserted on every build, [`reads_force_only_through`]).
 
-use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
+use crate::expr::{Differentiator, ExprGraph, Id, Node, Symbol};
 use crate::model::StateLayout;
 use crate::motion::quaternion_rotation;
 
@@ -80,6 +80,18 @@ pub fn state_jacobians(
     let (positions, velocities) = partials.split_at(layout.nq());
     let dq = tangent_jacobian(g, positions, layout, outputs.len());
     (dq, transpose(velocities, outputs.len()))
+}
+
+/// Whether `outputs` reach the input torques u (`Force` symbols) only through the nodes
+/// `held`. Holding those nodes constant is sound exactly then: forward dynamics'
+/// derivatives differentiate the recursion at q̈ = FD(q, q̇, u) with the nodes of FD held,
+/// which must stand for every way τ depends on u; a path to u around them (an FD node shared
+/// by hash-consing with a node the recursion builds) would be differentiated through.
+pub fn reads_force_only_through(g: &ExprGraph, outputs: &[Id], held: &[Id]) -> bool {
+    g.reachable_stopping_at(outputs, held)
+        .into_iter()
+        .filter(|id| !held.contains(id))
+        .all(|id| !matches!(g.node(id), Node::Symbol(Symbol::Force(_))))
 }
 
 /// The tangent-space Jacobian from the partials with respect to the configuration symbols

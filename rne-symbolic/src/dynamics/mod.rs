@@ -495,6 +495,10 @@ impl SymbolicDynamics {
         let inverse = self.mass_matrix_inverse();
         let qdd = self.forward_dynamics();
         let tau = self.inverse_dynamics_at(qdd.clone());
+        assert!(
+            derivatives::reads_force_only_through(&self.model.graph, &tau, &qdd),
+            "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
+        );
         let (dq, dv) = self.state_jacobians(&tau, &qdd);
         let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
