@@ -122,10 +122,22 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     }
     if !in_range {
         for i in 0..N {
-            (sin[i], cos[i]) = sin_cos(x[i]);
+            (sin[i], cos[i]) = sin_cos_outside(x[i]);
         }
     }
     (sin, cos)
+}
+
+/// [`sin_cos`] for [`sin_cos_array`]'s arguments out of the fast path's range: apart, cold
+/// and never inlined, taking and returning scalars. Called in a loop of constant length
+/// that unrolls, so that the fast path indexes its arrays only with constants and keeps them
+/// in registers; a call given the arrays by reference kept them in memory, where the
+/// kernel's loads of pairs of them straddled two stores, which the processor cannot forward
+/// (docs/performance.md).
+#[cold]
+#[inline(never)]
+fn sin_cos_outside(x: f64) -> (f64, f64) {
+    sin_cos(x)
 }
 
 #[cfg(test)]
