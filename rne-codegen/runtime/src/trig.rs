@@ -18,6 +18,8 @@
 #![allow(clippy::excessive_precision)]
 
 mod large;
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+mod pair;
 
 /// π/2 split into parts of 33 significant bits (the last with its tail), as in fdlibm's
 /// `__ieee754_rem_pio2`.
@@ -114,6 +116,27 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
     let mut in_range = true;
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    if N <= PAIRED {
+        // Pairs at constant indices (the conditions fold for each N): angles, sines and
+        // cosines stay in registers (module `pair`).
+        macro_rules! pairs {
+            ($($i:literal)*) => {$(
+                if $i < N {
+                    let next = if $i + 1 < N { $i + 1 } else { $i };
+                    let ((s0, s1), (c0, c1), ok) = pair::reduced(x[$i], x[next]);
+                    (sin[$i], cos[$i]) = (s0, c0);
+                    (sin[next], cos[next]) = (s1, c1);
+                    in_range &= ok;
+                }
+            )*};
+        }
+        pairs!(0 2 4 6 8 10 12 14);
+        if !in_range {
+            return sin_cos_each(x);
+        }
+        return (sin, cos);
+    }
     for i in 0..N {
         let (s, c, ok) = reduced(x[i]);
         sin[i] = s;
@@ -124,6 +147,23 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
         for i in 0..N {
             (sin[i], cos[i]) = sin_cos_outside(x[i]);
         }
+    }
+    (sin, cos)
+}
+
+/// The most arguments [`sin_cos_array`] evaluates in pairs without a loop.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+const PAIRED: usize = 16;
+
+/// [`sin_cos`] of every element, by [`sin_cos_outside`].
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cold]
+#[inline(never)]
+fn sin_cos_each<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
+    let mut sin = [0.0; N];
+    let mut cos = [0.0; N];
+    for i in 0..N {
+        (sin[i], cos[i]) = sin_cos_outside(x[i]);
     }
     (sin, cos)
 }
