@@ -7,7 +7,7 @@
 //! polynomials of Sun Microsystems' fdlibm kernels on [−π/4, π/4]; it has no branch except
 //! the one to Payne and Hanek's reduction (module `large`) for larger or non-finite
 //! arguments. The polynomials are evaluated by Estrin's scheme rather than fdlibm's Horner
-//! rule, which shortens the chain the kernels wait on (see [`polynomial`]). The error is
+//! rule, which shortens the chain the kernels wait on (see `polynomial`). The error is
 //! within 1 ulp for |x| ≤ 100, the range of joint angles, and 2 ulp up to 1.5·10⁶ (where the
 //! reduced argument may lose one more bit; 2 ulp occur from |x| ≈ 10³ on, as with Horner's
 //! rule), checked against double-double values in the tests, and within 1 ulp beyond;
@@ -105,12 +105,14 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     }
 }
 
-/// `(sin xᵢ, cos xᵢ)` of every element, bit for bit those of [`sin_cos`], computed lane by
-/// lane without branches so that the compiler evaluates several arguments in one vector
-/// instruction (the kernels take the sines and cosines of all joint angles at once). Always
-/// inlined: as a call, which LLVM chose for AVX2 targets, the results go through memory and
-/// the kernel's first link waits for the call to return — UR5's and the Panda arm's inverse
-/// dynamics ran 5–15 % slower (docs/performance.md).
+/// `(sin xᵢ, cos xᵢ)` of every element, bit for bit those of [`sin_cos`] (the kernels take
+/// the sines and cosines of all joint angles at once). On x86-64, up to 16 arguments go two
+/// by two through SSE2 (module `pair`) at constant indices, so that they and their results
+/// stay in registers; elsewhere, and for more arguments, a branch-free loop the compiler
+/// vectorises. An argument out of the fast path's range sends the whole array to a cold
+/// scalar path. Always inlined: as a call, which LLVM chose for AVX2 targets, the results go
+/// through memory and the kernel's first link waits for the call to return — UR5's and the
+/// Panda arm's inverse dynamics ran 5–15 % slower (docs/performance.md).
 #[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
