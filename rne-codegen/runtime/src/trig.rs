@@ -146,9 +146,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
         in_range &= ok;
     }
     if !in_range {
-        for i in 0..N {
-            (sin[i], cos[i]) = sin_cos_outside(x[i]);
-        }
+        return sin_cos_each(x);
     }
     (sin, cos)
 }
@@ -157,29 +155,20 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 const PAIRED: usize = 16;
 
-/// [`sin_cos`] of every element, by [`sin_cos_outside`].
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+/// [`sin_cos`] of every element: [`sin_cos_array`]'s path when an argument is out of the
+/// fast path's range. Apart, cold and never inlined, so that the fast path's arrays are not
+/// written by a variable index: the loop that did so kept them in memory, where the kernels'
+/// loads of pairs of them straddled two stores, which the processor cannot forward
+/// (docs/performance.md).
 #[cold]
 #[inline(never)]
 fn sin_cos_each<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     let mut sin = [0.0; N];
     let mut cos = [0.0; N];
     for i in 0..N {
-        (sin[i], cos[i]) = sin_cos_outside(x[i]);
+        (sin[i], cos[i]) = sin_cos(x[i]);
     }
     (sin, cos)
-}
-
-/// [`sin_cos`] for [`sin_cos_array`]'s arguments out of the fast path's range: apart, cold
-/// and never inlined, taking and returning scalars. Called in a loop of constant length
-/// that unrolls, so that the fast path indexes its arrays only with constants and keeps them
-/// in registers; a call given the arrays by reference kept them in memory, where the
-/// kernel's loads of pairs of them straddled two stores, which the processor cannot forward
-/// (docs/performance.md).
-#[cold]
-#[inline(never)]
-fn sin_cos_outside(x: f64) -> (f64, f64) {
-    sin_cos(x)
 }
 
 #[cfg(test)]

@@ -90,8 +90,8 @@ pub fn state_jacobians(
 pub fn reads_force_only_through(g: &ExprGraph, outputs: &[Id], held: &[Id]) -> bool {
     g.reachable_stopping_at(outputs, held)
         .into_iter()
-        .filter(|id| !held.contains(id))
-        .all(|id| !matches!(g.node(id), Node::Symbol(Symbol::Force(_))))
+        .filter(|&id| matches!(g.node(id), Node::Symbol(Symbol::Force(_))))
+        .all(|id| held.contains(&id))
 }
 
 /// The tangent-space Jacobian from the partials with respect to the configuration symbols
