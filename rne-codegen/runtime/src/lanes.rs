@@ -107,6 +107,42 @@ mod tests {
             }
         }
 
+        /// Arrays of six lane values (a 6-joint kernel's angles) along the arguments, so that
+        /// some hold only arguments in the fast path's range and some one or more it declines,
+        /// which sends the whole array to the cold path.
+        #[test]
+        fn lane_sin_cos_arrays_are_sin_cos_of_each_element_bit_for_bit() {
+            let xs = arguments();
+            for window in xs.windows(32).step_by(7) {
+                let wide: [F64x4; 6] = core::array::from_fn(|k| {
+                    F64x4::from_fn(|i| window[(5 * k + i) % window.len()])
+                });
+                let (s, c) = F64x4::sin_cos_array(&wide);
+                let single: [F32x8; 6] = core::array::from_fn(|k| {
+                    F32x8::from_fn(|i| window[(5 * k + i) % window.len()] as f32)
+                });
+                let (s32, c32) = F32x8::sin_cos_array(&single);
+                for k in 0..6 {
+                    let (es, ec) = wide[k].sin_cos();
+                    let (es32, ec32) = single[k].sin_cos();
+                    for i in 0..8 {
+                        if i < 4 {
+                            assert!(
+                                same(s[k].lane(i), es.lane(i)) && same(c[k].lane(i), ec.lane(i))
+                            );
+                        }
+                        let same32 = |a: f32, b: f32| {
+                            a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+                        };
+                        assert!(
+                            same32(s32[k].lane(i), es32.lane(i))
+                                && same32(c32[k].lane(i), ec32.lane(i))
+                        );
+                    }
+                }
+            }
+        }
+
         #[test]
         fn f32x8_sin_cos_is_the_f32_sin_cos_bit_for_bit_in_every_lane() {
             let xs: Vec<f32> = arguments().iter().map(|&x| x as f32).collect();

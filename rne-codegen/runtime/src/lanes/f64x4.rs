@@ -41,17 +41,16 @@ impl F64x4 {
         self.0.to_array()
     }
 
-    /// `(sin, cos)` of every lane when each one's argument is within the fast path's range
-    /// (|x| < 2²⁰·π/2, finite): the scalar `trig::reduced`, lane by lane.
+    /// `(sin, cos)` of every lane by the scalar `trig::reduced`, lane by lane, and whether
+    /// every lane's argument is within its range (|x| < 2²⁰·π/2, finite): branch-free, so
+    /// that several arguments' evaluations interleave.
     #[inline(always)]
-    fn reduced(self) -> Option<(F64x4, F64x4)> {
+    fn reduced(self) -> (F64x4, F64x4, bool) {
         let x = self.0;
         let splat = f64x4::splat;
         let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
         let k = shifted - splat(ROUND);
-        if !k.abs().cmp_lt(splat(1_048_576.0)).all() {
-            return None;
-        }
+        let in_range = k.abs().cmp_lt(splat(1_048_576.0)).all();
         let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
         let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
         let z = r * r;
@@ -64,8 +63,29 @@ impl F64x4 {
         let (sin, cos) = (cast::<f64x4, u64x4>(sin), cast::<f64x4, u64x4>(cos));
         let s = swap.blend(cos, sin) ^ ((quadrant & u64x4::splat(2)) << 62);
         let c = swap.blend(sin, cos) ^ (((quadrant + u64x4::splat(1)) & u64x4::splat(2)) << 62);
-        Some((F64x4(cast(s)), F64x4(cast(c))))
+        (F64x4(cast(s)), F64x4(cast(c)), in_range)
     }
+
+    /// The scalar [`sin_cos`](crate::sin_cos) of each lane: the path of [`Real::sin_cos`]
+    /// when a lane is out of the fast path's range, apart and cold.
+    #[cold]
+    #[inline(never)]
+    fn sin_cos_lanes(self) -> (F64x4, F64x4) {
+        let pairs = self.to_array().map(crate::trig::sin_cos);
+        (
+            F64x4::new(pairs.map(|p| p.0)),
+            F64x4::new(pairs.map(|p| p.1)),
+        )
+    }
+}
+
+/// [`Real::sin_cos`] of every element: [`F64x4`]'s `sin_cos_array` when an argument is out of
+/// the fast path's range, apart and cold as the scalar `trig::sin_cos_each`.
+#[cold]
+#[inline(never)]
+fn sin_cos_each<const N: usize>(x: &[F64x4; N]) -> ([F64x4; N], [F64x4; N]) {
+    let pairs = x.map(F64x4::sin_cos);
+    (pairs.map(|p| p.0), pairs.map(|p| p.1))
 }
 
 lane_arithmetic!(F64x4, f64x4, f64, 4);
@@ -79,13 +99,30 @@ impl Real for F64x4 {
     /// every argument is in its fast path's range, else lane by lane.
     #[inline]
     fn sin_cos(self) -> (F64x4, F64x4) {
-        self.reduced().unwrap_or_else(|| {
-            let pairs = self.to_array().map(crate::trig::sin_cos);
-            (
-                F64x4::new(pairs.map(|p| p.0)),
-                F64x4::new(pairs.map(|p| p.1)),
-            )
-        })
+        match self.reduced() {
+            (s, c, true) => (s, c),
+            _ => self.sin_cos_lanes(),
+        }
+    }
+    /// Every element's [`Real::sin_cos`], always inlined and with one cold call for the case
+    /// of an argument out of range, as the scalar [`sin_cos_array`](crate::trig::sin_cos_array)
+    /// and for its reason: as a call (the trait's default, which LLVM did not inline), the
+    /// sines and cosines went through memory and the kernel waited for the call to return.
+    #[inline(always)]
+    fn sin_cos_array<const N: usize>(x: &[F64x4; N]) -> ([F64x4; N], [F64x4; N]) {
+        let mut sin = [F64x4::splat(0.0); N];
+        let mut cos = [F64x4::splat(0.0); N];
+        let mut in_range = true;
+        for i in 0..N {
+            let (s, c, ok) = x[i].reduced();
+            sin[i] = s;
+            cos[i] = c;
+            in_range &= ok;
+        }
+        if !in_range {
+            return sin_cos_each(x);
+        }
+        (sin, cos)
     }
     #[inline(always)]
     fn sqrt(self) -> F64x4 {
@@ -105,8 +142,8 @@ mod tests {
 
     #[test]
     fn four_joint_angles_take_the_vector_path_and_huge_ones_do_not() {
-        assert!(F64x4::new([0.3, -2.0, 7.5, 1e3]).reduced().is_some());
-        assert!(F64x4::new([0.3, -2.0, 7.5, 2e6]).reduced().is_none());
-        assert!(F64x4::new([0.3, f64::NAN, 7.5, 1.0]).reduced().is_none());
+        assert!(F64x4::new([0.3, -2.0, 7.5, 1e3]).reduced().2);
+        assert!(!F64x4::new([0.3, -2.0, 7.5, 2e6]).reduced().2);
+        assert!(!F64x4::new([0.3, f64::NAN, 7.5, 1.0]).reduced().2);
     }
 }
