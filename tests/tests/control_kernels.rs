@@ -79,20 +79,30 @@ fn program(model: &RobotModel, kernel: Kernel, frames: &[&str]) -> Program {
     build_kernel_with(&dynamics, kernel, &setup).program
 }
 
+/// `program` at (q, v, a), `a` standing for the accelerations or, in forward dynamics'
+/// derivatives, the torques.
 fn eval(program: &Program, q: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
     program.eval(|s| match s {
         Symbol::Position(k) => q[k as usize],
         Symbol::Velocity(k) => v[k as usize],
-        Symbol::Acceleration(k) => a[k as usize],
+        Symbol::Acceleration(k) | Symbol::Force(k) => a[k as usize],
         other => panic!("unexpected input {other:?}"),
     })
 }
 
+/// UR5's forward-dynamics derivatives are large enough to be compiled for AVX too
+/// (`rne-codegen/core/src/dispatch.rs`): on a processor with AVX the function runs that copy,
+/// which must give the program's bits as the baseline copy does.
 #[test]
 fn emitted_control_kernels_compute_exactly_their_programs() {
     let model = fixture("ur5.urdf");
     let frames = ["ee_link", "wrist_1_link"];
     let dq = program(&model, Kernel::InverseDynamicsDerivatives, &frames);
+    let dfd = program(&model, Kernel::ForwardDynamicsDerivatives, &frames);
+    assert!(
+        dfd.instrs.len() >= rne_codegen_core::DISPATCH_FROM,
+        "∂FD is compiled for AVX too"
+    );
     let jacobians = program(&model, Kernel::FrameJacobians, &frames);
     let jdot = program(&model, Kernel::FrameJacobianDotQd, &frames);
     let regressor = program(&model, Kernel::Regressor, &frames);
@@ -105,6 +115,9 @@ fn emitted_control_kernels_compute_exactly_their_programs() {
         let (dtau_dq, dtau_dv) = ur5::inverse_dynamics_derivatives(&q, &v, &a);
         let emitted = [flat(&dtau_dq), flat(&dtau_dv)].concat();
         assert_eq!(bits(emitted), bits(eval(&dq, &q, &v, &a)), "∂τ");
+        let (dqdd_dq, dqdd_dv, minv) = ur5::forward_dynamics_derivatives(&q, &v, &a);
+        let emitted = [flat(&dqdd_dq), flat(&dqdd_dv), flat(&minv)].concat();
+        assert_eq!(bits(emitted), bits(eval(&dfd, &q, &v, &a)), "∂q̈");
         let j: Vec<f64> = ur5::frame_jacobians(&q).iter().flat_map(flat).collect();
         assert_eq!(bits(j), bits(eval(&jacobians, &q, &v, &a)), "J");
         let jd: Vec<f64> = ur5::frame_jacobian_dot_qd(&q, &v)

@@ -25,6 +25,7 @@ use std::fmt::Write;
 use proc_macro2::{Ident, Span, TokenStream};
 use rne_symbolic::{Symbol, SymbolTable};
 
+use crate::dispatch::{dispatching_body, DISPATCH_FROM};
 use crate::kernel::{Dims, Input, Kernel};
 use crate::program::{Instr, Operand, Program};
 use crate::scene::{ParameterMode, ScalarType};
@@ -438,37 +439,54 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         ScalarType::F32 => "f32",
         ScalarType::Generic => "T",
     };
+    let (generics, params, args) = (emitter.generics(), emitter.params(), arguments(kernel, t));
+    let ret = layout.type_text(t);
     let signature = format!(
         "#[doc = {doc}]\n#[inline]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub fn {name}{generics}({params}{args}) -> {ret} {{\n",
         doc = DocLiteral(kernel.summary()),
         name = kernel.name(),
-        generics = emitter.generics(),
-        params = emitter.params(),
-        args = arguments(kernel, t),
-        ret = layout.type_text(t),
     );
     // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
     // text is seldom copied as it grows; the excess is returned below.
-    let mut out = String::with_capacity(signature.len() + 24 * program.instrs.len());
-    out.push_str(&signature);
-    emitter.write_trig_bindings(&mut out);
+    let mut body = String::with_capacity(24 * program.instrs.len());
+    emitter.write_trig_bindings(&mut body);
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
-    match split::plan(program, &named, &prologue) {
+    let plan = split::plan(program, &named, &prologue);
+    match &plan {
         None => {
             for t in (0..program.instrs.len()).filter(|&t| named[t]) {
-                emitter.write_binding(t, &mut out);
+                emitter.write_binding(t, &mut body);
             }
             let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o));
-            layout.write_value(&mut outputs, &mut out);
+            layout.write_value(&mut outputs, &mut body);
         }
         Some(plan) => {
-            emitter.write_parts(kernel, &plan, t, &mut out);
+            emitter.write_parts(kernel, plan, t, &mut body);
             let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
                 Operand::Temp(_) => format!("slots[{k}]"),
                 _ => emitter.operand(o),
             });
-            layout.write_value(&mut outputs, &mut out);
+            layout.write_value(&mut outputs, &mut body);
         }
+    }
+    let mut out = signature;
+    if plan.is_none() && program.instrs.len() >= DISPATCH_FROM {
+        let names: Vec<&str> = (!params.is_empty())
+            .then_some("p")
+            .into_iter()
+            .chain(kernel.inputs().iter().map(|input| input.name()))
+            .collect();
+        body.push('\n');
+        out.push_str(&dispatching_body(
+            &generics,
+            &format!("{params}{args}"),
+            &ret,
+            &names,
+            &body,
+            ctx.runtime,
+        ));
+    } else {
+        out.push_str(&body);
     }
     out.push_str("\n}\n");
     out.shrink_to_fit();

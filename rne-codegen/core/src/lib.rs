@@ -45,6 +45,7 @@
 #![deny(missing_docs)]
 
 mod builder;
+mod dispatch;
 mod emit;
 mod error;
 mod kernel;
@@ -60,6 +61,7 @@ mod shape;
 mod split;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
+pub use dispatch::DISPATCH_FROM;
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
 pub use error::CodegenError;
 pub use kernel::{

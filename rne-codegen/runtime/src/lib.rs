@@ -8,6 +8,8 @@
 //! - [`Dynamics`] and [`Kernel`]: the trait every generated module's `Model` implements,
 //!   and the names of the functions a module can contain; [`Kinematics`] and
 //!   [`Identification`] for modules with frame or regressor kernels.
+//! - [`cpu::has_avx`]: whether the processor runs AVX, for the large kernels that a portable
+//!   x86-64 build compiles twice.
 //!
 //! Generated code reaches this crate through `rne_codegen::__private`; users write
 //! `rne_codegen::Dynamics`, `rne_codegen::Real`, which re-export these items. `core` has no
@@ -26,6 +28,7 @@ pub mod batch;
 #[cfg(feature = "nalgebra")]
 #[path = "nalgebra.rs"]
 pub mod convert;
+pub mod cpu;
 mod double_double;
 mod dynamics;
 mod eft;
