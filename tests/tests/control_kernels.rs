@@ -90,8 +90,8 @@ fn eval(program: &Program, q: &[f64], v: &[f64], a: &[f64]) -> Vec<f64> {
     })
 }
 
-/// UR5's forward-dynamics derivatives are large enough to be compiled for AVX too
-/// (`rne-codegen/core/src/dispatch.rs`): on a processor with AVX the function runs that copy,
+/// UR5's forward-dynamics derivatives are large enough to be compiled for AVX and AVX2 too
+/// (`rne-codegen/core/src/dispatch.rs`): on a processor with both the function runs that copy,
 /// which must give the program's bits as the baseline copy does.
 #[test]
 fn emitted_control_kernels_compute_exactly_their_programs() {
@@ -101,7 +101,7 @@ fn emitted_control_kernels_compute_exactly_their_programs() {
     let dfd = program(&model, Kernel::ForwardDynamicsDerivatives, &frames);
     assert!(
         dfd.instrs.len() >= rne_codegen_core::DISPATCH_FROM,
-        "∂FD is compiled for AVX too"
+        "∂FD is compiled for AVX2 too"
     );
     let jacobians = program(&model, Kernel::FrameJacobians, &frames);
     let jdot = program(&model, Kernel::FrameJacobianDotQd, &frames);

@@ -8,8 +8,8 @@
 //! - [`Dynamics`] and [`Kernel`]: the trait every generated module's `Model` implements,
 //!   and the names of the functions a module can contain; [`Kinematics`] and
 //!   [`Identification`] for modules with frame or regressor kernels.
-//! - [`cpu::has_avx`]: whether the processor runs AVX, for the large kernels that a portable
-//!   x86-64 build compiles twice.
+//! - [`cpu::has_avx2`]: whether the processor runs AVX and AVX2, for the large kernels that a
+//!   portable x86-64 build compiles twice.
 //!
 //! Generated code reaches this crate through `rne_codegen::__private`; users write
 //! `rne_codegen::Dynamics`, `rne_codegen::Real`, which re-export these items. `core` has no
