@@ -194,20 +194,24 @@ pub fn evaluate<I: LaneData, O: LaneData<Lanes = I::Lanes>>(
         "batch::evaluate: as many results as states"
     );
     let lanes = <I::Lanes as Lanes>::LANES;
-    for (group, out) in states.chunks(lanes).zip(results.chunks_mut(lanes)) {
-        let last = group.len() - 1;
+    let mut groups = states.chunks_exact(lanes);
+    let mut outs = results.chunks_exact_mut(lanes);
+    // Whole groups: every lane at a constant index, so that gathering is a transposition in
+    // registers and the result is scattered value by value.
+    for (group, out) in (&mut groups).zip(&mut outs) {
+        let value = kernel(&I::gather(|i| &group[i]));
+        for j in 0..O::LEAVES {
+            let v = value.leaf(j);
+            for i in 0..lanes {
+                *O::leaf_mut(&mut out[i], j) = v.lane(i);
+            }
+        }
+    }
+    let (group, out) = (groups.remainder(), outs.into_remainder());
+    if let Some(last) = group.len().checked_sub(1) {
         let value = kernel(&I::gather(|i| &group[i.min(last)]));
-        if out.len() == lanes {
-            for j in 0..O::LEAVES {
-                let v = value.leaf(j);
-                for i in 0..lanes {
-                    *O::leaf_mut(&mut out[i], j) = v.lane(i);
-                }
-            }
-        } else {
-            for (i, r) in out.iter_mut().enumerate() {
-                *r = value.lane(i);
-            }
+        for (i, r) in out.iter_mut().enumerate() {
+            *r = value.lane(i);
         }
     }
 }
