@@ -115,11 +115,11 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// Panda arm's inverse dynamics ran 5–15 % slower (docs/performance.md).
 #[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
-    let mut sin = [0.0; N];
-    let mut cos = [0.0; N];
-    let mut in_range = true;
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
     if N <= PAIRED {
+        let mut sin = [0.0; N];
+        let mut cos = [0.0; N];
+        let mut in_range = true;
         // Pairs at constant indices (the conditions fold for each N): angles, sines and
         // cosines stay in registers (module `pair`).
         macro_rules! pairs {
@@ -139,6 +139,23 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
         }
         return (sin, cos);
     }
+    reduce_each(x, 0.0, reduced, sin_cos_each)
+}
+
+/// `(sin xᵢ, cos xᵢ)` of every element by `reduced` (the fast path of one value: sine,
+/// cosine and whether it applies), or by `each` (the cold path, for the whole array) when it
+/// declines one: a branch-free loop, so that the evaluations interleave. [`sin_cos_array`]'s
+/// and the lane types' `sin_cos_array`.
+#[inline(always)]
+pub(crate) fn reduce_each<T: Copy, const N: usize>(
+    x: &[T; N],
+    zero: T,
+    reduced: impl Fn(T) -> (T, T, bool),
+    each: impl FnOnce(&[T; N]) -> ([T; N], [T; N]),
+) -> ([T; N], [T; N]) {
+    let mut sin = [zero; N];
+    let mut cos = [zero; N];
+    let mut in_range = true;
     for i in 0..N {
         let (s, c, ok) = reduced(x[i]);
         sin[i] = s;
@@ -146,7 +163,7 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
         in_range &= ok;
     }
     if !in_range {
-        return sin_cos_each(x);
+        return each(x);
     }
     (sin, cos)
 }

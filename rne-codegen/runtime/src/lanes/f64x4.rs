@@ -5,7 +5,7 @@ use wide::{f64x4, u64x4, CmpLt};
 
 use super::ops::{lane_arithmetic, lane_sign};
 use crate::real::Real;
-use crate::trig::{polynomial, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
+use crate::trig::{polynomial, reduce_each, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
 
 /// Four `f64` evaluated together (feature `simd`): a generic kernel called with `F64x4`
 /// computes four states per call.
@@ -110,19 +110,7 @@ impl Real for F64x4 {
     /// sines and cosines went through memory and the kernel waited for the call to return.
     #[inline(always)]
     fn sin_cos_array<const N: usize>(x: &[F64x4; N]) -> ([F64x4; N], [F64x4; N]) {
-        let mut sin = [F64x4::splat(0.0); N];
-        let mut cos = [F64x4::splat(0.0); N];
-        let mut in_range = true;
-        for i in 0..N {
-            let (s, c, ok) = x[i].reduced();
-            sin[i] = s;
-            cos[i] = c;
-            in_range &= ok;
-        }
-        if !in_range {
-            return sin_cos_each(x);
-        }
-        (sin, cos)
+        reduce_each(x, F64x4::splat(0.0), F64x4::reduced, sin_cos_each)
     }
     #[inline(always)]
     fn sqrt(self) -> F64x4 {
