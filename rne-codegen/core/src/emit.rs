@@ -447,7 +447,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         name = kernel.name(),
     );
     // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
-    // text is seldom copied as it grows; the excess is returned below.
+    // body's text is seldom copied as it grows.
     let mut body = String::with_capacity(24 * program.instrs.len());
     emitter.write_trig_bindings(&mut body);
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
@@ -469,7 +469,8 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
             layout.write_value(&mut outputs, &mut body);
         }
     }
-    let mut out = signature;
+    let mut out = String::with_capacity(signature.len() + body.len() + 1024);
+    out.push_str(&signature);
     if plan.is_none() && program.instrs.len() >= DISPATCH_FROM {
         let names: Vec<&str> = (!params.is_empty())
             .then_some("p")
@@ -489,7 +490,6 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         out.push_str(&body);
     }
     out.push_str("\n}\n");
-    out.shrink_to_fit();
     out
 }
 

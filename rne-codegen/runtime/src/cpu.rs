@@ -1,11 +1,11 @@
 //! What the processor running the code supports, found at run time.
 //!
 //! A portable x86-64 build targets SSE2, whose arithmetic instructions overwrite one of their
-//! operands: a value still needed must be copied first, and with 16 registers the copies
-//! crowd out the values of a kernel of thousands of operations, which then go to the stack
-//! and back. The generated kernels that large (the derivatives; `DISPATCH_FROM` in
-//! `rne-codegen-core`'s `emit`) are therefore compiled twice, for the build's target and with
-//! AVX and AVX2, whose instructions name a separate destination, and call the second where
+//! operands: a value still needed must first be copied, which costs an instruction and a
+//! register, and a kernel of thousands of operations then keeps more of its values on the
+//! stack. The generated kernels that large (the derivatives; `DISPATCH_FROM` in
+//! `rne-codegen-core`) are therefore compiled twice, for the build's target and with AVX and
+//! AVX2, whose instructions name a separate destination, and call the second where
 //! [`has_avx2`] says the processor runs it. Both perform the same IEEE-754 operations in the
 //! same order (neither adds fused multiply-add), so they return the same bits.
 
