@@ -676,6 +676,8 @@ mod floating_tests;
 mod mimic_tests;
 
 #[cfg(test)]
+mod derivative_costs;
+#[cfg(test)]
 mod derivative_tests;
 
 #[cfg(test)]
