@@ -8,13 +8,19 @@
 //! RUSTFLAGS="-C target-cpu=native" cargo bench -p rne-tests --bench lanes
 //! ```
 //! (without the flag, `F64x4` and `F32x8` run as pairs of 128-bit SSE2 instructions).
-//! Criterion reports elements (states) per second; docs/performance.md has the figures.
+//!
+//! The five ways of one kernel are timed by `rne bench`'s harness ([`time_interleaved`]): in
+//! interleaved rounds, so that the ratios to `f64` — medians over rounds of the ratio within
+//! a round — hold on a machine whose speed drifts, which timing one way after the other
+//! (as a criterion group does) does not. It prints a markdown table; docs/performance.md has
+//! the figures.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rne_bench::timing::{time_interleaved, Plan, Timed, Timing};
 use rne_codegen::{batch, F32x8, F64x4, Real};
 use std::hint::black_box;
+use std::time::Duration;
 
 rne_codegen::derive_dynamics! {
     mod ur5 {
@@ -34,6 +40,24 @@ rne_codegen::derive_dynamics! {
 
 const STATES: usize = 1024;
 const THREADS: usize = 2;
+/// Batches of at least 5 ms (several passes over the states), 41 rounds.
+const PLAN: Plan = Plan {
+    batch: Duration::from_millis(5),
+    rounds: 41,
+};
+/// The columns, in the order of each kernel's subjects.
+const WAYS: [&str; 5] = ["f64", "F64x4", "F64x4 packed", "F64x4, 2 threads", "F32x8"];
+
+/// One way of evaluating a kernel on all the states: a call is one pass.
+struct Pass<'a>(Box<dyn FnMut() + 'a>);
+
+impl Timed for Pass<'_> {
+    fn run(&mut self, calls: u64) {
+        for _ in 0..calls {
+            (self.0)();
+        }
+    }
+}
 
 /// `STATES` seeded states (q, q̇, q̈ or τ) of an `N`-joint robot: |q| ≤ π, the rest ≤ 10.
 fn states<const N: usize>(seed: u64) -> Vec<([f64; N], [f64; N], [f64; N])> {
@@ -45,9 +69,126 @@ fn states<const N: usize>(seed: u64) -> Vec<([f64; N], [f64; N], [f64; N])> {
         .collect()
 }
 
-/// The benchmarks of one robot: each kernel in `f64`, `F64x4`, `F32x8` and threads.
-macro_rules! robot_benches {
-    ($c:expr, $name:literal, $module:ident, $seed:expr) => {{
+/// A markdown row: states per second of each way and, beside the lanes, the ratio to `f64`
+/// (the median over rounds of `f64`'s time over the way's).
+fn row(label: &str, timings: &[Timing]) -> String {
+    let rate = |t: &Timing| STATES as f64 / t.median() * 1e3;
+    let mut cells = vec![format!("{:.3} M/s", rate(&timings[0]))];
+    for t in &timings[1..] {
+        cells.push(format!(
+            "{:.3} M/s ({:.2}×)",
+            rate(t),
+            timings[0].ratio_to(t)
+        ));
+    }
+    format!("| {label} | {} |", cells.join(" | "))
+}
+
+/// Times the ways of one kernel together and prints their row.
+fn report(label: &str, mut ways: Vec<Pass<'_>>) {
+    let mut subjects: Vec<&mut dyn Timed> = ways.iter_mut().map(|w| w as &mut dyn Timed).collect();
+    let timings = time_interleaved(&mut subjects, &PLAN);
+    println!("{}", row(label, &timings));
+}
+
+/// The ways of a kernel of (q, q̇, x).
+macro_rules! kernel_ways {
+    ($all:ident, $single:ident, [$zero:expr], |($q:ident, $qd:ident, $x:ident)| $call:expr, $n:ident) => {{
+        fn run<T: Real>($q: &[T; $n], $qd: &[T; $n], $x: &[T; $n]) -> [T; $n] {
+            $call
+        }
+        let (all, single) = (&$all, &$single);
+        let packed: Vec<([F64x4; $n], [F64x4; $n], [F64x4; $n])> = all
+            .chunks(F64x4::LANES)
+            .map(|group| batch::LaneData::gather(|i| &group[i]))
+            .collect();
+        let [mut out, mut out_lanes, mut out_threads] = [(); 3].map(|_| vec![$zero; STATES]);
+        let mut packed_out = vec![[F64x4::splat(0.0); $n]; packed.len()];
+        let mut out32 = vec![[0.0f32; $n]; STATES];
+        vec![
+            Pass(Box::new(move || {
+                batch::evaluate(
+                    black_box(all),
+                    &mut out,
+                    |s: &([f64; $n], [f64; $n], [f64; $n])| run(&s.0, &s.1, &s.2),
+                )
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate(
+                    black_box(all),
+                    &mut out_lanes,
+                    |s: &([F64x4; $n], [F64x4; $n], [F64x4; $n])| run(&s.0, &s.1, &s.2),
+                )
+            })),
+            Pass(Box::new(move || {
+                for (s, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
+                    *r = run(&s.0, &s.1, &s.2);
+                }
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate_threaded(
+                    black_box(all),
+                    &mut out_threads,
+                    |s: &([F64x4; $n], [F64x4; $n], [F64x4; $n])| run(&s.0, &s.1, &s.2),
+                    THREADS,
+                )
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate(
+                    black_box(single),
+                    &mut out32,
+                    |s: &([F32x8; $n], [F32x8; $n], [F32x8; $n])| run(&s.0, &s.1, &s.2),
+                )
+            })),
+        ]
+    }};
+}
+
+/// The ways of the mass matrix.
+macro_rules! mass_ways {
+    ($all:ident, $single:ident, |$q:ident| $call:expr, $n:ident) => {{
+        fn run<T: Real>($q: &[T; $n]) -> [[T; $n]; $n] {
+            $call
+        }
+        let (all, single) = (&$all, &$single);
+        let packed: Vec<[F64x4; $n]> = all
+            .chunks(F64x4::LANES)
+            .map(|group| batch::LaneData::gather(|i| &group[i]))
+            .collect();
+        let [mut out, mut out_lanes, mut out_threads] =
+            [(); 3].map(|_| vec![[[0.0; $n]; $n]; STATES]);
+        let mut packed_out = vec![[[F64x4::splat(0.0); $n]; $n]; packed.len()];
+        let mut out32 = vec![[[0.0f32; $n]; $n]; STATES];
+        vec![
+            Pass(Box::new(move || {
+                batch::evaluate(black_box(all), &mut out, |q: &[f64; $n]| run(q))
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate(black_box(all), &mut out_lanes, |q: &[F64x4; $n]| run(q))
+            })),
+            Pass(Box::new(move || {
+                for (q, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
+                    *r = run(q);
+                }
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate_threaded(
+                    black_box(all),
+                    &mut out_threads,
+                    |q: &[F64x4; $n]| run(q),
+                    THREADS,
+                )
+            })),
+            Pass(Box::new(move || {
+                batch::evaluate(black_box(single), &mut out32, |q: &[F32x8; $n]| run(q))
+            })),
+        ]
+    }};
+}
+
+/// The rows of one robot.
+macro_rules! robot_rows {
+    ($name:literal, $module:ident, $seed:expr) => {{
         const N: usize = $module::NV;
         let all = states::<N>($seed);
         let single: Vec<([f32; N], [f32; N], [f32; N])> = all
@@ -62,163 +203,43 @@ macro_rules! robot_benches {
             .collect();
         let positions: Vec<[f64; N]> = all.iter().map(|s| s.0).collect();
         let positions32: Vec<[f32; N]> = single.iter().map(|s| s.0).collect();
-
-        let mut group = $c.benchmark_group(concat!($name, "/inverse_dynamics"));
-        group.throughput(Throughput::Elements(STATES as u64));
-        kernel_benches!(
-            group,
-            all,
-            single,
-            [[0.0; N]],
-            |(q, qd, x)| $module::inverse_dynamics(q, qd, x),
-            N
+        report(
+            concat!($name, ", inverse dynamics"),
+            kernel_ways!(
+                all,
+                single,
+                [[0.0; N]],
+                |(q, qd, x)| $module::inverse_dynamics(q, qd, x),
+                N
+            ),
         );
-        group.finish();
-
-        let mut group = $c.benchmark_group(concat!($name, "/forward_dynamics"));
-        group.throughput(Throughput::Elements(STATES as u64));
-        kernel_benches!(
-            group,
-            all,
-            single,
-            [[0.0; N]],
-            |(q, qd, x)| $module::forward_dynamics(q, qd, x),
-            N
+        report(
+            concat!($name, ", forward dynamics"),
+            kernel_ways!(
+                all,
+                single,
+                [[0.0; N]],
+                |(q, qd, x)| $module::forward_dynamics(q, qd, x),
+                N
+            ),
         );
-        group.finish();
-
-        let mut group = $c.benchmark_group(concat!($name, "/mass_matrix"));
-        group.throughput(Throughput::Elements(STATES as u64));
-        mass_benches!(
-            group,
-            positions,
-            positions32,
-            |q| $module::mass_matrix(q),
-            N
+        report(
+            concat!($name, ", mass matrix"),
+            mass_ways!(positions, positions32, |q| $module::mass_matrix(q), N),
         );
-        group.finish();
     }};
 }
 
-/// One kernel of (q, q̇, x) in each scalar.
-macro_rules! kernel_benches {
-    ($group:ident, $all:ident, $single:ident, [$zero:expr], |($q:ident, $qd:ident, $x:ident)| $call:expr, $n:ident) => {{
-        fn run<T: Real>($q: &[T; $n], $qd: &[T; $n], $x: &[T; $n]) -> [T; $n] {
-            $call
-        }
-        let mut out = vec![$zero; STATES];
-        $group.bench_function(BenchmarkId::new("f64", STATES), |b| {
-            b.iter(|| {
-                batch::evaluate(
-                    black_box(&$all),
-                    &mut out,
-                    |s: &([f64; $n], [f64; $n], [f64; $n])| run(&s.0, &s.1, &s.2),
-                )
-            })
-        });
-        $group.bench_function(BenchmarkId::new("F64x4", STATES), |b| {
-            b.iter(|| {
-                batch::evaluate(
-                    black_box(&$all),
-                    &mut out,
-                    |s: &([F64x4; $n], [F64x4; $n], [F64x4; $n])| run(&s.0, &s.1, &s.2),
-                )
-            })
-        });
-        let packed: Vec<([F64x4; $n], [F64x4; $n], [F64x4; $n])> = $all
-            .chunks(F64x4::LANES)
-            .map(|group| batch::LaneData::gather(|i| &group[i]))
-            .collect();
-        let mut packed_out = vec![[F64x4::splat(0.0); $n]; packed.len()];
-        $group.bench_function(BenchmarkId::new("F64x4 packed", STATES), |b| {
-            b.iter(|| {
-                for (s, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
-                    *r = run(&s.0, &s.1, &s.2);
-                }
-            })
-        });
-        $group.bench_function(
-            BenchmarkId::new(format!("F64x4 x{THREADS} threads"), STATES),
-            |b| {
-                b.iter(|| {
-                    batch::evaluate_threaded(
-                        black_box(&$all),
-                        &mut out,
-                        |s: &([F64x4; $n], [F64x4; $n], [F64x4; $n])| run(&s.0, &s.1, &s.2),
-                        THREADS,
-                    )
-                })
-            },
-        );
-        let mut out32 = vec![[0.0f32; $n]; STATES];
-        $group.bench_function(BenchmarkId::new("F32x8", STATES), |b| {
-            b.iter(|| {
-                batch::evaluate(
-                    black_box(&$single),
-                    &mut out32,
-                    |s: &([F32x8; $n], [F32x8; $n], [F32x8; $n])| run(&s.0, &s.1, &s.2),
-                )
-            })
-        });
-    }};
+fn main() {
+    // `cargo test --benches` passes `--bench`-less arguments; time only under `cargo bench`.
+    if !std::env::args().any(|a| a == "--bench") {
+        return;
+    }
+    println!(
+        "| robot, kernel | {} |\n|---|{}",
+        WAYS.join(" | "),
+        "---:|".repeat(WAYS.len())
+    );
+    robot_rows!("UR5", ur5, 81);
+    robot_rows!("Panda arm", panda, 82);
 }
-
-/// The mass matrix in each scalar.
-macro_rules! mass_benches {
-    ($group:ident, $all:ident, $single:ident, |$q:ident| $call:expr, $n:ident) => {{
-        fn run<T: Real>($q: &[T; $n]) -> [[T; $n]; $n] {
-            $call
-        }
-        let mut out = vec![[[0.0; $n]; $n]; STATES];
-        $group.bench_function(BenchmarkId::new("f64", STATES), |b| {
-            b.iter(|| batch::evaluate(black_box(&$all), &mut out, |q: &[f64; $n]| run(q)))
-        });
-        $group.bench_function(BenchmarkId::new("F64x4", STATES), |b| {
-            b.iter(|| batch::evaluate(black_box(&$all), &mut out, |q: &[F64x4; $n]| run(q)))
-        });
-        let packed: Vec<[F64x4; $n]> = $all
-            .chunks(F64x4::LANES)
-            .map(|group| batch::LaneData::gather(|i| &group[i]))
-            .collect();
-        let mut packed_out = vec![[[F64x4::splat(0.0); $n]; $n]; packed.len()];
-        $group.bench_function(BenchmarkId::new("F64x4 packed", STATES), |b| {
-            b.iter(|| {
-                for (q, r) in black_box(&packed).iter().zip(packed_out.iter_mut()) {
-                    *r = run(q);
-                }
-            })
-        });
-        $group.bench_function(
-            BenchmarkId::new(format!("F64x4 x{THREADS} threads"), STATES),
-            |b| {
-                b.iter(|| {
-                    batch::evaluate_threaded(
-                        black_box(&$all),
-                        &mut out,
-                        |q: &[F64x4; $n]| run(q),
-                        THREADS,
-                    )
-                })
-            },
-        );
-        let mut out32 = vec![[[0.0f32; $n]; $n]; STATES];
-        $group.bench_function(BenchmarkId::new("F32x8", STATES), |b| {
-            b.iter(|| batch::evaluate(black_box(&$single), &mut out32, |q: &[F32x8; $n]| run(q)))
-        });
-    }};
-}
-
-fn lanes(c: &mut Criterion) {
-    robot_benches!(c, "ur5", ur5, 81);
-    robot_benches!(c, "panda_arm", panda, 82);
-}
-
-criterion_group! {
-    name = benches;
-    config = Criterion::default()
-        .sample_size(20)
-        .warm_up_time(std::time::Duration::from_millis(500))
-        .measurement_time(std::time::Duration::from_secs(2));
-    targets = lanes
-}
-criterion_main!(benches);
