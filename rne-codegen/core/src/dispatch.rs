@@ -1,9 +1,9 @@
 //! Kernels compiled twice, for the build's target and with AVX and AVX2, the second called
 //! where the processor has them (`rne_runtime::cpu`, whose docs say why).
 //!
-//! Only large kernels are. `rne bench --quick` on an AMD EPYC, the portable build before and
-//! with this dispatch (first for AVX alone and every kernel of 1800 instructions or more, two
-//! runs each):
+//! Only large kernels are. `rne bench --quick` on an AMD EPYC (Zen 4, AVX-512), the portable
+//! build before and with this dispatch (first for AVX alone and every kernel of 1800
+//! instructions or more, two runs each):
 //! - UR5's forward-dynamics derivatives (3250 instructions): 663 → 518–523 ns;
 //! - the Panda arm's inverse-dynamics derivatives (5470): 1340–1376 → 1016–1019 ns, its
 //!   forward-dynamics derivatives (8260): 1870–1875 → 1454–1475 ns;
@@ -15,9 +15,16 @@
 //! the Panda arm's derivatives the same. Building everything for AVX instead
 //! (`-C target-feature=+avx,+avx2`) made the Jacobians of every frame (460–900 instructions)
 //! about 10 % slower and the Panda arm's inverse dynamics (740) 18 % slower.
+//!
+//! The threshold was 2500 instructions until an AMD EPYC of the Zen 3 generation (AVX2, no
+//! AVX-512) timed the kernels between 1400 and 2500 faster dispatched (`rne bench --quick`,
+//! three interleaved runs of each build, the first of each discarded as noisy): UR5's
+//! inverse-dynamics derivatives 485–486 → 418–420 ns, UR5's regressor (about 1480) 400–405 →
+//! 286–294 ns, the Panda arm's regressor 537–546 → 484–486 ns; the Zen 4 above had UR5's
+//! inverse-dynamics derivatives 5 % slower dispatched.
 
 /// The fewest instructions a kernel has for it to be compiled for AVX and AVX2 too.
-pub const DISPATCH_FROM: usize = 2500;
+pub const DISPATCH_FROM: usize = 1400;
 
 /// The body of a kernel function whose own body would be `body`, given its `generics`
 /// (`<T: …>` or nothing), `parameters` (`name: type, ` each), return type `ret` and the
