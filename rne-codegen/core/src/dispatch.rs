@@ -29,7 +29,7 @@ pub const DISPATCH_FROM: usize = 1400;
 /// The body of a kernel function whose own body would be `body`, given its `generics`
 /// (`<T: …>` or nothing), `parameters` (`name: type, ` each), return type `ret` and the
 /// parameters' `names`: on x86-64 builds without AVX, `body` moves into an always-inlined
-/// inner function `evaluate`, called through `with_avx`, compiled with AVX and AVX2,
+/// inner function `evaluate`, called through `with_avx2`, compiled with AVX and AVX2,
 /// where `runtime::cpu::has_avx2()`, else directly.
 pub fn dispatching_body(
     generics: &str,
@@ -49,10 +49,10 @@ pub fn dispatching_body(
          #[cfg(all(target_arch = \"x86_64\", not(target_feature = \"avx2\")))]\n{{\n\
          /// # Safety\n/// Only where the processor runs AVX and AVX2.\n\
          #[target_feature(enable = \"avx,avx2\")]\n\
-         unsafe fn with_avx{generics}({parameters}) -> {ret} {{\nevaluate{call}\n}}\n\
+         unsafe fn with_avx2{generics}({parameters}) -> {ret} {{\nevaluate{call}\n}}\n\
          if {runtime}::cpu::has_avx2() {{\n\
          // SAFETY: the processor runs AVX and AVX2.\n\
-         return unsafe {{ with_avx{call} }};\n}}\n}}\n\
+         return unsafe {{ with_avx2{call} }};\n}}\n}}\n\
          evaluate{call}\n"
     )
 }
@@ -76,8 +76,8 @@ mod tests {
         for part in [
             "# [inline (always)] fn evaluate < T : rt :: Real > (p : & Params , q : & [T ; NQ] ,) -> [T ; NV] { let t0 = q [0] ; [t0] }",
             "# [cfg (all (target_arch = \"x86_64\" , not (target_feature = \"avx2\")))]",
-            "# [target_feature (enable = \"avx,avx2\")] unsafe fn with_avx < T : rt :: Real >",
-            "if rt :: cpu :: has_avx2 () { return unsafe { with_avx :: < T > (p , q) } ; }",
+            "# [target_feature (enable = \"avx,avx2\")] unsafe fn with_avx2 < T : rt :: Real >",
+            "if rt :: cpu :: has_avx2 () { return unsafe { with_avx2 :: < T > (p , q) } ; }",
         ] {
             assert!(text.contains(part), "{part} in {text}");
         }
