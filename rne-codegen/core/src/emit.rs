@@ -471,6 +471,8 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
     }
     let mut out = String::with_capacity(signature.len() + body.len() + 1024);
     out.push_str(&signature);
+    // A split kernel is not dispatched: its parts are functions of their own, which a copy
+    // compiled for AVX2 would still call in their baseline form.
     if plan.is_none() && program.instrs.len() >= DISPATCH_FROM {
         let names: Vec<&str> = (!params.is_empty())
             .then_some("p")
