@@ -1,8 +1,12 @@
 //! Many states through one kernel: the states are gathered into lanes ([`Lanes`]), the
 //! kernel runs once per group of `LANES` states, and each lane's result is scattered back.
-//! A full group's result is scattered value by value ([`LaneData::leaf`]): the lanes of each
-//! value go straight to their places in the states' results, which for UR5's mass matrix in
-//! `F64x4` took the helper from 21 to 31 million states per second (docs/performance.md).
+//! A full group's result is scattered at constant indices, `LANES` values at a time where
+//! they lie one after the other in a state's result ([`LaneData::leaves_mut`]): the block is
+//! transposed in registers ([`Lanes::transposed`]) and each state's values stored at once;
+//! the values left over go lane by lane ([`LaneData::leaf`]) straight to their places. Lane
+//! by lane took UR5's mass matrix in `F64x4` from 21 to 31 million states per second; the
+//! transposition took the `F32x8` mass matrices from 2.6–3.0× to 3.2–3.5× `f64`
+//! (docs/performance.md).
 //!
 //! A kernel is given as a closure over its arguments in lanes, so any generated function
 //! fits:
@@ -47,6 +51,18 @@ pub trait LaneData: Sized {
     fn leaf(&self, j: usize) -> Self::Lanes;
     /// The place of scalar `j` in one state's value.
     fn leaf_mut(state: &mut Self::State, j: usize) -> &mut <Self::Lanes as Lanes>::Lane;
+    /// Whether a state's value is its leaves one after the other and nothing else (a lane
+    /// scalar, and arrays of such data; not a tuple, whose fields Rust may reorder).
+    const DENSE: bool;
+    /// `states`' leaves as one slice, in order, when the data is [`LaneData::DENSE`].
+    fn dense_mut(states: &mut [Self::State]) -> Option<&mut [<Self::Lanes as Lanes>::Lane]>;
+    /// Scalars `j..j + n` of one state's value as one slice, when they lie one after the
+    /// other in memory.
+    fn leaves_mut(
+        state: &mut Self::State,
+        j: usize,
+        n: usize,
+    ) -> Option<&mut [<Self::Lanes as Lanes>::Lane]>;
 }
 
 /// Each lane type (and scalar) is lane data of itself.
@@ -71,6 +87,19 @@ macro_rules! lane_data {
             #[inline(always)]
             fn leaf_mut(state: &mut Self::State, _: usize) -> &mut Self::State {
                 state
+            }
+            const DENSE: bool = true;
+            #[inline(always)]
+            fn dense_mut(states: &mut [Self::State]) -> Option<&mut [Self::State]> {
+                Some(states)
+            }
+            #[inline(always)]
+            fn leaves_mut(
+                state: &mut Self::State,
+                j: usize,
+                n: usize,
+            ) -> Option<&mut [Self::State]> {
+                (j == 0 && n == 1).then(|| core::slice::from_mut(state))
             }
         }
     )*};
@@ -99,6 +128,25 @@ impl<D: LaneData, const N: usize> LaneData for [D; N] {
     #[inline(always)]
     fn leaf_mut(state: &mut Self::State, j: usize) -> &mut <Self::Lanes as Lanes>::Lane {
         D::leaf_mut(&mut state[j / D::LEAVES], j % D::LEAVES)
+    }
+    const DENSE: bool = D::DENSE;
+    #[inline(always)]
+    fn dense_mut(states: &mut [Self::State]) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        D::dense_mut(states.as_flattened_mut())
+    }
+    #[inline(always)]
+    fn leaves_mut(
+        state: &mut Self::State,
+        j: usize,
+        n: usize,
+    ) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        if D::DENSE {
+            D::dense_mut(state)?.get_mut(j..j + n)
+        } else if j % D::LEAVES + n <= D::LEAVES {
+            D::leaves_mut(&mut state[j / D::LEAVES], j % D::LEAVES, n)
+        } else {
+            None
+        }
     }
 }
 
@@ -131,6 +179,25 @@ impl<A: LaneData, B: LaneData<Lanes = A::Lanes>> LaneData for (A, B) {
             A::leaf_mut(&mut state.0, j)
         } else {
             B::leaf_mut(&mut state.1, j - A::LEAVES)
+        }
+    }
+    const DENSE: bool = false;
+    #[inline(always)]
+    fn dense_mut(_: &mut [Self::State]) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        None
+    }
+    #[inline(always)]
+    fn leaves_mut(
+        state: &mut Self::State,
+        j: usize,
+        n: usize,
+    ) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        if j + n <= A::LEAVES {
+            A::leaves_mut(&mut state.0, j, n)
+        } else if j >= A::LEAVES {
+            B::leaves_mut(&mut state.1, j - A::LEAVES, n)
+        } else {
+            None
         }
     }
 }
@@ -176,7 +243,32 @@ where
             C::leaf_mut(&mut state.2, j - A::LEAVES - B::LEAVES)
         }
     }
+    const DENSE: bool = false;
+    #[inline(always)]
+    fn dense_mut(_: &mut [Self::State]) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        None
+    }
+    #[inline(always)]
+    fn leaves_mut(
+        state: &mut Self::State,
+        j: usize,
+        n: usize,
+    ) -> Option<&mut [<Self::Lanes as Lanes>::Lane]> {
+        let ab = A::LEAVES + B::LEAVES;
+        if j + n <= A::LEAVES {
+            A::leaves_mut(&mut state.0, j, n)
+        } else if j >= A::LEAVES && j + n <= ab {
+            B::leaves_mut(&mut state.1, j - A::LEAVES, n)
+        } else if j >= ab {
+            C::leaves_mut(&mut state.2, j - ab, n)
+        } else {
+            None
+        }
+    }
 }
+
+/// The most blocks of `LANES` values of a result [`evaluate`] scatters at constant indices.
+const UNROLLED_BLOCKS: usize = 32;
 
 /// `results[i] = kernel(states[i])` for every state, `LANES` states per call of `kernel`
 /// (the last call's spare lanes repeat its last state).
@@ -197,15 +289,24 @@ pub fn evaluate<I: LaneData, O: LaneData<Lanes = I::Lanes>>(
     let mut groups = states.chunks_exact(lanes);
     let mut outs = results.chunks_exact_mut(lanes);
     // Whole groups: every lane at a constant index, so that gathering is a transposition in
-    // registers and the result is scattered value by value.
+    // registers, and the result written a block of `LANES` values at a time.
     for (group, out) in (&mut groups).zip(&mut outs) {
         let value = kernel(&I::gather(|i| &group[i]));
-        for j in 0..O::LEAVES {
-            let v = value.leaf(j);
-            for i in 0..lanes {
-                *O::leaf_mut(&mut out[i], j) = v.lane(i);
+        let blocks = O::LEAVES / lanes;
+        if blocks <= UNROLLED_BLOCKS {
+            // The conditions fold: every block at a constant index.
+            macro_rules! unrolled {
+                ($($b:literal)*) => {$(
+                    if $b < blocks {
+                        write_block(&value, $b * lanes, out);
+                    }
+                )*};
             }
+            unrolled!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31);
+        } else {
+            (0..blocks).for_each(|block| write_block(&value, block * lanes, out));
         }
+        (blocks * lanes..O::LEAVES).for_each(|j| write_leaf(&value, j, out));
     }
     let (group, out) = (groups.remainder(), outs.into_remainder());
     if let Some(last) = group.len().checked_sub(1) {
@@ -213,6 +314,34 @@ pub fn evaluate<I: LaneData, O: LaneData<Lanes = I::Lanes>>(
         for (i, r) in out.iter_mut().enumerate() {
             *r = value.lane(i);
         }
+    }
+}
+
+/// Writes result values `j..j + LANES` of a group of states to the states' results: by one
+/// transposition when they lie one after the other in a result, else value by value.
+#[inline(always)]
+fn write_block<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
+    let lanes = <O::Lanes as Lanes>::LANES;
+    if O::leaves_mut(&mut out[0], j, lanes).is_some() {
+        <O::Lanes as Lanes>::transposed(
+            |k| value.leaf(j + k),
+            |i, row| {
+                if let Some(leaves) = O::leaves_mut(&mut out[i], j, lanes) {
+                    leaves.copy_from_slice(row);
+                }
+            },
+        );
+    } else {
+        (j..j + lanes).for_each(|j| write_leaf(value, j, out));
+    }
+}
+
+/// Writes result value `j` of a group of states to the states' results, lane by lane.
+#[inline(always)]
+fn write_leaf<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
+    let v = value.leaf(j);
+    for (i, state) in out.iter_mut().enumerate() {
+        *O::leaf_mut(state, j) = v.lane(i);
     }
 }
 
@@ -252,7 +381,7 @@ pub fn evaluate_threaded<I, O, K>(
 
 #[cfg(test)]
 mod tests {
-    use super::evaluate;
+    use super::{evaluate, LaneData};
     use crate::Real;
     use std::vec::Vec;
 
@@ -315,6 +444,78 @@ mod tests {
                 assert_eq!(eight[k], kernel(&q, &qd), "{n} states, #{k} in f32");
             }
         }
+    }
+
+    /// A kernel whose result has 9 + 8 distinct values: in `F64x4` its blocks of four lie in
+    /// the matrix (0–3, 4–7), across the two fields (8–11) and in the vector (12–15), with
+    /// one value left over; in `F32x8` one block in the matrix, one across, one left over.
+    fn wide_kernel<T: Real>(q: &[T; 2], qd: &[T; 2]) -> ([[T; 3]; 3], [T; 8]) {
+        let step = |k: usize| T::from_f64(k as f64 + 0.5);
+        (
+            core::array::from_fn(|r| {
+                core::array::from_fn(|c| q[0] * step(3 * r + c) + qd[1] * q[1])
+            }),
+            core::array::from_fn(|k| qd[0] * step(k) - q[1] * step(k * k)),
+        )
+    }
+
+    /// Results whose values lie one after the other are transposed a block at a time, the
+    /// rest written value by value: every state still gets its own result, whichever way
+    /// each of its values took.
+    #[cfg(feature = "simd")]
+    #[test]
+    fn blocks_of_a_result_reach_each_state_whichever_way_they_are_written() {
+        use crate::{F32x8, F64x4};
+        for n in [0, 1, 4, 5, 8, 9, 13, 17] {
+            let states = states(n);
+            let mut wide = std::vec![([[0.0; 3]; 3], [0.0; 8]); n];
+            evaluate(&states, &mut wide, |(q, qd): &([F64x4; 2], [F64x4; 2])| {
+                wide_kernel(q, qd)
+            });
+            let single: Vec<_> = states
+                .iter()
+                .map(|(q, qd)| (q.map(|x| x as f32), qd.map(|x| x as f32)))
+                .collect();
+            let mut eight = std::vec![([[0.0f32; 3]; 3], [0.0f32; 8]); n];
+            evaluate(&single, &mut eight, |(q, qd): &([F32x8; 2], [F32x8; 2])| {
+                wide_kernel(q, qd)
+            });
+            for k in 0..n {
+                let (q, qd) = &states[k];
+                assert_eq!(wide[k], wide_kernel(q, qd), "{n} states, #{k}");
+                let (q, qd) = &single[k];
+                assert_eq!(eight[k], wide_kernel(q, qd), "{n} states, #{k} in f32");
+            }
+        }
+    }
+
+    /// A run of values is one slice exactly when it lies within a field of the result, and
+    /// it is the right slice.
+    #[test]
+    fn runs_of_values_are_slices_only_within_a_field() {
+        type Result = ([[f64; 3]; 3], [f64; 8]);
+        let mut result: Result = (
+            core::array::from_fn(|r| core::array::from_fn(|c| (3 * r + c) as f64)),
+            core::array::from_fn(|k| (9 + k) as f64),
+        );
+        for (j, n) in [(0, 4), (4, 4), (5, 4), (0, 9), (9, 8), (12, 4), (13, 4)] {
+            let run = <Result as LaneData>::leaves_mut(&mut result, j, n).map(|r| r.to_vec());
+            let expected: Vec<f64> = (j..j + n).map(|k| k as f64).collect();
+            assert_eq!(run, Some(expected), "values {j}..{}", j + n);
+        }
+        for (j, n) in [(8, 4), (6, 4), (16, 2), (14, 4)] {
+            assert!(
+                <Result as LaneData>::leaves_mut(&mut result, j, n).is_none(),
+                "values {j}..{} are not one slice",
+                j + n
+            );
+        }
+        let mut three = (1.0, [2.0, 3.0], [[4.0, 5.0], [6.0, 7.0]]);
+        type Three = (f64, [f64; 2], [[f64; 2]; 2]);
+        let run = <Three as LaneData>::leaves_mut(&mut three, 3, 4).map(|r| r.to_vec());
+        assert_eq!(run, Some(std::vec![4.0, 5.0, 6.0, 7.0]));
+        assert!(<Three as LaneData>::leaves_mut(&mut three, 0, 2).is_none());
+        assert!(<Three as LaneData>::leaves_mut(&mut three, 2, 2).is_none());
     }
 
     #[cfg(feature = "threads")]

@@ -36,6 +36,11 @@ pub trait Lanes: Real {
     fn from_fn(lane: impl FnMut(usize) -> Self::Lane) -> Self;
     /// Lane `i` (`i < LANES`; the last lane for a larger `i`).
     fn lane(self, i: usize) -> Self::Lane;
+    /// A square block transposed, row by row: `row(i, r)` for `i` in `0..LANES`, where
+    /// `r[k]` is lane `i` of `block(k)`. The batch helper scatters a result's consecutive
+    /// values to each state this way; the lane types transpose in registers, so that each
+    /// row is one vector.
+    fn transposed(block: impl Fn(usize) -> Self, row: impl FnMut(usize, &[Self::Lane]));
 }
 
 /// The plain scalars: one lane.
@@ -51,6 +56,10 @@ macro_rules! single_lane {
             #[inline]
             fn lane(self, _: usize) -> $t {
                 self
+            }
+            #[inline(always)]
+            fn transposed(block: impl Fn(usize) -> $t, mut row: impl FnMut(usize, &[$t])) {
+                row(0, &[block(0)]);
             }
         }
     )*};

@@ -33,6 +33,13 @@ impl F32x8 {
         F32x8(f32x8::splat(x))
     }
 
+    /// The 8 × 8 block `x` transposed: lane `k` of result `i` is lane `i` of `x[k]`
+    /// (`wide`'s transposition: shuffles in registers with AVX).
+    #[inline(always)]
+    pub fn transpose(x: [F32x8; 8]) -> [F32x8; 8] {
+        f32x8::transpose(x.map(|v| v.0)).map(F32x8)
+    }
+
     /// The lanes as an array.
     #[inline(always)]
     pub fn to_array(self) -> [f32; 8] {
@@ -98,4 +105,22 @@ impl Real for F32x8 {
         F32x8(self.0.mul_add(a.0, b.0))
     }
     lane_sign!();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::F32x8;
+
+    /// Lane `k` of row `i` of the transposition is lane `i` of value `k`.
+    #[test]
+    fn transpose_swaps_values_and_lanes() {
+        use crate::Lanes;
+        let block: [F32x8; 8] = core::array::from_fn(|k| F32x8::from_fn(|i| (10 * k + i) as _));
+        let rows = F32x8::transpose(block);
+        for i in 0..8 {
+            for k in 0..8 {
+                assert_eq!(rows[i].lane(k), block[k].lane(i), "row {i}, lane {k}");
+            }
+        }
+    }
 }

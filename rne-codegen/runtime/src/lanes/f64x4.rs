@@ -41,6 +41,37 @@ impl F64x4 {
         self.0.to_array()
     }
 
+    /// The 4 × 4 block `x` transposed: lane `k` of result `i` is lane `i` of `x[k]`. With
+    /// AVX, four unpacks and four lane permutations in registers.
+    #[inline(always)]
+    pub fn transpose(x: [F64x4; 4]) -> [F64x4; 4] {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+        {
+            use core::arch::x86_64::{
+                __m256d, _mm256_permute2f128_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
+            };
+            let [a, b, c, d] = x.map(|v| cast::<f64x4, __m256d>(v.0));
+            // SAFETY: the target has AVX (the `cfg` above).
+            let rows = unsafe {
+                // (a0 b0 a2 b2), (a1 b1 a3 b3), (c0 d0 c2 d2), (c1 d1 c3 d3).
+                let (ab0, ab1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+                let (cd0, cd1) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
+                [
+                    _mm256_permute2f128_pd::<0x20>(ab0, cd0),
+                    _mm256_permute2f128_pd::<0x20>(ab1, cd1),
+                    _mm256_permute2f128_pd::<0x31>(ab0, cd0),
+                    _mm256_permute2f128_pd::<0x31>(ab1, cd1),
+                ]
+            };
+            rows.map(|r| F64x4(cast(r)))
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+        {
+            let x = x.map(F64x4::to_array);
+            core::array::from_fn(|i| F64x4::new(x.map(|row| row[i])))
+        }
+    }
+
     /// `(sin, cos)` of every lane by the scalar `trig::reduced`, lane by lane, and whether
     /// every lane's argument is within its range (|x| < 2²⁰·π/2, finite): branch-free, so
     /// that several arguments' evaluations interleave.
@@ -127,6 +158,19 @@ impl Real for F64x4 {
 #[cfg(test)]
 mod tests {
     use super::F64x4;
+
+    /// Lane `k` of row `i` of the transposition is lane `i` of value `k`.
+    #[test]
+    fn transpose_swaps_values_and_lanes() {
+        use crate::Lanes;
+        let block: [F64x4; 4] = core::array::from_fn(|k| F64x4::from_fn(|i| (10 * k + i) as _));
+        let rows = F64x4::transpose(block);
+        for i in 0..4 {
+            for k in 0..4 {
+                assert_eq!(rows[i].lane(k), block[k].lane(i), "row {i}, lane {k}");
+            }
+        }
+    }
 
     #[test]
     fn four_joint_angles_take_the_vector_path_and_huge_ones_do_not() {

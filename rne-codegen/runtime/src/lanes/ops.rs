@@ -88,6 +88,14 @@ macro_rules! lane_arithmetic {
             fn lane(self, i: usize) -> $scalar {
                 self.0.as_array_ref()[i.min($n - 1)]
             }
+            /// By [`Self::transpose`].
+            #[inline(always)]
+            fn transposed(block: impl Fn(usize) -> $lanes, mut row: impl FnMut(usize, &[$scalar])) {
+                let rows = $lanes::transpose(core::array::from_fn(block));
+                for (i, r) in rows.iter().enumerate() {
+                    row(i, &r.to_array());
+                }
+            }
         }
     };
 }
