@@ -54,7 +54,8 @@
 //! With the feature `simd`, [`F64x4`] and [`F32x8`] implement [`Real`]: a `scalar: generic`
 //! kernel called with them computes 4 or 8 states at once, each lane bit for bit the scalar
 //! kernel at its state. [`batch::evaluate`] runs a kernel over a slice of states, filling the
-//! lanes; with the feature `threads`, [`batch::evaluate_threaded`] splits them between threads.
+//! lanes; with the feature `threads`, [`batch::evaluate_threaded`] splits them between the
+//! threads of rayon's pool.
 //!
 //! # Build scripts
 //! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module

@@ -28,7 +28,8 @@
 //!
 //! The last group, when the number of states is not a multiple of `LANES`, repeats its last
 //! state in the lanes left over (so they hold valid values) and drops their results. With the
-//! feature `threads`, [`evaluate_threaded`] splits the states between threads.
+//! feature `threads`, [`evaluate_threaded`] splits the states between the threads of
+//! rayon's pool.
 
 use crate::lanes::Lanes;
 
@@ -345,11 +346,15 @@ fn write_leaf<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
     }
 }
 
-/// [`evaluate`] on `threads` threads (at least one), each given a contiguous share of the
-/// states in whole groups of `LANES` (feature `threads`, which needs the standard library).
+/// [`evaluate`] on `threads` threads (at least one): the states are cut into `threads`
+/// contiguous shares of whole groups of `LANES`, each evaluated as one task on rayon's global
+/// thread pool, so that at most `threads` of the pool's threads work on them at once (feature
+/// `threads`, which needs the standard library). The pool's threads are started once and
+/// kept, so a call costs microseconds beyond its work, where starting threads per call cost
+/// tens (docs/performance.md).
 ///
 /// # Panics
-/// If `states` and `results` differ in length, or a thread panics.
+/// If `states` and `results` differ in length, or the kernel panics.
 #[cfg(feature = "threads")]
 pub fn evaluate_threaded<I, O, K>(
     states: &[I::State],
@@ -363,6 +368,8 @@ pub fn evaluate_threaded<I, O, K>(
     O::State: Send,
     K: Fn(&I) -> O + Sync,
 {
+    use rayon::iter::{IndexedParallelIterator, ParallelIterator};
+    use rayon::slice::{ParallelSlice, ParallelSliceMut};
     assert_eq!(
         states.len(),
         results.len(),
@@ -371,12 +378,10 @@ pub fn evaluate_threaded<I, O, K>(
     let lanes = <I::Lanes as Lanes>::LANES;
     let groups = states.len().div_ceil(lanes);
     let share = groups.div_ceil(threads.max(1)).max(1) * lanes;
-    let kernel = &kernel;
-    std::thread::scope(|scope| {
-        for (part, out) in states.chunks(share).zip(results.chunks_mut(share)) {
-            scope.spawn(move || evaluate(part, out, kernel));
-        }
-    });
+    states
+        .par_chunks(share)
+        .zip(results.par_chunks_mut(share))
+        .for_each(|(part, out)| evaluate(part, out, &kernel));
 }
 
 #[cfg(test)]
