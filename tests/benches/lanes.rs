@@ -2,7 +2,9 @@
 //! on two threads, for UR5 and the Panda arm, inverse dynamics, mass matrix and forward
 //! dynamics, through the runtime's batch helper on 1024 seeded states; and `F64x4 packed`,
 //! the kernel alone on the same states already in lanes (what the helper's gathering and
-//! scattering cost is the difference).
+//! scattering cost is the difference). A second table times inverse dynamics and the mass
+//! matrices on 65 536 states, `f64`, `F64x4` and `F64x4` on two threads: the batches threads
+//! are for.
 //!
 //! ```text
 //! RUSTFLAGS="-C target-cpu=native" cargo bench -p rne-tests --bench lanes
@@ -59,20 +61,20 @@ impl Timed for Pass<'_> {
     }
 }
 
-/// `STATES` seeded states (q, q̇, q̈ or τ) of an `N`-joint robot: |q| ≤ π, the rest ≤ 10.
-fn states<const N: usize>(seed: u64) -> Vec<([f64; N], [f64; N], [f64; N])> {
+/// `count` seeded states (q, q̇, q̈ or τ) of an `N`-joint robot: |q| ≤ π, the rest ≤ 10.
+fn states<const N: usize>(seed: u64, count: usize) -> Vec<([f64; N], [f64; N], [f64; N])> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut draw =
         |bound: f64| -> [f64; N] { std::array::from_fn(|_| rng.gen_range(-bound..=bound)) };
-    (0..STATES)
+    (0..count)
         .map(|_| (draw(std::f64::consts::PI), draw(10.0), draw(10.0)))
         .collect()
 }
 
-/// A markdown row: states per second of each way and, beside the lanes, the ratio to `f64`
-/// (the median over rounds of `f64`'s time over the way's).
-fn row(label: &str, timings: &[Timing]) -> String {
-    let rate = |t: &Timing| STATES as f64 / t.median() * 1e3;
+/// A markdown row: states per second of each way (a pass being `count` states) and, beside
+/// the lanes, the ratio to `f64` (the median over rounds of `f64`'s time over the way's).
+fn row(label: &str, count: usize, timings: &[Timing]) -> String {
+    let rate = |t: &Timing| count as f64 / t.median() * 1e3;
     let mut cells = vec![format!("{:.3} M/s", rate(&timings[0]))];
     for t in &timings[1..] {
         cells.push(format!(
@@ -84,11 +86,11 @@ fn row(label: &str, timings: &[Timing]) -> String {
     format!("| {label} | {} |", cells.join(" | "))
 }
 
-/// Times the ways of one kernel together and prints their row.
-fn report(label: &str, mut ways: Vec<Pass<'_>>) {
+/// Times the ways of one kernel together, each pass `count` states, and prints their row.
+fn report(label: &str, count: usize, mut ways: Vec<Pass<'_>>) {
     let mut subjects: Vec<&mut dyn Timed> = ways.iter_mut().map(|w| w as &mut dyn Timed).collect();
     let timings = time_interleaved(&mut subjects, &PLAN);
-    println!("{}", row(label, &timings));
+    println!("{}", row(label, count, &timings));
 }
 
 /// The ways of a kernel of (q, q̇, x).
@@ -190,7 +192,7 @@ macro_rules! mass_ways {
 macro_rules! robot_rows {
     ($name:literal, $module:ident, $seed:expr) => {{
         const N: usize = $module::NV;
-        let all = states::<N>($seed);
+        let all = states::<N>($seed, STATES);
         let single: Vec<([f32; N], [f32; N], [f32; N])> = all
             .iter()
             .map(|(q, qd, x)| {
@@ -205,6 +207,7 @@ macro_rules! robot_rows {
         let positions32: Vec<[f32; N]> = single.iter().map(|s| s.0).collect();
         report(
             concat!($name, ", inverse dynamics"),
+            STATES,
             kernel_ways!(
                 all,
                 single,
@@ -215,6 +218,7 @@ macro_rules! robot_rows {
         );
         report(
             concat!($name, ", forward dynamics"),
+            STATES,
             kernel_ways!(
                 all,
                 single,
@@ -225,7 +229,65 @@ macro_rules! robot_rows {
         );
         report(
             concat!($name, ", mass matrix"),
+            STATES,
             mass_ways!(positions, positions32, |q| $module::mass_matrix(q), N),
+        );
+    }};
+}
+
+/// States of the second table.
+const LARGE: usize = 65_536;
+
+/// Inverse dynamics and the mass matrix of `LARGE` states: `f64`, `F64x4`, and `F64x4` on
+/// `THREADS` threads.
+macro_rules! large_batch_rows {
+    ($name:literal, $module:ident, $seed:expr) => {{
+        const N: usize = $module::NV;
+        fn id<T: Real>(s: &([T; N], [T; N], [T; N])) -> [T; N] {
+            $module::inverse_dynamics(&s.0, &s.1, &s.2)
+        }
+        fn mass<T: Real>(q: &[T; N]) -> [[T; N]; N] {
+            $module::mass_matrix(q)
+        }
+        let all = states::<N>($seed, LARGE);
+        let positions: Vec<[f64; N]> = all.iter().map(|s| s.0).collect();
+        let (all, positions) = (&all, &positions);
+        let [mut out, mut out_lanes, mut out_threads] = [(); 3].map(|_| vec![[0.0; N]; LARGE]);
+        report(
+            concat!($name, ", inverse dynamics"),
+            LARGE,
+            vec![
+                Pass(Box::new(move || {
+                    batch::evaluate(black_box(all), &mut out, id::<f64>)
+                })),
+                Pass(Box::new(move || {
+                    batch::evaluate(black_box(all), &mut out_lanes, id::<F64x4>)
+                })),
+                Pass(Box::new(move || {
+                    batch::evaluate_threaded(black_box(all), &mut out_threads, id::<F64x4>, THREADS)
+                })),
+            ],
+        );
+        let [mut out, mut out_lanes, mut out_threads] = [(); 3].map(|_| vec![[[0.0; N]; N]; LARGE]);
+        report(
+            concat!($name, ", mass matrix"),
+            LARGE,
+            vec![
+                Pass(Box::new(move || {
+                    batch::evaluate(black_box(positions), &mut out, mass::<f64>)
+                })),
+                Pass(Box::new(move || {
+                    batch::evaluate(black_box(positions), &mut out_lanes, mass::<F64x4>)
+                })),
+                Pass(Box::new(move || {
+                    batch::evaluate_threaded(
+                        black_box(positions),
+                        &mut out_threads,
+                        mass::<F64x4>,
+                        THREADS,
+                    )
+                })),
+            ],
         );
     }};
 }
@@ -242,4 +304,7 @@ fn main() {
     );
     robot_rows!("UR5", ur5, 81);
     robot_rows!("Panda arm", panda, 82);
+    println!("\n{LARGE} states:\n\n| robot, kernel | f64 | F64x4 | F64x4, {THREADS} threads |\n|---|---:|---:|---:|");
+    large_batch_rows!("UR5", ur5, 83);
+    large_batch_rows!("Panda arm", panda, 84);
 }
