@@ -20,6 +20,8 @@
 mod large;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 mod pair;
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+mod quad;
 
 /// π/2 split into parts of 33 significant bits (the last with its tail), as in fdlibm's
 /// `__ieee754_rem_pio2`.
@@ -133,6 +135,27 @@ pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
                 }
             )*};
         }
+        // With AVX2, four at a time while three or more are left (the last index repeated
+        // to fill a quad), then a pair: a 6-joint arm's angles take one quad and one pair.
+        #[cfg(target_feature = "avx2")]
+        {
+            macro_rules! quads {
+                ($($i:literal)*) => {$(
+                    if $i + 3 <= N {
+                        let at = |k: usize| ($i + k).min(N - 1);
+                        let (s, c, ok) = quad::reduced([x[at(0)], x[at(1)], x[at(2)], x[at(3)]]);
+                        for k in 0..4 {
+                            (sin[at(k)], cos[at(k)]) = (s[k], c[k]);
+                        }
+                        in_range &= ok;
+                    } else {
+                        pairs!($i);
+                    }
+                )*};
+            }
+            quads!(0 4 8 12);
+        }
+        #[cfg(not(target_feature = "avx2"))]
         pairs!(0 2 4 6 8 10 12 14);
         if !in_range {
             return sin_cos_each(x);
@@ -285,6 +308,35 @@ mod tests {
             assert!(s[i].to_bits() == es.to_bits() || (s[i].is_nan() && es.is_nan()));
             assert!(c[i].to_bits() == ec.to_bits() || (c[i].is_nan() && ec.is_nan()));
         }
+    }
+
+    /// Every length up to beyond the unrolled paths (pairs, and with AVX2 quads then a pair,
+    /// the last index repeated), over arguments in every quadrant: each element is the
+    /// scalar result bit for bit, and one argument out of range anywhere still gives it.
+    #[test]
+    fn arrays_of_every_length_give_the_scalar_results_bit_for_bit() {
+        fn check<const N: usize>(seed: u64) {
+            use rand::{Rng, SeedableRng};
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            for round in 0..200 {
+                let mut xs: [f64; N] = core::array::from_fn(|_| rng.gen_range(-10.0..10.0));
+                if round % 10 == 9 {
+                    xs[round % N] = 1e300;
+                }
+                let (s, c) = super::sin_cos_array(&xs);
+                for (i, &x) in xs.iter().enumerate() {
+                    let (es, ec) = sin_cos(x);
+                    assert_eq!(
+                        (s[i].to_bits(), c[i].to_bits()),
+                        (es.to_bits(), ec.to_bits())
+                    );
+                }
+            }
+        }
+        macro_rules! lengths {
+            ($($n:literal)*) => {$( check::<$n>($n); )*};
+        }
+        lengths!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18);
     }
 
     #[test]
