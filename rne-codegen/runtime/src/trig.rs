@@ -109,8 +109,9 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 
 /// `(sin xᵢ, cos xᵢ)` of every element, bit for bit those of [`sin_cos`] (the kernels take
 /// the sines and cosines of all joint angles at once). On x86-64, up to 16 arguments go two
-/// by two through SSE2 (module `pair`) at constant indices, so that they and their results
-/// stay in registers; elsewhere, and for more arguments, a branch-free loop the compiler
+/// by two through SSE2 (module `pair`), or with AVX2 four by four (module `quad`) and the
+/// last one or two as a pair, at constant indices, so that they and their results stay in
+/// registers; elsewhere, and for more arguments, a branch-free loop the compiler
 /// vectorises. An argument out of the fast path's range sends the whole array to a cold
 /// scalar path. Always inlined: as a call, which LLVM chose for AVX2 targets, the results go
 /// through memory and the kernel's first link waits for the call to return — UR5's and the
