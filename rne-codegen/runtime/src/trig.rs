@@ -17,6 +17,37 @@
 // the algorithm needs.
 #![allow(clippy::excessive_precision)]
 
+/// `+`, `−` and `×` of a register type of module `pair` or `quad` (a newtype of the
+/// intrinsics' vector), each one intrinsic.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+macro_rules! register_arithmetic {
+    ($register:ident, $add:ident, $sub:ident, $mul:ident) => {
+        // SAFETY (each block): the module is compiled only for a target with the
+        // intrinsics' instruction set, and they touch no memory.
+        impl core::ops::Add for $register {
+            type Output = $register;
+            #[inline(always)]
+            fn add(self, rhs: $register) -> $register {
+                $register(unsafe { $add(self.0, rhs.0) })
+            }
+        }
+        impl core::ops::Sub for $register {
+            type Output = $register;
+            #[inline(always)]
+            fn sub(self, rhs: $register) -> $register {
+                $register(unsafe { $sub(self.0, rhs.0) })
+            }
+        }
+        impl core::ops::Mul for $register {
+            type Output = $register;
+            #[inline(always)]
+            fn mul(self, rhs: $register) -> $register {
+                $register(unsafe { $mul(self.0, rhs.0) })
+            }
+        }
+    };
+}
+
 mod large;
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 mod pair;
@@ -68,21 +99,35 @@ where
     splat(c[0]) + ((z * splat(c[1]) + z2 * pair(c[2], c[3])) + (z2 * z2) * pair(c[4], c[5]))
 }
 
+/// The arithmetic of the fast path, the same operations in the same order for the scalar,
+/// the SSE2 pairs, the AVX2 quads and the `F64x4` lanes, so that all of them round alike:
+/// `(shifted, k, sin r, cos r)` — `x·2/π` shifted so that its low mantissa bits are the
+/// quadrant, the quadrant number k, and the sine and cosine of the reduced argument
+/// `r = x − k·π/2` (Cody and Waite's three parts) before the quadrant's swap and signs.
+#[inline(always)]
+pub(crate) fn fast_path<T>(x: T, splat: impl Fn(f64) -> T + Copy) -> (T, T, T, T)
+where
+    T: Copy + core::ops::Add<Output = T> + core::ops::Sub<Output = T> + core::ops::Mul<Output = T>,
+{
+    let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
+    let k = shifted - splat(ROUND);
+    let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
+    let z = r * r;
+    let z2 = z * z;
+    let sin = r + r * z * polynomial(z, z2, S, splat);
+    let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
+    (shifted, k, sin, cos)
+}
+
 /// The fast path for one argument (mirrored lane by lane by the `simd` lanes): `(sin x, cos x)` and whether the reduction applies
 /// (|x| < 2²⁰·π/2 and finite). Branch-free — every step is arithmetic or a bit operation —
 /// so that a loop over several arguments vectorises.
 #[inline(always)]
 fn reduced(x: f64) -> (f64, f64, bool) {
-    let shifted = x * FRAC_2_PI + ROUND;
-    let k = shifted - ROUND;
+    let (shifted, k, sin, cos) = fast_path(x, |c| c);
     let in_range = k.abs() < 1_048_576.0;
     // Quadrant k mod 4, from the low bits of the shifted value's mantissa.
     let quadrant = shifted.to_bits() & 3;
-    let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_2T;
-    let z = r * r;
-    let z2 = z * z;
-    let sin = r + r * z * polynomial(z, z2, S, |c| c);
-    let cos = 1.0 - (0.5 * z - z2 * polynomial(z, z2, C, |c| c));
     // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
     // cosine.
     let swap = ((quadrant & 1) as i64).wrapping_neg() as u64;

@@ -5,7 +5,7 @@ use wide::{f64x4, u64x4, CmpLt};
 
 use super::ops::{lane_arithmetic, lane_sign};
 use crate::real::Real;
-use crate::trig::{polynomial, reduce_each, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
+use crate::trig::{fast_path, reduce_each};
 
 /// Four `f64` evaluated together (feature `simd`): a generic kernel called with `F64x4`
 /// computes four states per call.
@@ -79,15 +79,9 @@ impl F64x4 {
     fn reduced(self) -> (F64x4, F64x4, bool) {
         let x = self.0;
         let splat = f64x4::splat;
-        let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
-        let k = shifted - splat(ROUND);
+        let (shifted, k, sin, cos) = fast_path(x, splat);
         let in_range = k.abs().cmp_lt(splat(1_048_576.0)).all();
         let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
-        let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
-        let z = r * r;
-        let z2 = z * z;
-        let sin = r + r * z * polynomial(z, z2, S, splat);
-        let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
         // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
         // cosine (the scalar's bit operations).
         let swap = (quadrant & u64x4::splat(1)).cmp_eq(u64x4::splat(1));

@@ -7,15 +7,13 @@
 //! to the kernel's loads of them), and straight-line scalar code was vectorised together with
 //! the kernel's own arithmetic into wide shuffles; pairs in registers are neither.
 
+use super::fast_path;
 use core::arch::x86_64::{
     __m128d, __m128i, _mm_add_epi64, _mm_add_pd, _mm_and_pd, _mm_and_si128, _mm_andnot_si128,
     _mm_castpd_si128, _mm_castsi128_pd, _mm_cmplt_pd, _mm_cvtsd_f64, _mm_movemask_pd, _mm_mul_pd,
     _mm_or_si128, _mm_set1_epi64x, _mm_set1_pd, _mm_set_pd, _mm_setzero_si128, _mm_slli_epi64,
     _mm_sub_epi64, _mm_sub_pd, _mm_unpackhi_pd, _mm_xor_si128,
 };
-use core::ops::{Add, Mul, Sub};
-
-use super::{polynomial, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
 
 /// Two `f64` in an SSE2 register.
 #[derive(Clone, Copy)]
@@ -44,46 +42,18 @@ impl Pair {
     }
 }
 
-impl Add for Pair {
-    type Output = Pair;
-    #[inline(always)]
-    fn add(self, rhs: Pair) -> Pair {
-        Pair(unsafe { _mm_add_pd(self.0, rhs.0) })
-    }
-}
-
-impl Sub for Pair {
-    type Output = Pair;
-    #[inline(always)]
-    fn sub(self, rhs: Pair) -> Pair {
-        Pair(unsafe { _mm_sub_pd(self.0, rhs.0) })
-    }
-}
-
-impl Mul for Pair {
-    type Output = Pair;
-    #[inline(always)]
-    fn mul(self, rhs: Pair) -> Pair {
-        Pair(unsafe { _mm_mul_pd(self.0, rhs.0) })
-    }
-}
+register_arithmetic!(Pair, _mm_add_pd, _mm_sub_pd, _mm_mul_pd);
 
 /// `((sin a, sin b), (cos a, cos b), both in the fast path's range)`.
 #[inline(always)]
 pub(super) fn reduced(a: f64, b: f64) -> ((f64, f64), (f64, f64), bool) {
     let x = Pair(unsafe { _mm_set_pd(b, a) });
     let splat = Pair::splat;
-    let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
-    let k = shifted - splat(ROUND);
+    let (shifted, k, sin, cos) = fast_path(x, splat);
     let in_range = unsafe {
         let magnitude = _mm_and_pd(k.0, _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX)));
         _mm_movemask_pd(_mm_cmplt_pd(magnitude, _mm_set1_pd(1_048_576.0))) == 3
     };
-    let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
-    let z = r * r;
-    let z2 = z * z;
-    let sin = r + r * z * polynomial(z, z2, S, splat);
-    let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
     let (sin, cos) = unsafe {
         let quadrant = _mm_and_si128(shifted.bits(), _mm_set1_epi64x(3));
         let one = _mm_set1_epi64x(1);

@@ -3,6 +3,7 @@
 //! 256 bits, so each lane is bit for bit the scalar result, and a 6-joint arm's angles take
 //! one quad and one pair instead of three pairs.
 
+use super::fast_path;
 use core::arch::x86_64::{
     __m256d, __m256i, _mm256_add_epi64, _mm256_add_pd, _mm256_and_pd, _mm256_and_si256,
     _mm256_andnot_si256, _mm256_castpd256_pd128, _mm256_castpd_si256, _mm256_castsi256_pd,
@@ -10,9 +11,6 @@ use core::arch::x86_64::{
     _mm256_set1_epi64x, _mm256_set1_pd, _mm256_set_pd, _mm256_setzero_si256, _mm256_slli_epi64,
     _mm256_sub_epi64, _mm256_sub_pd, _mm256_xor_si256, _mm_cvtsd_f64, _mm_unpackhi_pd, _CMP_LT_OS,
 };
-use core::ops::{Add, Mul, Sub};
-
-use super::{polynomial, C, FRAC_2_PI, PIO2_1, PIO2_2, PIO2_2T, ROUND, S};
 
 /// Four `f64` in an AVX register.
 #[derive(Clone, Copy)]
@@ -47,29 +45,7 @@ impl Quad {
     }
 }
 
-impl Add for Quad {
-    type Output = Quad;
-    #[inline(always)]
-    fn add(self, rhs: Quad) -> Quad {
-        Quad(unsafe { _mm256_add_pd(self.0, rhs.0) })
-    }
-}
-
-impl Sub for Quad {
-    type Output = Quad;
-    #[inline(always)]
-    fn sub(self, rhs: Quad) -> Quad {
-        Quad(unsafe { _mm256_sub_pd(self.0, rhs.0) })
-    }
-}
-
-impl Mul for Quad {
-    type Output = Quad;
-    #[inline(always)]
-    fn mul(self, rhs: Quad) -> Quad {
-        Quad(unsafe { _mm256_mul_pd(self.0, rhs.0) })
-    }
-}
+register_arithmetic!(Quad, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd);
 
 /// `(sin xᵢ, cos xᵢ)` of the four arguments and whether all four are in the fast path's
 /// range.
@@ -77,8 +53,7 @@ impl Mul for Quad {
 pub(super) fn reduced(x: [f64; 4]) -> ([f64; 4], [f64; 4], bool) {
     let x = Quad(unsafe { _mm256_set_pd(x[3], x[2], x[1], x[0]) });
     let splat = Quad::splat;
-    let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
-    let k = shifted - splat(ROUND);
+    let (shifted, k, sin, cos) = fast_path(x, splat);
     let in_range = unsafe {
         let magnitude = _mm256_and_pd(k.0, _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX)));
         _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OS>(
@@ -86,11 +61,6 @@ pub(super) fn reduced(x: [f64; 4]) -> ([f64; 4], [f64; 4], bool) {
             _mm256_set1_pd(1_048_576.0),
         )) == 15
     };
-    let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
-    let z = r * r;
-    let z2 = z * z;
-    let sin = r + r * z * polynomial(z, z2, S, splat);
-    let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
     let (sin, cos) = unsafe {
         let quadrant = _mm256_and_si256(shifted.bits(), _mm256_set1_epi64x(3));
         let one = _mm256_set1_epi64x(1);
