@@ -54,6 +54,7 @@ fn run(program: &Program, dynamics: &SymbolicDynamics, s: &State) -> Vec<f64> {
         Symbol::Acceleration(k) => s.a[k as usize],
         Symbol::Force(k) => s.u[k as usize],
         p @ Symbol::Parameter(_) => dynamics.model.parameter_value(p).unwrap_or(f64::NAN),
+        Symbol::Lane(_) => f64::NAN,
     })
 }
 

@@ -26,6 +26,15 @@ rne_codegen::derive_dynamics! {
 }
 
 rne_codegen::derive_dynamics! {
+    /// UR5's derivatives built in lanes.
+    mod ur5_lanes {
+        robot: "fixtures/robots/ur5.urdf",
+        outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives],
+        derivatives: lanes,
+    }
+}
+
+rne_codegen::derive_dynamics! {
     /// The floating hopper's derivatives and kinematics.
     mod hopper {
         robot: "fixtures/robots/hopper-floating.toml",
@@ -67,6 +76,11 @@ fn flat<const R: usize, const C: usize>(m: &[[f64; C]; R]) -> Vec<f64> {
 
 /// `kernel`'s program for `model` with the frames given, evaluated in f64.
 fn program(model: &RobotModel, kernel: Kernel, frames: &[&str]) -> Program {
+    program_with(model, kernel, frames, false)
+}
+
+/// [`program`], the derivatives built in lanes when `lanes` is set (`derivatives: lanes`).
+fn program_with(model: &RobotModel, kernel: Kernel, frames: &[&str], lanes: bool) -> Program {
     let dynamics = SymbolicDynamics::new(model);
     let scene = Scene {
         frames: Some(frames.iter().map(|f| (*f).to_owned()).collect()),
@@ -74,6 +88,7 @@ fn program(model: &RobotModel, kernel: Kernel, frames: &[&str]) -> Program {
     };
     let setup = KernelSetup {
         frames: scene.frame_indices(dynamics.frames()).unwrap(),
+        derivative_lanes: lanes,
         ..KernelSetup::new(&dynamics, &[kernel])
     };
     build_kernel_with(&dynamics, kernel, &setup).program
@@ -127,6 +142,49 @@ fn emitted_control_kernels_compute_exactly_their_programs() {
         assert_eq!(bits(jd), bits(eval(&jdot, &q, &v, &a)), "J̇q̇");
         let y = flat(&ur5::regressor(&q, &v, &a));
         assert_eq!(bits(y), bits(eval(&regressor, &q, &v, &a)), "Y");
+    }
+}
+
+/// With `derivatives: lanes`, the emitted derivatives compute four directions per vector
+/// instruction and still give their programs' bits — programs that do compute with lanes,
+/// and fewer instructions than the scalar sweeps'. A free-flyer's derivatives are not built
+/// in lanes (its tangent directions mix the partials of several symbols).
+#[test]
+fn derivatives_in_lanes_compute_exactly_their_programs() {
+    let model = fixture("ur5.urdf");
+    let dq = program_with(&model, Kernel::InverseDynamicsDerivatives, &[], true);
+    let dfd = program_with(&model, Kernel::ForwardDynamicsDerivatives, &[], true);
+    for (lanes, kernel) in [
+        (&dq, Kernel::InverseDynamicsDerivatives),
+        (&dfd, Kernel::ForwardDynamicsDerivatives),
+    ] {
+        let scalar = program(&model, kernel, &[]);
+        assert!(lanes.has_lanes(), "{kernel} computes with lanes");
+        assert!(
+            lanes.instrs.len() < scalar.instrs.len(),
+            "{kernel}: {} instructions in lanes, {} without",
+            lanes.instrs.len(),
+            scalar.instrs.len()
+        );
+    }
+    let hopper = fixture("hopper-floating.toml");
+    let floating = program_with(&hopper, Kernel::InverseDynamicsDerivatives, &[], true);
+    assert!(
+        !floating.has_lanes(),
+        "a free-flyer's derivatives are built without lanes"
+    );
+    let mut random = rng(0x5eed_1a7e);
+    for _ in 0..200 {
+        let q: [f64; 6] = uniform(&mut random, 6, 3.0).try_into().unwrap();
+        let v: [f64; 6] = uniform(&mut random, 6, 2.0).try_into().unwrap();
+        let a: [f64; 6] = uniform(&mut random, 6, 5.0).try_into().unwrap();
+        let bits = |x: Vec<f64>| x.iter().map(|v| v.to_bits()).collect::<Vec<u64>>();
+        let (dtau_dq, dtau_dv) = ur5_lanes::inverse_dynamics_derivatives(&q, &v, &a);
+        let emitted = [flat(&dtau_dq), flat(&dtau_dv)].concat();
+        assert_eq!(bits(emitted), bits(eval(&dq, &q, &v, &a)), "∂τ");
+        let (dqdd_dq, dqdd_dv, minv) = ur5_lanes::forward_dynamics_derivatives(&q, &v, &a);
+        let emitted = [flat(&dqdd_dq), flat(&dqdd_dv), flat(&minv)].concat();
+        assert_eq!(bits(emitted), bits(eval(&dfd, &q, &v, &a)), "∂q̈");
     }
 }
 

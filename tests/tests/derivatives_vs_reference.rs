@@ -29,8 +29,13 @@ struct Kernels {
 }
 
 impl Kernels {
-    fn new(dynamics: SymbolicDynamics, kernels: &[Kernel]) -> Kernels {
-        let setup = KernelSetup::new(&dynamics, kernels);
+    /// The programs of `kernels`, the derivatives built in lanes when `lanes` is set (as
+    /// `derivatives: lanes` builds them; a free-flyer's are built without either way).
+    fn new(dynamics: SymbolicDynamics, kernels: &[Kernel], lanes: bool) -> Kernels {
+        let setup = KernelSetup {
+            derivative_lanes: lanes,
+            ..KernelSetup::new(&dynamics, kernels)
+        };
         let programs = kernels
             .iter()
             .map(|&k| (k, build_kernel_with(&dynamics, k, &setup).program))
@@ -52,6 +57,7 @@ impl Kernels {
             Symbol::Acceleration(k) => a[k as usize],
             Symbol::Force(k) => u[k as usize],
             Symbol::Parameter(_) => T::from_f64(model.parameter_value(s).unwrap()),
+            Symbol::Lane(_) => unreachable!("`Program::eval` gives a lane its value"),
         })
     }
 
@@ -105,9 +111,9 @@ fn derivative_kernels_agree_with_the_reference_on_every_builtin_robot() {
         Kernel::MassMatrixInverse,
         Kernel::MassMatrix,
     ];
-    for robot in BUILTIN_ROBOTS {
+    for (robot, lanes) in BUILTIN_ROBOTS.iter().flat_map(|r| [(r, false), (r, true)]) {
         let model = scene_model(robot);
-        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels);
+        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels, lanes);
         let mut reference = Reference::new(&model.to_numeric());
         let n = reference.nv();
         let mut random = rng(0x5eed_d0d0);
@@ -149,7 +155,7 @@ fn derivative_kernels_agree_with_the_reference_on_every_builtin_robot() {
         for ((name, error), bar) in names.iter().zip(worst).zip(bars) {
             assert!(
                 error <= bar,
-                "{}: {name} error {error:e} exceeds {bar:e}",
+                "{} (lanes: {lanes}): {name} error {error:e} exceeds {bar:e}",
                 robot.name
             );
         }
@@ -198,9 +204,9 @@ fn derivative_kernels_agree_with_double_double_central_differences() {
         Kernel::InverseDynamicsDerivatives,
         Kernel::ForwardDynamicsDerivatives,
     ];
-    for robot in BUILTIN_ROBOTS {
+    for (robot, lanes) in BUILTIN_ROBOTS.iter().flat_map(|r| [(r, false), (r, true)]) {
         let model = scene_model(robot);
-        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels);
+        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels, lanes);
         let n = model.state_layout().nv();
         let mut random = rng(0x5eed_d0d1);
         for _ in 0..20 {
@@ -220,7 +226,8 @@ fn derivative_kernels_agree_with_double_double_central_differences() {
                 let error = scaled_error(generated, &expected, 1e-300);
                 assert!(
                     error <= 1e-8,
-                    "{}: {name} differs from double-double central differences by {error:e}",
+                    "{} (lanes: {lanes}): {name} differs from double-double central \
+                     differences by {error:e}",
                     robot.name
                 );
             }
@@ -237,7 +244,7 @@ fn kinematics_kernels_agree_with_the_reference_on_every_builtin_robot() {
     ];
     for robot in BUILTIN_ROBOTS {
         let model = scene_model(robot);
-        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels);
+        let programs = Kernels::new(SymbolicDynamics::new(&model), &kernels, false);
         let mut reference = Reference::new(&model.to_numeric());
         let n = reference.nv();
         // The generator's frames (every link of the file) by name in the reference's links.
@@ -298,7 +305,7 @@ fn regressor_kernels_agree_with_the_reference_and_reproduce_the_torques() {
         let model = scene_model(robot);
         let dynamics = SymbolicDynamics::new(&model);
         let names = dynamics.parameter_names();
-        let programs = Kernels::new(dynamics, &kernels);
+        let programs = Kernels::new(dynamics, &kernels, false);
         let mut reference = Reference::new(&model.to_numeric());
         assert_eq!(
             names,

@@ -127,6 +127,7 @@ fn eval(d: &SymbolicDynamics, ids: &[Id], s: &State) -> Vec<f64> {
         Symbol::Acceleration(k) => s.a[k as usize],
         Symbol::Force(k) => s.u[k as usize],
         Symbol::Parameter(_) => d.model.parameter_value(sym).unwrap_or(f64::NAN),
+        Symbol::Lane(_) => f64::NAN,
     })
 }
 

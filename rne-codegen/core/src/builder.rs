@@ -78,6 +78,13 @@ impl Builder {
         self
     }
 
+    /// The derivative kernels built in lanes (the macro's `derivatives: lanes`;
+    /// [`Scene::derivative_lanes`]).
+    pub fn derivative_lanes(mut self, lanes: bool) -> Builder {
+        self.scene.derivative_lanes = lanes;
+        self
+    }
+
     /// Fused multiply-add in the kernels (the macro's `fma: true`; [`Scene::fma`]).
     pub fn fma(mut self, fused: bool) -> Builder {
         self.scene.fma = fused;

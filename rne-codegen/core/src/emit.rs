@@ -23,6 +23,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 use proc_macro2::{Ident, Span, TokenStream};
+use rne_symbolic::dynamics::LANES;
 use rne_symbolic::{Symbol, SymbolTable};
 
 use crate::dispatch::{dispatching_body, DISPATCH_FROM};
@@ -83,6 +84,9 @@ struct Emitter<'a> {
     reads_standard: bool,
     /// `<path to the runtime>::Real`.
     real: String,
+    /// Whether each instruction's result is a vector ([`Program::vector_results`]), written
+    /// as the runtime's `F64x4`.
+    vector: Vec<bool>,
 }
 
 impl Emitter<'_> {
@@ -128,6 +132,18 @@ impl Emitter<'_> {
             Symbol::Velocity(k) => element("qd", k),
             Symbol::Acceleration(k) => element("qdd", k),
             Symbol::Force(k) => element("tau", k),
+            Symbol::Lane(l) => {
+                let unit: Vec<&str> = (0..LANES)
+                    .map(|k| if k == usize::from(l) { "1.0" } else { "0.0" })
+                    .collect();
+                write!(
+                    out,
+                    "{}::F64x4::new([{}])",
+                    self.ctx.runtime,
+                    unit.join(", ")
+                )
+                .expect("writing to a String");
+            }
             Symbol::Parameter(i) if self.reads_standard => element("standard", i),
             Symbol::Parameter(i) => {
                 let field = &self.ctx.fields[usize::from(i)];
@@ -157,7 +173,7 @@ impl Emitter<'_> {
     fn precedence(&self, o: Operand) -> Precedence {
         match o {
             Operand::Const(c) if c.is_sign_negative() && !c.is_nan() => Precedence::Unary,
-            Operand::Const(_) | Operand::Input(_) => Precedence::Atom,
+            Operand::Const(_) | Operand::Input(_) | Operand::Lane { .. } => Precedence::Atom,
             Operand::Temp(t) if self.names[t as usize].is_some() => Precedence::Atom,
             Operand::Temp(t) => {
                 let instr = self.program.instrs[t as usize];
@@ -186,8 +202,35 @@ impl Emitter<'_> {
                     out.push('t');
                     push_number(out, n);
                 }
-                None => self.write_instr(self.program.instrs[t as usize], out),
+                None => self.write_instr(t as usize, out),
             },
+            Operand::Lane { temp, lane } => {
+                self.write_at_least(Operand::Temp(temp), Precedence::Atom, out);
+                write!(out, ".to_array()[{lane}]").expect("writing to a String");
+            }
+        }
+    }
+
+    /// Whether `o` is a vector ([`Program::vector_results`]).
+    fn is_vector(&self, o: Operand) -> bool {
+        match o {
+            Operand::Temp(t) => self.vector[t as usize],
+            Operand::Input(Symbol::Lane(_)) => true,
+            Operand::Const(_) | Operand::Input(_) | Operand::Lane { .. } => false,
+        }
+    }
+
+    /// `o` as an operand of an instruction whose result is a vector when `vector` is set (a
+    /// scalar then broadcast to every lane with `F64x4::splat`), else as [`write_at_least`].
+    ///
+    /// [`write_at_least`]: Self::write_at_least
+    fn write_in(&self, o: Operand, vector: bool, min: Precedence, out: &mut String) {
+        if vector && !self.is_vector(o) {
+            write!(out, "{}::F64x4::splat(", self.ctx.runtime).expect("writing to a String");
+            self.write(o, out);
+            out.push(')');
+        } else {
+            self.write_at_least(o, min, out);
         }
     }
 
@@ -213,7 +256,9 @@ impl Emitter<'_> {
     /// `sqrt` and `sign` go through the runtime's `Real` for every scalar type, so that `f64`
     /// kernels get the fast, accurate runtime `sin_cos` and no kernel needs `std`; so does
     /// `mul_add` (`fma: true`), whose variants fold a negated product or addend.
-    fn write_call(&self, method: &str, args: &[(Operand, bool)], out: &mut String) {
+    ///
+    /// With `vector` set, the call's value is a vector and so is every argument.
+    fn write_call(&self, method: &str, args: &[(Operand, bool)], vector: bool, out: &mut String) {
         write!(out, "{}::{method}(", self.real).expect("writing to a String");
         for (k, &(a, negated)) in args.iter().enumerate() {
             if k > 0 {
@@ -221,15 +266,17 @@ impl Emitter<'_> {
             }
             if negated {
                 out.push('-');
-                self.write_at_least(a, Precedence::Unary, out);
+                self.write_in(a, vector, Precedence::Unary, out);
             } else {
-                self.write(a, out);
+                self.write_in(a, vector, Precedence::Sum, out);
             }
         }
         out.push(')');
     }
 
-    fn write_instr(&self, instr: Instr, out: &mut String) {
+    /// Instruction `t` written out.
+    fn write_instr(&self, t: usize, out: &mut String) {
+        let (instr, vector) = (self.program.instrs[t], self.vector[t]);
         if let Some(name) = self.joint_trig(instr) {
             write!(out, "{name}").expect("writing to a String");
             return;
@@ -237,9 +284,9 @@ impl Emitter<'_> {
         use Precedence::*;
         // A space on both sides of the operator: `a - -b` must not lex as anything else.
         let mut binary = |a: Operand, op: &str, b: Operand, left: Precedence, right: Precedence| {
-            self.write_at_least(a, left, out);
+            self.write_in(a, vector, left, out);
             out.push_str(op);
-            self.write_at_least(b, right, out);
+            self.write_in(b, vector, right, out);
         };
         match instr {
             Instr::Add(a, b) => binary(a, " + ", b, Sum, Product),
@@ -248,20 +295,23 @@ impl Emitter<'_> {
             Instr::Div(a, b) => binary(a, " / ", b, Product, Unary),
             Instr::Neg(a) => {
                 out.push('-');
-                self.write_at_least(a, Unary, out);
+                self.write_in(a, vector, Unary, out);
             }
-            Instr::Sin(a) => self.write_call("sin", &[(a, false)], out),
-            Instr::Cos(a) => self.write_call("cos", &[(a, false)], out),
-            Instr::Sqrt(a) => self.write_call("sqrt", &[(a, false)], out),
-            Instr::Sign(a) => self.write_call("sign", &[(a, false)], out),
-            Instr::MulAdd(a, b, c) => {
-                self.write_call("mul_add", &[(a, false), (b, false), (c, false)], out)
-            }
+            Instr::Sin(a) => self.write_call("sin", &[(a, false)], vector, out),
+            Instr::Cos(a) => self.write_call("cos", &[(a, false)], vector, out),
+            Instr::Sqrt(a) => self.write_call("sqrt", &[(a, false)], vector, out),
+            Instr::Sign(a) => self.write_call("sign", &[(a, false)], vector, out),
+            Instr::MulAdd(a, b, c) => self.write_call(
+                "mul_add",
+                &[(a, false), (b, false), (c, false)],
+                vector,
+                out,
+            ),
             Instr::MulSub(a, b, c) => {
-                self.write_call("mul_add", &[(a, false), (b, false), (c, true)], out)
+                self.write_call("mul_add", &[(a, false), (b, false), (c, true)], vector, out)
             }
             Instr::NegMulAdd(a, b, c) => {
-                self.write_call("mul_add", &[(a, true), (b, false), (c, false)], out)
+                self.write_call("mul_add", &[(a, true), (b, false), (c, false)], vector, out)
             }
         }
     }
@@ -408,6 +458,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         trig: BTreeMap::new(),
         reads_standard: kernel.inputs().contains(&Input::Standard),
         real: format!("{}::Real", ctx.runtime),
+        vector: program.vector_results(),
     };
     let mut prologue = vec![false; program.instrs.len()];
     let mut next = 0u32;
@@ -502,7 +553,7 @@ impl Emitter<'_> {
         out.push_str("let t");
         push_number(out, n);
         out.push_str(" = ");
-        self.write_instr(self.program.instrs[t], out);
+        self.write_instr(t, out);
         out.push_str(";\n");
     }
 

@@ -18,6 +18,9 @@ pub struct KernelSetup {
     /// Whether `forward_dynamics` is built by the articulated-body algorithm (where the model
     /// allows it) rather than the LᵀDL factorisation of M.
     pub articulated: bool,
+    /// Whether the derivative kernels are built in lanes where the model allows it (fixed
+    /// base; the `derivatives: lanes` setting, [`crate::Scene::derivative_lanes`]).
+    pub derivative_lanes: bool,
 }
 
 impl KernelSetup {
@@ -32,6 +35,7 @@ impl KernelSetup {
                 .any(|k| matches!(k, Kernel::BaseRegressor | Kernel::BaseParameters))
                 .then(|| dynamics.base_parameters()),
             articulated: false,
+            derivative_lanes: false,
         }
     }
 }

@@ -75,7 +75,7 @@ impl Program {
     pub fn critical_path(&self) -> u32 {
         let mut ready: Vec<u32> = Vec::with_capacity(self.instrs.len());
         let at = |o: Operand, ready: &[u32]| match o {
-            Operand::Temp(t) => ready[t as usize],
+            Operand::Temp(t) | Operand::Lane { temp: t, .. } => ready[t as usize],
             Operand::Const(_) | Operand::Input(_) => 0,
         };
         for &instr in &self.instrs {

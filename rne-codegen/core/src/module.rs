@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
+use rne_symbolic::dynamics::Direction;
 use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_fields, EmitContext};
@@ -16,7 +17,8 @@ use crate::linear::distribute_constants;
 use crate::model_type::ModelType;
 use crate::params::{base_params, spec_params};
 use crate::program::Program;
-use crate::scene::{ForwardDynamicsMethod, ParameterMode, Scene};
+use crate::scene::{ForwardDynamicsMethod, ParameterMode, ScalarType, Scene};
+use crate::split::SPLIT_ABOVE;
 
 /// What was generated for one kernel.
 #[derive(Clone, Debug, PartialEq)]
@@ -83,7 +85,8 @@ pub struct ForwardDynamicsChoice {
 pub struct BuiltKernel {
     /// The dynamics whose graph holds this kernel's expressions and nothing of other kernels.
     pub dynamics: SymbolicDynamics,
-    /// The kernel's outputs as built (flattened row-major for matrices), before optimisation.
+    /// The kernel's outputs as built (flattened row-major for matrices), before optimisation;
+    /// for a kernel built in lanes, the vectors that carry them.
     pub roots: Vec<Id>,
     /// The optimised straight-line program: the outputs with their linear combinations
     /// rewritten ([`distribute_constants`]), lowered ([`Program::lower`]). This is exactly what
@@ -106,6 +109,11 @@ pub fn build_kernel_with(
     kernel: Kernel,
     setup: &KernelSetup,
 ) -> BuiltKernel {
+    if setup.derivative_lanes {
+        if let Some(built) = build_in_lanes(dynamics, kernel) {
+            return built;
+        }
+    }
     let mut dynamics = dynamics.clone();
     let roots = build_outputs(kernel, &mut dynamics, setup);
     let nv = dynamics.layout().nv();
@@ -128,6 +136,70 @@ pub fn build_kernel_with(
         roots,
         program,
     }
+}
+
+/// A derivative kernel built in lanes ([`rne_symbolic::dynamics::LanePartials`]), its program returning each
+/// derivative from the lane that carries it ([`Program::pick_lanes`]); its roots are the
+/// vectors. `None` for another kernel, a model with a free-flyer, or a program long enough to
+/// be split (module `split` passes values between parts in scalar slots).
+fn build_in_lanes(dynamics: &SymbolicDynamics, kernel: Kernel) -> Option<BuiltKernel> {
+    let mut dynamics = dynamics.clone();
+    let (partials, inverse) = match kernel {
+        Kernel::InverseDynamicsDerivatives => (dynamics.inverse_dynamics_derivative_lanes()?, None),
+        Kernel::ForwardDynamicsDerivatives => {
+            let (partials, inverse) = dynamics.forward_dynamics_derivative_lanes()?;
+            (partials, Some(inverse))
+        }
+        _ => return None,
+    };
+    let nv = dynamics.layout().nv();
+    let groups = partials.groups.len();
+    let carrier = |direction: Direction| -> (usize, u8) {
+        partials
+            .groups
+            .iter()
+            .enumerate()
+            .find_map(|(g, group)| {
+                let lane = group.iter().position(|&d| d == direction)?;
+                Some((g, lane as u8))
+            })
+            .expect("every direction has a lane")
+    };
+    // ∂/∂q then ∂/∂q̇, row-major: entry (i, j) is lane l of row i's vector of group g.
+    let mut picks: Vec<(usize, u8)> = Vec::with_capacity(2 * nv * nv + nv * nv);
+    for direction in [
+        Direction::Position as fn(usize) -> Direction,
+        Direction::Velocity,
+    ] {
+        for i in 0..nv {
+            for j in 0..nv {
+                let (g, lane) = carrier(direction(j));
+                picks.push((i * groups + g, lane));
+            }
+        }
+    }
+    let vectors = partials.rows.concat();
+    let graph = &mut dynamics.model.graph;
+    let outputs = match &inverse {
+        // M⁻¹ rewritten on its own first, as in `build_kernel_with`.
+        Some(inverse) => {
+            let inverse = distribute_constants(graph, &inverse.concat());
+            let derivatives = distribute_constants(graph, &vectors);
+            picks.extend((0..inverse.len()).map(|k| (derivatives.len() + k, 0)));
+            [derivatives, inverse].concat()
+        }
+        None => distribute_constants(graph, &vectors),
+    };
+    let program = Program::lower(graph, &outputs).pick_lanes(&picks);
+    if program.instrs.len() > SPLIT_ABOVE {
+        return None;
+    }
+    let roots = [vectors, inverse.map(|m| m.concat()).unwrap_or_default()].concat();
+    Some(BuiltKernel {
+        dynamics,
+        roots,
+        program,
+    })
 }
 
 /// The optimised straight-line program of one kernel ([`build_kernel`]).
@@ -193,6 +265,7 @@ pub fn generate(
         frames: scene.frame_indices(dynamics.frames())?,
         base_parameters: base_mode.clone(),
         articulated: false,
+        derivative_lanes: scene.derivative_lanes && scene.scalar == ScalarType::F64,
     };
     // Found from the regressor at many states when a kernel reads them (and `parameters: base`
     // has not found them already).

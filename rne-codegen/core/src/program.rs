@@ -20,6 +20,24 @@ pub enum Operand {
     Const(f64),
     /// A joint variable or a runtime parameter.
     Input(Symbol),
+    /// Lane `lane` of the vector result of instruction `temp` (an output of a program whose
+    /// values read [`Symbol::Lane`]: [`Program::pick_lanes`]).
+    Lane {
+        /// The instruction.
+        temp: u32,
+        /// The lane.
+        lane: u8,
+    },
+}
+
+impl Operand {
+    /// The instruction whose result this operand reads, if any.
+    pub fn temp(self) -> Option<u32> {
+        match self {
+            Operand::Temp(t) | Operand::Lane { temp: t, .. } => Some(t),
+            Operand::Const(_) | Operand::Input(_) => None,
+        }
+    }
 }
 
 /// One operation.
@@ -158,10 +176,7 @@ impl Program {
         // When each instruction's value is ready in the fused program (a fused product's
         // entry is never read).
         let mut ready: Vec<u32> = Vec::with_capacity(self.instrs.len());
-        let at = |o: Operand, ready: &[u32]| match o {
-            Operand::Temp(t) => ready[t as usize],
-            Operand::Const(_) | Operand::Input(_) => 0,
-        };
+        let at = |o: Operand, ready: &[u32]| o.temp().map_or(0, |t| ready[t as usize]);
         let mut fused: Vec<Option<Instr>> = self.instrs.iter().map(|&i| Some(i)).collect();
         for (k, instr) in self.instrs.iter().enumerate() {
             let sum = |x: Operand, y: Operand, ready: &[u32]| {
@@ -210,6 +225,10 @@ impl Program {
         let mut program = Program::default();
         let renumber = |o: Operand, index: &[u32]| match o {
             Operand::Temp(t) => Operand::Temp(index[t as usize]),
+            Operand::Lane { temp, lane } => Operand::Lane {
+                temp: index[temp as usize],
+                lane,
+            },
             other => other,
         };
         for instr in fused {
@@ -271,21 +290,83 @@ impl Program {
             .iter()
             .flat_map(Instr::operands)
             .chain(self.outputs.iter().copied());
-        for operand in operands {
-            if let Operand::Temp(t) = operand {
-                uses[t as usize] += 1;
-            }
+        for t in operands.filter_map(Operand::temp) {
+            uses[t as usize] += 1;
         }
         uses
     }
 
+    /// Whether each instruction's result is a vector: it reads a [`Symbol::Lane`] or another
+    /// vector result. The others are scalars, the same in every lane.
+    pub fn vector_results(&self) -> Vec<bool> {
+        let mut vector: Vec<bool> = Vec::with_capacity(self.instrs.len());
+        for instr in &self.instrs {
+            let reads_vector = instr.operands().any(|o| match o {
+                Operand::Input(Symbol::Lane(_)) => true,
+                other => other.temp().is_some_and(|t| vector[t as usize]),
+            });
+            vector.push(reads_vector);
+        }
+        vector
+    }
+
+    /// Whether the program computes with vectors ([`Program::vector_results`]).
+    pub fn has_lanes(&self) -> bool {
+        self.instrs
+            .iter()
+            .flat_map(Instr::operands)
+            .any(|o| matches!(o, Operand::Input(Symbol::Lane(_))))
+    }
+
+    /// The program whose outputs are `picks`, each (output `k` of this program, lane `l`):
+    /// lane l of that output where it is a vector, the output itself where it is the same in
+    /// every lane. How a kernel built in lanes ([`rne_symbolic::dynamics::LanePartials`])
+    /// returns each derivative from the vector that carries it.
+    pub fn pick_lanes(mut self, picks: &[(usize, u8)]) -> Program {
+        let vector = self.vector_results();
+        self.outputs = picks
+            .iter()
+            .map(|&(k, lane)| match self.outputs[k] {
+                Operand::Temp(temp) if vector[temp as usize] => Operand::Lane { temp, lane },
+                other => other,
+            })
+            .collect();
+        self
+    }
+
     /// Evaluates the program in any [`Real`] scalar, operation by operation as the emitted Rust
-    /// does — in `f64` the results are bit-for-bit those of the generated function.
+    /// does — in `f64` the results are bit-for-bit those of the generated function. A program
+    /// with lanes is evaluated once per lane its outputs pick, [`Symbol::Lane`] reading 1 in
+    /// its own lane and 0 in the others, as the emitted vectors do lane by lane.
     pub fn eval<T: Real>(&self, input: impl Fn(Symbol) -> T) -> Vec<T> {
+        if !self.has_lanes() {
+            return self.eval_lane(&input, 0);
+        }
+        let lanes = (0..=u8::MAX).take_while(|&l| {
+            l == 0
+                || self
+                    .outputs
+                    .iter()
+                    .any(|o| matches!(*o, Operand::Lane { lane, .. } if lane >= l))
+        });
+        let by_lane: Vec<Vec<T>> = lanes.map(|l| self.eval_lane(&input, l)).collect();
+        (0..self.outputs.len())
+            .map(|k| match self.outputs[k] {
+                Operand::Lane { lane, .. } => by_lane[lane as usize][k],
+                _ => by_lane[0][k],
+            })
+            .collect()
+    }
+
+    /// The outputs in lane `lane` (an output picking a lane is read in this one).
+    fn eval_lane<T: Real>(&self, input: &impl Fn(Symbol) -> T, lane: u8) -> Vec<T> {
         let mut temps: Vec<T> = Vec::with_capacity(self.instrs.len());
         let value = |o: Operand, temps: &[T]| match o {
-            Operand::Temp(t) => temps[t as usize],
+            Operand::Temp(t) | Operand::Lane { temp: t, .. } => temps[t as usize],
             Operand::Const(c) => T::from_f64(c),
+            Operand::Input(Symbol::Lane(l)) => {
+                T::from_f64(f64::from(u8::from(l == u16::from(lane))))
+            }
             Operand::Input(s) => input(s),
         };
         for instr in &self.instrs {
@@ -326,6 +407,29 @@ mod tests {
             Symbol::Position(k) => point[k as usize],
             _ => f64::NAN,
         }
+    }
+
+    /// A program reading lane seeds computes vectors: `x·e₀ + y·e₁` is (x, y, 0, 0), and its
+    /// outputs pick lanes of it; a value the same in every lane (`x·y`) is not a vector and
+    /// is returned whole, whichever lane is picked.
+    #[test]
+    fn lanes_of_vector_results_are_picked_and_scalars_stay_whole() {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y"]));
+        let (x, y) = (g.symbol(Symbol::Position(0)), g.symbol(Symbol::Position(1)));
+        let (e0, e1) = (g.symbol(Symbol::Lane(0)), g.symbol(Symbol::Lane(1)));
+        let (xe0, ye1) = (g.mul(x, e0), g.mul(y, e1));
+        let vector = g.add(xe0, ye1);
+        let scalar = g.mul(x, y);
+        let program = Program::lower(&g, &[vector, scalar]);
+        assert_eq!(program.vector_results(), vec![true, true, true, false]);
+        let picked = program.pick_lanes(&[(0, 0), (0, 1), (0, 2), (1, 3)]);
+        assert!(picked.has_lanes());
+        assert!(matches!(picked.outputs[1], Operand::Lane { lane: 1, .. }));
+        assert!(matches!(picked.outputs[3], Operand::Temp(3)));
+        assert_eq!(
+            picked.eval(at([3.0, -2.0, 0.0])),
+            vec![3.0, -2.0, 0.0, -6.0]
+        );
     }
 
     /// `a·b + c`, `a·b − c` and `c − a·b` each become one fused instruction; counts stay.

@@ -79,6 +79,11 @@ pub struct Scene {
     /// where the target has FMA (e.g. `-C target-cpu=native`); elsewhere the same two
     /// operations as without.
     pub fma: bool,
+    /// The derivative kernels built in lanes (`derivatives: lanes`): their forward sweeps
+    /// carry four directions at a time in the runtime's `F64x4`, one vector instruction for
+    /// four derivatives (`rne_symbolic::dynamics::LanePartials`). Needs rne-codegen's feature
+    /// `simd`; applies to `f64` kernels of a fixed base (the others are built as without).
+    pub derivative_lanes: bool,
 }
 
 /// The algorithm of the `forward_dynamics` kernel.
@@ -124,6 +129,7 @@ impl Default for Scene {
             forward_dynamics: ForwardDynamicsMethod::Auto,
             strict: false,
             fma: false,
+            derivative_lanes: false,
         }
     }
 }

@@ -28,7 +28,7 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
-const KEYS: [&str; 15] = [
+const KEYS: [&str; 16] = [
     "robot",
     "outputs",
     "gravity",
@@ -43,6 +43,7 @@ const KEYS: [&str; 15] = [
     "scalar",
     "validation",
     "fma",
+    "derivatives",
     "crate",
 ];
 
@@ -254,6 +255,17 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
                     format!("unknown fma `{other}`; expected `true` or `false`"),
                 ),
             },
+            ("derivatives", Value::Ident(mode)) => match mode.to_string().as_str() {
+                "lanes" => scene.derivative_lanes = true,
+                "scalar" => scene.derivative_lanes = false,
+                other => errors.push(
+                    mode.span(),
+                    format!(
+                        "unknown derivatives `{other}`; expected `lanes` (four directions per \
+                         vector instruction, needs rne-codegen's feature `simd`) or `scalar`"
+                    ),
+                ),
+            },
             ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
             (key, value) => errors.push(value_span(value), expected_shape(key)),
         }
@@ -304,6 +316,7 @@ fn expected_shape(key: &str) -> String {
         "parameters" => "expected `constant`, `runtime` or `base`".into(),
         "validation" => "expected `warn` or `strict`".into(),
         "fma" => "expected `true` or `false`".into(),
+        "derivatives" => "expected `lanes` or `scalar`".into(),
         "crate" => {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }

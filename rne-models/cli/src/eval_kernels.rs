@@ -101,6 +101,8 @@ pub fn symbolic(
             Symbol::Acceleration(k) => state.qdd[k as usize],
             Symbol::Force(k) => state.tau[k as usize],
             Symbol::Parameter(_) => model.parameter_value(s).unwrap_or(f64::NAN),
+            // Given its lane's value by `Program::eval`.
+            Symbol::Lane(_) => f64::NAN,
         })
     };
     let nn = nv * nv;

@@ -27,6 +27,10 @@ pub struct StatsArgs {
     /// multiplication and an addition), a shorter critical path.
     #[arg(long)]
     pub fma: bool,
+    /// The derivative kernels built in lanes (the macro's `derivatives: lanes`): their counts
+    /// are of instructions, a vector instruction counting once for its four lanes.
+    #[arg(long)]
+    pub lanes: bool,
 }
 
 /// The macro's `parameters:` setting.
@@ -54,6 +58,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             Parameters::Base => ParameterMode::Base,
         },
         fma: args.fma,
+        derivative_lanes: args.lanes,
         ..args.options.scene()
     };
     let module = generate(&model, &scene, &source.display_name())?;

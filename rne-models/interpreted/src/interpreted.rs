@@ -110,6 +110,8 @@ impl Interpreted {
             Symbol::Acceleration(k) => pick(state.qdd, k),
             Symbol::Force(k) => pick(state.tau, k),
             Symbol::Parameter(_) => self.dynamics.model.parameter_value(symbol).map(T::from_f64),
+            // A lane seed is no input of the state: `Program::eval` gives it its value.
+            Symbol::Lane(_) => None,
         }
         .unwrap_or_else(|| T::from_f64(f64::NAN))
     }
@@ -178,7 +180,7 @@ impl Interpreted {
         let words = inputs.len().div_ceil(64).max(1);
         let mut reads: Vec<u64> = Vec::with_capacity(program.instrs.len() * words);
         let mark = |set: &mut [u64], operand: Operand, reads: &[u64]| match operand {
-            Operand::Temp(t) => {
+            Operand::Temp(t) | Operand::Lane { temp: t, .. } => {
                 let from = t as usize * words;
                 for (w, r) in set.iter_mut().zip(&reads[from..from + words]) {
                     *w |= r;

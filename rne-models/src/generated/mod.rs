@@ -4,16 +4,21 @@
 //! ([`variants`]).
 
 /// `derive_dynamics!` for a URDF robot's module that `rne bench --pinocchio` sets beside
-/// Pinocchio: as written, or with the crate feature `fma` with `fma: true` added, so that a
-/// build for a target with fused multiply-add (`RUSTFLAGS="-C target-cpu=native"`) compares
-/// fused kernels with Pinocchio's CppADCodeGen code, which gcc builds with `-march=native`.
-/// The settings end with a comma.
+/// Pinocchio: as written with `derivatives: lanes` added (the derivative kernels four
+/// directions per vector instruction), and with the crate feature `fma` also `fma: true`, so
+/// that a build for a target with fused multiply-add (`RUSTFLAGS="-C target-cpu=native"`)
+/// compares fused kernels with Pinocchio's CppADCodeGen code, which gcc builds with
+/// `-march=native`. The settings end with a comma.
 macro_rules! beside_pinocchio {
     ($(#[$doc:meta])* pub mod $name:ident { $($settings:tt)* }) => {
         #[cfg(not(feature = "fma"))]
-        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* } }
+        rne_codegen::derive_dynamics! {
+            $(#[$doc])* pub mod $name { $($settings)* derivatives: lanes, }
+        }
         #[cfg(feature = "fma")]
-        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* fma: true, } }
+        rne_codegen::derive_dynamics! {
+            $(#[$doc])* pub mod $name { $($settings)* derivatives: lanes, fma: true, }
+        }
     };
 }
 

@@ -132,7 +132,7 @@ impl Symbolic {
                 Symbol::Velocity(k) => qd[k as usize],
                 Symbol::Acceleration(k) => qdd[k as usize],
                 Symbol::Force(k) => tau[k as usize],
-                Symbol::Parameter(_) => f64::NAN,
+                Symbol::Parameter(_) | Symbol::Lane(_) => f64::NAN,
             });
         let mut at = 0;
         let mut take = |count: usize| {

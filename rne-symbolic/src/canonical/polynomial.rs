@@ -560,6 +560,7 @@ mod tests {
             Symbol::Acceleration(k) => [-0.2, 0.9][k as usize],
             Symbol::Parameter(k) => 0.5 + f64::from(k) / 3.0,
             Symbol::Force(_) => 0.0,
+            Symbol::Lane(_) => f64::NAN,
         };
         let direct = g.eval(&tau, value);
         let rebuilt: Vec<Id> = forms.iter().map(|p| p.to_expr(&mut g)).collect();

@@ -212,6 +212,7 @@ impl<'a> Printer<'a> {
                 Symbol::Force(k) => (4, joint(k)),
                 Symbol::Velocity(k) => (5, joint(k)),
                 Symbol::Acceleration(k) => (6, joint(k)),
+                Symbol::Lane(k) => (7, joint(k)),
             },
             Factor::Atom(a) => (2, natural(&self.atom(a))),
             Factor::Harmonic(h) => {
@@ -275,6 +276,7 @@ impl<'a> Printer<'a> {
                 format!("\\tau_{{{}}}", latex_label(self.symbols, k))
             }
             (PrintFormat::Latex, Symbol::Parameter(_)) => latex_identifier(&self.symbols.name(s)),
+            (PrintFormat::Latex, Symbol::Lane(k)) => format!("e_{{{k}}}"),
         }
     }
 

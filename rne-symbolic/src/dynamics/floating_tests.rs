@@ -73,7 +73,7 @@ pub(super) fn eval(d: &SymbolicDynamics, ids: &[Id], s: &State) -> Vec<f64> {
         Symbol::Velocity(k) => s.v[k as usize],
         Symbol::Acceleration(k) => s.a[k as usize],
         Symbol::Force(k) => s.u[k as usize],
-        Symbol::Parameter(_) => f64::NAN,
+        Symbol::Parameter(_) | Symbol::Lane(_) => f64::NAN,
     })
 }
 

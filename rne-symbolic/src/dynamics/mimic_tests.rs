@@ -218,7 +218,7 @@ fn the_planar_elbows_base_parameters_reproduce_the_torque() {
             Symbol::Velocity(k) => qd[k as usize],
             Symbol::Acceleration(k) => qdd[k as usize],
             Symbol::Parameter(_) => d.model.parameter_value(s).unwrap_or(f64::NAN),
-            Symbol::Force(_) => f64::NAN,
+            Symbol::Force(_) | Symbol::Lane(_) => f64::NAN,
         })
     };
     let pi_values = values(&pi, [0.0; 2], [0.0; 2], [0.0; 2]);

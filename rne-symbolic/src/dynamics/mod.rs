@@ -14,6 +14,7 @@ mod energy;
 pub mod friction;
 pub mod inertial_parameters;
 mod kinematics;
+mod lane_partials;
 mod ldlt;
 pub mod regressor;
 
@@ -23,6 +24,7 @@ use crate::motion::{quaternion_rotation, BaseMotion, JointMotion};
 use crate::newton_euler::{newton_euler, JointReaction, NewtonEuler};
 use base_parameters::BaseParameters;
 use inertial_parameters::BodyParameters;
+pub use lane_partials::{Direction, LanePartials, LANES};
 
 /// A matrix of expressions, row-major.
 pub type Matrix = Vec<Vec<Id>>;
@@ -510,6 +512,34 @@ impl SymbolicDynamics {
             (dqdd_dq, derivatives::negated_product(g, &inverse, &dv))
         };
         (dqdd_dq, dqdd_dv, inverse)
+    }
+
+    /// (∂τ/∂q, ∂τ/∂q̇) as [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
+    /// gives them, built in lanes ([`LanePartials`]); `None` with a free-flyer.
+    pub fn inverse_dynamics_derivative_lanes(&mut self) -> Option<LanePartials> {
+        let tau = self.inverse_dynamics();
+        let layout = self.layout();
+        LanePartials::build(&mut self.model.graph, &tau, layout, &[])
+    }
+
+    /// (∂q̈/∂q, ∂q̈/∂q̇) as [`forward_dynamics_derivatives`](Self::forward_dynamics_derivatives)
+    /// gives them, built in lanes ([`LanePartials`]: −M⁻¹ applied to the lanes of ∂τ, each
+    /// group a column), and M⁻¹; `None` with a free-flyer.
+    pub fn forward_dynamics_derivative_lanes(&mut self) -> Option<(LanePartials, Matrix)> {
+        let inverse = self.mass_matrix_inverse();
+        let qdd = self.forward_dynamics();
+        let tau = self.inverse_dynamics_at(qdd.clone());
+        let layout = self.layout();
+        let partials = LanePartials::build(&mut self.model.graph, &tau, layout, &qdd)?;
+        let factor = self.mass_matrix_factor();
+        let g = &mut self.model.graph;
+        let rows = if factor.is_sparse(g) {
+            derivatives::negated_solve(g, &factor, &partials.rows)
+        } else {
+            derivatives::negated_product(g, &inverse, &partials.rows)
+        };
+        let partials = LanePartials { rows, ..partials };
+        Some((partials, inverse))
     }
 
     /// The frame of every link of the model as read (fixed links included), in link order.

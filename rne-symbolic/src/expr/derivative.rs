@@ -13,7 +13,9 @@ use super::node::{Id, Node, Symbol};
 /// the size of their union, not k times the graph.
 #[derive(Debug)]
 pub struct Differentiator {
-    wrt: Symbol,
+    /// The symbol whose derivative is one; `None` when the seeds are given
+    /// ([`Differentiator::along`]).
+    wrt: Option<Symbol>,
     memo: FxHashMap<Id, Id>,
 }
 
@@ -21,7 +23,7 @@ impl Differentiator {
     /// A differentiator with respect to `wrt`.
     pub fn new(wrt: Symbol) -> Differentiator {
         Differentiator {
-            wrt,
+            wrt: Some(wrt),
             memo: FxHashMap::default(),
         }
     }
@@ -33,12 +35,25 @@ impl Differentiator {
     pub fn holding(wrt: Symbol, held: &[Id], graph: &mut ExprGraph) -> Differentiator {
         let zero = graph.zero();
         Differentiator {
-            wrt,
+            wrt: Some(wrt),
             memo: held.iter().map(|&h| (h, zero)).collect(),
         }
     }
 
-    /// ∂expr/∂wrt, built in `graph` (chain rule; sin' = cos, cos' = −sin, sqrt' = 1/(2 sqrt)).
+    /// A differentiator along a direction: the derivative of each symbol of `seeds` is the
+    /// node given with it, of every other symbol zero (a Jacobian–vector product, the
+    /// direction's components being the seeds), with the nodes `held` constant as in
+    /// [`Differentiator::holding`].
+    pub fn along(seeds: &[(Symbol, Id)], held: &[Id], graph: &mut ExprGraph) -> Differentiator {
+        let zero = graph.zero();
+        let mut memo: FxHashMap<Id, Id> = held.iter().map(|&h| (h, zero)).collect();
+        for &(symbol, seed) in seeds {
+            memo.insert(graph.symbol(symbol), seed);
+        }
+        Differentiator { wrt: None, memo }
+    }
+
+    /// ∂expr/∂wrt (or along the seeds), built in `graph` (chain rule; sin' = cos, cos' = −sin, sqrt' = 1/(2 sqrt)).
     pub fn derivative(&mut self, graph: &mut ExprGraph, expr: Id) -> Id {
         if let Some(&d) = self.memo.get(&expr) {
             return d;
@@ -47,7 +62,7 @@ impl Differentiator {
             let d = |c: Id| self.memo[&c];
             let derivative = match graph.node(id) {
                 Node::Const(_) => graph.zero(),
-                Node::Symbol(s) if s == self.wrt => graph.one(),
+                Node::Symbol(s) if Some(s) == self.wrt => graph.one(),
                 Node::Symbol(_) => graph.zero(),
                 Node::Add(a, b) => {
                     let (da, db) = (d(a), d(b));

@@ -42,6 +42,11 @@ pub enum Symbol {
     Force(u16),
     /// A named model parameter kept symbolic (mass, length, inertia, gravity, ...).
     Parameter(u16),
+    /// The unit vector e_l of lane l: 1 in lane l, 0 in the others. The seed of a derivative
+    /// built in lanes ([`crate::dynamics::LanePartials`]): a value that reads it is a vector
+    /// whose lane l is the derivative along the direction seeded with e_l. Nothing else
+    /// reads it, and a kernel that does is emitted with vector values.
+    Lane(u16),
 }
 
 impl Symbol {
@@ -52,7 +57,7 @@ impl Symbol {
             | Symbol::Velocity(i)
             | Symbol::Acceleration(i)
             | Symbol::Force(i) => Some(i as usize),
-            Symbol::Parameter(_) => None,
+            Symbol::Parameter(_) | Symbol::Lane(_) => None,
         }
     }
 }

@@ -79,6 +79,7 @@ impl SymbolTable {
                 .get(i as usize)
                 .cloned()
                 .unwrap_or_else(|| format!("p{i}")),
+            Symbol::Lane(l) => format!("lane{l}"),
         }
     }
 
