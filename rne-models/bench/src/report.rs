@@ -131,8 +131,11 @@ fn build() -> String {
         rne_models::generated::FUSED_MULTIPLY_ADD,
         cfg!(target_feature = "fma"),
     ) {
-        (true, true) => "; the URDF robots' kernels `fma: true`, fused",
-        (true, false) => "; the URDF robots' kernels `fma: true`, unfused on this target",
+        (true, true) => "; the URDF robots' kernels `fma: true`, fused, and `derivatives: lanes`",
+        (true, false) => {
+            "; the URDF robots' kernels `fma: true`, unfused on this target, and \
+             `derivatives: lanes`"
+        }
         (false, _) => "",
     };
     format!("{profile} build, {target}{fused}")

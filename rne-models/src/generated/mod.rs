@@ -4,20 +4,20 @@
 //! ([`variants`]).
 
 /// `derive_dynamics!` for a URDF robot's module that `rne bench --pinocchio` sets beside
-/// Pinocchio: as written with `derivatives: lanes` added (the derivative kernels four
-/// directions per vector instruction), and with the crate feature `fma` also `fma: true`, so
-/// that a build for a target with fused multiply-add (`RUSTFLAGS="-C target-cpu=native"`)
-/// compares fused kernels with Pinocchio's CppADCodeGen code, which gcc builds with
-/// `-march=native`. The settings end with a comma.
+/// Pinocchio: as written, or with the crate feature `fma` with `fma: true` and
+/// `derivatives: lanes` added, so that a build for the machine
+/// (`RUSTFLAGS="-C target-cpu=native"`) compares fused kernels, and derivatives four
+/// directions per AVX instruction, with Pinocchio's CppADCodeGen code, which gcc builds with
+/// `-march=native`. (In a baseline x86-64 build the lanes' vectors are pairs of SSE2
+/// registers and the derivatives in lanes are slower than without: docs/performance.md.)
+/// The settings end with a comma.
 macro_rules! beside_pinocchio {
     ($(#[$doc:meta])* pub mod $name:ident { $($settings:tt)* }) => {
         #[cfg(not(feature = "fma"))]
-        rne_codegen::derive_dynamics! {
-            $(#[$doc])* pub mod $name { $($settings)* derivatives: lanes, }
-        }
+        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* } }
         #[cfg(feature = "fma")]
         rne_codegen::derive_dynamics! {
-            $(#[$doc])* pub mod $name { $($settings)* derivatives: lanes, fma: true, }
+            $(#[$doc])* pub mod $name { $($settings)* fma: true, derivatives: lanes, }
         }
     };
 }
@@ -25,8 +25,8 @@ macro_rules! beside_pinocchio {
 pub mod scenes;
 pub mod variants;
 
-/// Whether the URDF robots' default and `control` modules were generated with `fma: true`
-/// (the crate feature `fma`, for `rne bench` in a native build).
+/// Whether the URDF robots' default and `control` modules were generated with `fma: true` and
+/// `derivatives: lanes` (the crate feature `fma`, for `rne bench` in a native build).
 pub const FUSED_MULTIPLY_ADD: bool = cfg!(feature = "fma");
 
 rne_codegen::derive_dynamics! {
