@@ -35,6 +35,15 @@ rne_codegen::derive_dynamics! {
 }
 
 rne_codegen::derive_dynamics! {
+    /// The floating hopper's derivatives built in lanes.
+    mod hopper_lanes {
+        robot: "fixtures/robots/hopper-floating.toml",
+        outputs: [inverse_dynamics_derivatives, forward_dynamics_derivatives],
+        derivatives: lanes,
+    }
+}
+
+rne_codegen::derive_dynamics! {
     /// The floating hopper's derivatives and kinematics.
     mod hopper {
         robot: "fixtures/robots/hopper-floating.toml",
@@ -147,8 +156,8 @@ fn emitted_control_kernels_compute_exactly_their_programs() {
 
 /// With `derivatives: lanes`, the emitted derivatives compute four directions per vector
 /// instruction and still give their programs' bits — programs that do compute with lanes,
-/// and fewer instructions than the scalar sweeps'. A free-flyer's derivatives are not built
-/// in lanes (its tangent directions mix the partials of several symbols).
+/// and fewer instructions than the scalar sweeps' — also on a free-flyer, whose tangent
+/// directions seed the base position and quaternion together.
 #[test]
 fn derivatives_in_lanes_compute_exactly_their_programs() {
     let model = fixture("ur5.urdf");
@@ -168,11 +177,9 @@ fn derivatives_in_lanes_compute_exactly_their_programs() {
         );
     }
     let hopper = fixture("hopper-floating.toml");
-    let floating = program_with(&hopper, Kernel::InverseDynamicsDerivatives, &[], true);
-    assert!(
-        !floating.has_lanes(),
-        "a free-flyer's derivatives are built without lanes"
-    );
+    let floating_dq = program_with(&hopper, Kernel::InverseDynamicsDerivatives, &[], true);
+    let floating_dfd = program_with(&hopper, Kernel::ForwardDynamicsDerivatives, &[], true);
+    assert!(floating_dq.has_lanes() && floating_dfd.has_lanes());
     let mut random = rng(0x5eed_1a7e);
     for _ in 0..200 {
         let q: [f64; 6] = uniform(&mut random, 6, 3.0).try_into().unwrap();
@@ -185,6 +192,25 @@ fn derivatives_in_lanes_compute_exactly_their_programs() {
         let (dqdd_dq, dqdd_dv, minv) = ur5_lanes::forward_dynamics_derivatives(&q, &v, &a);
         let emitted = [flat(&dqdd_dq), flat(&dqdd_dv), flat(&minv)].concat();
         assert_eq!(bits(emitted), bits(eval(&dfd, &q, &v, &a)), "∂q̈");
+        let mut q: [f64; 9] = uniform(&mut random, 9, 1.0).try_into().unwrap();
+        let norm = q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        q[3..7].iter_mut().for_each(|x| *x /= norm);
+        let v: [f64; 8] = uniform(&mut random, 8, 2.0).try_into().unwrap();
+        let a: [f64; 8] = uniform(&mut random, 8, 3.0).try_into().unwrap();
+        let (dtau_dq, dtau_dv) = hopper_lanes::inverse_dynamics_derivatives(&q, &v, &a);
+        let emitted = [flat(&dtau_dq), flat(&dtau_dv)].concat();
+        assert_eq!(
+            bits(emitted),
+            bits(eval(&floating_dq, &q, &v, &a)),
+            "floating ∂τ"
+        );
+        let (dqdd_dq, dqdd_dv, minv) = hopper_lanes::forward_dynamics_derivatives(&q, &v, &a);
+        let emitted = [flat(&dqdd_dq), flat(&dqdd_dv), flat(&minv)].concat();
+        assert_eq!(
+            bits(emitted),
+            bits(eval(&floating_dfd, &q, &v, &a)),
+            "floating ∂q̈"
+        );
     }
 }
 
@@ -250,20 +276,29 @@ fn floating_base_derivatives_and_jacobians_agree_with_the_reference() {
         let v: [f64; 8] = uniform(&mut random, 8, 2.0).try_into().unwrap();
         let a: [f64; 8] = uniform(&mut random, 8, 3.0).try_into().unwrap();
         let u: [f64; 8] = uniform(&mut random, 8, 10.0).try_into().unwrap();
-        let (dq, dv) = hopper::inverse_dynamics_derivatives(&q, &v, &a);
         let (edq, edv) = reference.inverse_dynamics_derivatives(&q, &v, &a).unwrap();
-        assert!(relative(&flat(&dq), &rows(&edq)) < 1e-12, "∂τ/∂q");
-        assert!(relative(&flat(&dv), &rows(&edv)) < 1e-12, "∂τ/∂v");
-        let (fq, fv, minv) = hopper::forward_dynamics_derivatives(&q, &v, &u);
         let expected = reference.forward_dynamics_derivatives(&q, &v, &u).unwrap();
-        assert!(
-            relative(&flat(&fq), &rows(&expected.dqdd_dq)) < 1e-11,
-            "∂q̈/∂q"
+        let scalar = (
+            hopper::inverse_dynamics_derivatives(&q, &v, &a),
+            hopper::forward_dynamics_derivatives(&q, &v, &u),
         );
-        assert!(
-            relative(&flat(&fv), &rows(&expected.dqdd_dqd)) < 1e-11,
-            "∂q̈/∂v"
+        let lanes = (
+            hopper_lanes::inverse_dynamics_derivatives(&q, &v, &a),
+            hopper_lanes::forward_dynamics_derivatives(&q, &v, &u),
         );
+        for ((dq, dv), (fq, fv, _)) in [scalar, lanes] {
+            assert!(relative(&flat(&dq), &rows(&edq)) < 1e-12, "∂τ/∂q");
+            assert!(relative(&flat(&dv), &rows(&edv)) < 1e-12, "∂τ/∂v");
+            assert!(
+                relative(&flat(&fq), &rows(&expected.dqdd_dq)) < 1e-11,
+                "∂q̈/∂q"
+            );
+            assert!(
+                relative(&flat(&fv), &rows(&expected.dqdd_dqd)) < 1e-11,
+                "∂q̈/∂v"
+            );
+        }
+        let minv = scalar.1 .2;
         assert!(
             relative(&flat(&minv), &rows(&expected.mass_matrix_inverse)) < 1e-11,
             "M⁻¹"

@@ -30,7 +30,7 @@ struct Kernels {
 
 impl Kernels {
     /// The programs of `kernels`, the derivatives built in lanes when `lanes` is set (as
-    /// `derivatives: lanes` builds them; a free-flyer's are built without either way).
+    /// `derivatives: lanes` builds them).
     fn new(dynamics: SymbolicDynamics, kernels: &[Kernel], lanes: bool) -> Kernels {
         let setup = KernelSetup {
             derivative_lanes: lanes,

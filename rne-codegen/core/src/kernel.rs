@@ -18,8 +18,8 @@ pub struct KernelSetup {
     /// Whether `forward_dynamics` is built by the articulated-body algorithm (where the model
     /// allows it) rather than the LᵀDL factorisation of M.
     pub articulated: bool,
-    /// Whether the derivative kernels are built in lanes where the model allows it (fixed
-    /// base; the `derivatives: lanes` setting, [`crate::Scene::derivative_lanes`]).
+    /// Whether the derivative kernels are built in lanes (the `derivatives: lanes` setting,
+    /// [`crate::Scene::derivative_lanes`]).
     pub derivative_lanes: bool,
 }
 

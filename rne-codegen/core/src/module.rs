@@ -140,14 +140,14 @@ pub fn build_kernel_with(
 
 /// A derivative kernel built in lanes ([`rne_symbolic::dynamics::LanePartials`]), its program returning each
 /// derivative from the lane that carries it ([`Program::pick_lanes`]); its roots are the
-/// vectors. `None` for another kernel, a model with a free-flyer, or a program long enough to
-/// be split (module `split` passes values between parts in scalar slots).
+/// vectors. `None` for another kernel or a program long enough to be split (module `split`
+/// passes values between parts in scalar slots).
 fn build_in_lanes(dynamics: &SymbolicDynamics, kernel: Kernel) -> Option<BuiltKernel> {
     let mut dynamics = dynamics.clone();
     let (partials, inverse) = match kernel {
-        Kernel::InverseDynamicsDerivatives => (dynamics.inverse_dynamics_derivative_lanes()?, None),
+        Kernel::InverseDynamicsDerivatives => (dynamics.inverse_dynamics_derivative_lanes(), None),
         Kernel::ForwardDynamicsDerivatives => {
-            let (partials, inverse) = dynamics.forward_dynamics_derivative_lanes()?;
+            let (partials, inverse) = dynamics.forward_dynamics_derivative_lanes();
             (partials, Some(inverse))
         }
         _ => return None,

@@ -82,7 +82,8 @@ pub struct Scene {
     /// The derivative kernels built in lanes (`derivatives: lanes`): their forward sweeps
     /// carry four directions at a time in the runtime's `F64x4`, one vector instruction for
     /// four derivatives (`rne_symbolic::dynamics::LanePartials`). Needs rne-codegen's feature
-    /// `simd`; applies to `f64` kernels of a fixed base (the others are built as without).
+    /// `simd`; applies to `f64` kernels (the others are built as without) short of the
+    /// length at which kernels are split into parts (module `split`).
     /// It pays in a build for a target with AVX (`-C target-cpu=native`): in a baseline
     /// x86-64 build each vector is a pair of SSE2 registers and the kernels are slower than
     /// without (docs/performance.md, "Derivatives in lanes").

@@ -96,22 +96,33 @@ pub fn reads_force_only_through(g: &ExprGraph, outputs: &[Id], held: &[Id]) -> b
 
 /// The tangent-space Jacobian from the partials with respect to the configuration symbols
 /// (`partials[c][i]` = ∂output_i/∂q_c): row i, column k the derivative of output i along
-/// tangent direction k (NV columns).
+/// tangent direction k (NV columns), Σ_c w_kc ∂output_i/∂q_c ([`tangent_directions`]).
 fn tangent_jacobian(
     g: &mut ExprGraph,
     partials: &[Vec<Id>],
     layout: StateLayout,
     n: usize,
 ) -> Vec<Vec<Id>> {
-    let mut columns: Vec<Vec<Id>> = Vec::with_capacity(layout.nv());
+    let columns: Vec<Vec<Id>> = tangent_directions(g, layout)
+        .iter()
+        .map(|weights| combine(g, partials, weights, n))
+        .collect();
+    transpose(&columns, n)
+}
+
+/// Each tangent direction k of the configuration (NV of them) as the weights (c, w_kc) of
+/// the configuration symbols q_c it moves: dq_c = w_kc along direction k. A joint's direction
+/// moves its own q by one; a free-flyer's six are the perturbation `q ⊕ δ` of Pinocchio's
+/// `integrate` (module docs): `p ← p + R δ_v`, `R ← R Exp(δ_ω)`, through the quaternion.
+pub fn tangent_directions(g: &mut ExprGraph, layout: StateLayout) -> Vec<Vec<(usize, Id)>> {
+    let mut directions: Vec<Vec<(usize, Id)>> = Vec::with_capacity(layout.nv());
     if layout.floating {
         let position = |k: usize| Symbol::Position(k as u16);
         let quaternion: [Id; 4] = std::array::from_fn(|c| g.symbol(position(3 + c)));
         let rotation = quaternion_rotation(g, quaternion);
         // Linear: ∂/∂δ_v,a = Σ_c ∂/∂p_c R_ca.
         for a in 0..3 {
-            let weights: Vec<(usize, Id)> = (0..3).map(|c| (c, rotation[c][a])).collect();
-            columns.push(combine(g, partials, &weights, n));
+            directions.push((0..3).map(|c| (c, rotation[c][a])).collect());
         }
         // Angular: ∂quat/∂δ_a = ½ (w e_a + v × e_a, −v_a) with quat = (v, w).
         let [x, y, z, w] = quaternion;
@@ -124,19 +135,15 @@ fn tangent_jacobian(
         );
         let (nhx, nhy, nhz) = (g.neg(hx), g.neg(hy), g.neg(hz));
         // v × e_x = (0, z, −y), v × e_y = (−z, 0, x), v × e_z = (y, −x, 0).
-        let directions = [
-            [(3, hw), (4, hz), (5, nhy), (6, nhx)],
-            [(3, nhz), (4, hw), (5, hx), (6, nhy)],
-            [(3, hy), (4, nhx), (5, hw), (6, nhz)],
-        ];
-        for direction in directions {
-            columns.push(combine(g, partials, &direction, n));
-        }
+        directions.push(vec![(3, hw), (4, hz), (5, nhy), (6, nhx)]);
+        directions.push(vec![(3, nhz), (4, hw), (5, hx), (6, nhy)]);
+        directions.push(vec![(3, hy), (4, nhx), (5, hw), (6, nhz)]);
     }
+    let one = g.one();
     for j in 0..layout.ndof {
-        columns.push(partials[layout.q_offset() + j].clone());
+        directions.push(vec![(layout.q_offset() + j, one)]);
     }
-    transpose(&columns, n)
+    directions
 }
 
 /// Σ_c weight_c · partials[c], entry by entry.

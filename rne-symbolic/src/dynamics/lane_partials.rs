@@ -14,11 +14,15 @@
 //! the sign of zeros: a lane whose direction does not reach a value computes 0·x + … where
 //! the scalar sweep writes nothing.
 //!
-//! Fixed base only: the free-flyer's tangent directions ([`super::derivatives`]) mix the
-//! partials of several configuration symbols, which is not lane-wise.
+//! A direction of q is a tangent direction ([`derivatives::tangent_directions`]): a joint's
+//! moves its q, a free-flyer's move the base position and quaternion together, so the seed of
+//! a configuration symbol is Σ_l w_l e_l over the lanes whose directions move it.
 //!
 //! [`Sweep::Forward`]: super::derivatives::Sweep::Forward
 
+use std::collections::BTreeMap;
+
+use super::derivatives;
 use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
 use crate::model::StateLayout;
 
@@ -28,7 +32,7 @@ pub const LANES: usize = 4;
 /// A direction of the state space a lane carries.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Direction {
-    /// ∂/∂q_k.
+    /// Tangent direction k of the configuration (∂/∂q_k for a joint; NV of them).
     Position(usize),
     /// ∂/∂q̇_k.
     Velocity(usize),
@@ -45,39 +49,52 @@ pub struct LanePartials {
 }
 
 impl LanePartials {
-    /// Every direction of a fixed-base state of `layout`, grouped; `None` with a free-flyer.
-    fn groups(layout: StateLayout) -> Option<Vec<Vec<Direction>>> {
-        if layout.floating {
-            return None;
-        }
+    /// Every direction of a state of `layout`, grouped.
+    fn groups(layout: StateLayout) -> Vec<Vec<Direction>> {
         let directions: Vec<Direction> = (0..layout.nv())
             .flat_map(|k| [Direction::Position(k), Direction::Velocity(k)])
             .collect();
-        Some(directions.chunks(LANES).map(<[_]>::to_vec).collect())
+        directions.chunks(LANES).map(<[_]>::to_vec).collect()
     }
 
     /// The derivatives of `outputs` along every direction of the state, the nodes `held`
-    /// constant ([`Differentiator::holding`]); `None` with a free-flyer (module docs).
+    /// constant ([`Differentiator::holding`]).
     pub fn build(
         g: &mut ExprGraph,
         outputs: &[Id],
         layout: StateLayout,
         held: &[Id],
-    ) -> Option<LanePartials> {
-        let groups = Self::groups(layout)?;
+    ) -> LanePartials {
+        let groups = Self::groups(layout);
+        let tangents = derivatives::tangent_directions(g, layout);
         let columns: Vec<Vec<Id>> = groups
             .iter()
             .map(|group| {
-                let seeds: Vec<(Symbol, Id)> = group
-                    .iter()
-                    .enumerate()
-                    .map(|(l, &direction)| {
-                        let symbol = match direction {
-                            Direction::Position(k) => Symbol::Position(k as u16),
-                            Direction::Velocity(k) => Symbol::Velocity(k as u16),
-                        };
-                        (symbol, g.symbol(Symbol::Lane(l as u16)))
-                    })
+                // Each symbol's seed as its terms w e_l, by symbol (a deterministic order).
+                let mut terms: BTreeMap<Symbol, Vec<Id>> = BTreeMap::new();
+                for (l, &direction) in group.iter().enumerate() {
+                    let lane = g.symbol(Symbol::Lane(l as u16));
+                    match direction {
+                        Direction::Position(k) => {
+                            for &(c, weight) in &tangents[k] {
+                                let term = g.mul(weight, lane);
+                                terms
+                                    .entry(Symbol::Position(c as u16))
+                                    .or_default()
+                                    .push(term);
+                            }
+                        }
+                        Direction::Velocity(k) => {
+                            terms
+                                .entry(Symbol::Velocity(k as u16))
+                                .or_default()
+                                .push(lane);
+                        }
+                    }
+                }
+                let seeds: Vec<(Symbol, Id)> = terms
+                    .into_iter()
+                    .map(|(symbol, terms)| (symbol, g.sum(terms)))
                     .collect();
                 let mut d = Differentiator::along(&seeds, held, g);
                 outputs.iter().map(|&o| d.derivative(g, o)).collect()
@@ -86,6 +103,6 @@ impl LanePartials {
         let rows = (0..outputs.len())
             .map(|i| columns.iter().map(|column| column[i]).collect())
             .collect();
-        Some(LanePartials { groups, rows })
+        LanePartials { groups, rows }
     }
 }

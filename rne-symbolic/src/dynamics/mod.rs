@@ -515,8 +515,8 @@ impl SymbolicDynamics {
     }
 
     /// (∂τ/∂q, ∂τ/∂q̇) as [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
-    /// gives them, built in lanes ([`LanePartials`]); `None` with a free-flyer.
-    pub fn inverse_dynamics_derivative_lanes(&mut self) -> Option<LanePartials> {
+    /// gives them, built in lanes ([`LanePartials`]).
+    pub fn inverse_dynamics_derivative_lanes(&mut self) -> LanePartials {
         let tau = self.inverse_dynamics();
         let layout = self.layout();
         LanePartials::build(&mut self.model.graph, &tau, layout, &[])
@@ -524,13 +524,17 @@ impl SymbolicDynamics {
 
     /// (∂q̈/∂q, ∂q̈/∂q̇) as [`forward_dynamics_derivatives`](Self::forward_dynamics_derivatives)
     /// gives them, built in lanes ([`LanePartials`]: −M⁻¹ applied to the lanes of ∂τ, each
-    /// group a column), and M⁻¹; `None` with a free-flyer.
-    pub fn forward_dynamics_derivative_lanes(&mut self) -> Option<(LanePartials, Matrix)> {
+    /// group a column), and M⁻¹.
+    pub fn forward_dynamics_derivative_lanes(&mut self) -> (LanePartials, Matrix) {
         let inverse = self.mass_matrix_inverse();
         let qdd = self.forward_dynamics();
         let tau = self.inverse_dynamics_at(qdd.clone());
+        assert!(
+            derivatives::reads_force_only_through(&self.model.graph, &tau, &qdd),
+            "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
+        );
         let layout = self.layout();
-        let partials = LanePartials::build(&mut self.model.graph, &tau, layout, &qdd)?;
+        let partials = LanePartials::build(&mut self.model.graph, &tau, layout, &qdd);
         let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
         let rows = if factor.is_sparse(g) {
@@ -539,7 +543,7 @@ impl SymbolicDynamics {
             derivatives::negated_product(g, &inverse, &partials.rows)
         };
         let partials = LanePartials { rows, ..partials };
-        Some((partials, inverse))
+        (partials, inverse)
     }
 
     /// The frame of every link of the model as read (fixed links included), in link order.
