@@ -6,7 +6,6 @@ use std::time::{Duration, Instant};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
-use rne_symbolic::dynamics::Direction;
 use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_fields, EmitContext};
@@ -152,33 +151,9 @@ fn build_in_lanes(dynamics: &SymbolicDynamics, kernel: Kernel) -> Option<BuiltKe
         }
         _ => return None,
     };
-    let nv = dynamics.layout().nv();
-    let groups = partials.groups.len();
-    let carrier = |direction: Direction| -> (usize, u8) {
-        partials
-            .groups
-            .iter()
-            .enumerate()
-            .find_map(|(g, group)| {
-                let lane = group.iter().position(|&d| d == direction)?;
-                Some((g, lane as u8))
-            })
-            .expect("every direction has a lane")
-    };
-    // ∂/∂q then ∂/∂q̇, row-major: entry (i, j) is lane l of row i's vector of group g.
-    let mut picks: Vec<(usize, u8)> = Vec::with_capacity(2 * nv * nv + nv * nv);
-    for direction in [
-        Direction::Position as fn(usize) -> Direction,
-        Direction::Velocity,
-    ] {
-        for i in 0..nv {
-            for j in 0..nv {
-                let (g, lane) = carrier(direction(j));
-                picks.push((i * groups + g, lane));
-            }
-        }
-    }
-    let vectors = partials.rows.concat();
+    // ∂/∂q then ∂/∂q̇, row-major.
+    let mut picks: Vec<(usize, u8)> = [partials.dq, partials.dv].concat().concat();
+    let vectors = partials.vectors;
     let graph = &mut dynamics.model.graph;
     let outputs = match &inverse {
         // M⁻¹ rewritten on its own first, as in `build_kernel_with`.

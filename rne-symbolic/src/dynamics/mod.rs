@@ -515,16 +515,33 @@ impl SymbolicDynamics {
     }
 
     /// (∂τ/∂q, ∂τ/∂q̇) as [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
-    /// gives them, built in lanes ([`LanePartials`]).
+    /// gives them, built in lanes ([`LanePartials`]): by forward sweeps (four directions a
+    /// vector) or reverse sweeps (four torques a vector), whichever costs fewer operations.
     pub fn inverse_dynamics_derivative_lanes(&mut self) -> LanePartials {
         let tau = self.inverse_dynamics();
         let layout = self.layout();
-        LanePartials::build(&mut self.model.graph, &tau, layout, &[])
+        let g = &mut self.model.graph;
+        let identity: Matrix = (0..tau.len())
+            .map(|i| {
+                (0..tau.len())
+                    .map(|k| if i == k { g.one() } else { g.zero() })
+                    .collect()
+            })
+            .collect();
+        cheaper_lanes(
+            g,
+            |g| {
+                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &[]);
+                LanePartials::from_rows(&groups, rows, layout.nv())
+            },
+            |g| LanePartials::reverse(g, &tau, &identity, layout, &[]),
+        )
     }
 
     /// (∂q̈/∂q, ∂q̈/∂q̇) as [`forward_dynamics_derivatives`](Self::forward_dynamics_derivatives)
-    /// gives them, built in lanes ([`LanePartials`]: −M⁻¹ applied to the lanes of ∂τ, each
-    /// group a column), and M⁻¹.
+    /// gives them, built in lanes ([`LanePartials`]), and M⁻¹: by forward sweeps with −M⁻¹
+    /// applied to each group's vectors, or by reverse sweeps seeded with the rows of −M⁻¹,
+    /// whichever costs fewer operations.
     pub fn forward_dynamics_derivative_lanes(&mut self) -> (LanePartials, Matrix) {
         let inverse = self.mass_matrix_inverse();
         let qdd = self.forward_dynamics();
@@ -534,15 +551,25 @@ impl SymbolicDynamics {
             "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
         );
         let layout = self.layout();
-        let partials = LanePartials::build(&mut self.model.graph, &tau, layout, &qdd);
         let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
-        let rows = if factor.is_sparse(g) {
-            derivatives::negated_solve(g, &factor, &partials.rows)
-        } else {
-            derivatives::negated_product(g, &inverse, &partials.rows)
-        };
-        let partials = LanePartials { rows, ..partials };
+        let negated: Matrix = inverse
+            .iter()
+            .map(|row| row.iter().map(|&x| g.neg(x)).collect())
+            .collect();
+        let partials = cheaper_lanes(
+            g,
+            |g| {
+                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &qdd);
+                let rows = if factor.is_sparse(g) {
+                    derivatives::negated_solve(g, &factor, &rows)
+                } else {
+                    derivatives::negated_product(g, &inverse, &rows)
+                };
+                LanePartials::from_rows(&groups, rows, layout.nv())
+            },
+            |g| LanePartials::reverse(g, &tau, &negated, layout, &qdd),
+        );
         (partials, inverse)
     }
 
@@ -716,3 +743,25 @@ mod derivative_tests;
 
 #[cfg(test)]
 mod coriolis_tests;
+
+/// The partials `forward` or `reverse` builds, whichever costs fewer operations
+/// ([`crate::OpCount::cost`]; forward on a tie): both are built in turn, the first taken out
+/// of the graph while the second is tried ([`ExprGraph::split_off`]).
+fn cheaper_lanes(
+    g: &mut ExprGraph,
+    forward: impl FnOnce(&mut ExprGraph) -> LanePartials,
+    reverse: impl FnOnce(&mut ExprGraph) -> LanePartials,
+) -> LanePartials {
+    let start = g.len();
+    let forward = forward(g);
+    let forward_cost = g.op_count(&forward.vectors).cost();
+    let forward_nodes = g.split_off(start);
+    let reverse = reverse(g);
+    if g.op_count(&reverse.vectors).cost() < forward_cost {
+        reverse
+    } else {
+        g.split_off(start);
+        g.restore(forward_nodes);
+        forward
+    }
+}

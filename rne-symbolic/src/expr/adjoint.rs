@@ -27,10 +27,22 @@ impl ExprGraph {
     /// [`gradient`](Self::gradient) with the nodes `held` constant: no adjoint flows into them
     /// (as [`Differentiator::holding`](super::Differentiator::holding)).
     pub fn gradient_holding(&mut self, expr: Id, wrt: &[Symbol], held: &[Id]) -> Vec<Id> {
-        let nodes = self.reachable_stopping_at(&[expr], held);
-        // Tables by position in `nodes`, which is much shorter than the graph below `expr`
-        // when other kernels' nodes sit in between.
-        let mut position = vec![u32::MAX; expr.index() + 1];
+        let one = self.one();
+        self.gradient_seeded(&[(expr, one)], wrt, held)
+    }
+
+    /// The gradient of Σ_i wᵢ·exprᵢ for `seeds` (exprᵢ, wᵢ), the weights wᵢ taken as constants
+    /// (a vector–Jacobian product), the nodes `held` constant: one backward sweep whose
+    /// adjoints start at wᵢ on each exprᵢ. With a lane seed eₗ on each of several
+    /// expressions, lane l of each partial is that of the expression seeded with eₗ
+    /// ([`crate::dynamics::LanePartials`]).
+    pub fn gradient_seeded(&mut self, seeds: &[(Id, Id)], wrt: &[Symbol], held: &[Id]) -> Vec<Id> {
+        let exprs: Vec<Id> = seeds.iter().map(|&(expr, _)| expr).collect();
+        let nodes = self.reachable_stopping_at(&exprs, held);
+        // Tables by position in `nodes`, which is much shorter than the graph below the
+        // expressions when other kernels' nodes sit in between.
+        let top = exprs.iter().map(|e| e.index()).max().unwrap_or(0);
+        let mut position = vec![u32::MAX; top + 1];
         for (k, id) in nodes.iter().enumerate() {
             position[id.index()] = k as u32;
         }
@@ -50,9 +62,10 @@ impl ExprGraph {
                 };
         }
         let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); nodes.len()];
-        if depends[at(expr)] {
-            let one = self.one();
-            contributions[at(expr)].push(one);
+        for &(expr, weight) in seeds {
+            if depends[at(expr)] {
+                contributions[at(expr)].push(weight);
+            }
         }
         let zero = self.zero();
         let mut gradient = vec![zero; wrt.len()];
@@ -154,6 +167,34 @@ mod tests {
         }
     }
 
+    /// One seeded sweep is the weighted sum of the separate gradients: ∇(w₁e₁ + w₂e₂) with
+    /// the weights held constant, even where the weights depend on the symbols themselves.
+    #[test]
+    fn a_seeded_sweep_is_the_weighted_sum_of_the_gradients() {
+        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y"]));
+        let e1 = g.parse_sexpr("(* (sin x) (cos y))").unwrap();
+        let e2 = g.parse_sexpr("(+ (* x y) (sqrt (+ y 4)))").unwrap();
+        let w1 = g.parse_sexpr("(+ x 2)").unwrap();
+        let w2 = g.constant(-3.0);
+        let wrt = [Symbol::Position(0), Symbol::Position(1)];
+        let seeded = g.gradient_seeded(&[(e1, w1), (e2, w2)], &wrt, &[]);
+        let (g1, g2) = (g.gradient(e1, &wrt), g.gradient(e2, &wrt));
+        let value = |s: Symbol| match s {
+            Symbol::Position(0) => 0.9,
+            Symbol::Position(1) => -0.4,
+            _ => f64::NAN,
+        };
+        let v = g.eval::<f64>(&[seeded.clone(), g1, g2, vec![w1, w2]].concat(), value);
+        for k in 0..2 {
+            let expected = v[6] * v[2 + k] + v[7] * v[4 + k];
+            assert!(
+                (v[k] - expected).abs() <= 1e-14,
+                "∂/∂{k}: {} against {expected}",
+                v[k]
+            );
+        }
+    }
+
     /// Symbols the expression does not depend on, and those left out of `wrt`, get nothing:
     /// a constant zero, and no adjoint node is built for them.
     #[test]
@@ -161,6 +202,7 @@ mod tests {
         let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y", "z"]));
         let expr = g.parse_sexpr("(+ (* (sin x) (cos y)) (* y y))").unwrap();
         g.zero();
+        g.one();
         let before = g.len();
         let gradient = g.gradient(expr, &[Symbol::Position(2)]);
         assert!(g.is_zero(gradient[0]));
