@@ -199,7 +199,7 @@ pub fn inverse(g: &mut ExprGraph, factor: &LtdlFactor) -> Vec<Vec<Id>> {
 
 /// `−M⁻¹ b` solved through the factor of M column by column, skipping the structural zeros of
 /// L that a product with the dense M⁻¹ ([`negated_product`]) cannot.
-pub fn negated_solve(g: &mut ExprGraph, factor: &LtdlFactor, b: &[Vec<Id>]) -> Vec<Vec<Id>> {
+fn negated_solve(g: &mut ExprGraph, factor: &LtdlFactor, b: &[Vec<Id>]) -> Vec<Vec<Id>> {
     let columns: Vec<Vec<Id>> = (0..b.first().map_or(0, Vec::len))
         .map(|k| {
             let column: Vec<Id> = b.iter().map(|row| g.neg(row[k])).collect();
@@ -209,8 +209,23 @@ pub fn negated_solve(g: &mut ExprGraph, factor: &LtdlFactor, b: &[Vec<Id>]) -> V
     transpose(&columns, b.len())
 }
 
+/// `−M⁻¹ b`: solved through the factor of M when it has structural zeros (`negated_solve`),
+/// else as the product with `inverse` (`negated_product`).
+pub fn negated_inverse_times(
+    g: &mut ExprGraph,
+    factor: &LtdlFactor,
+    inverse: &[Vec<Id>],
+    b: &[Vec<Id>],
+) -> Vec<Vec<Id>> {
+    if factor.is_sparse(g) {
+        negated_solve(g, factor, b)
+    } else {
+        negated_product(g, inverse, b)
+    }
+}
+
 /// `−a b` for square matrices.
-pub fn negated_product(g: &mut ExprGraph, a: &[Vec<Id>], b: &[Vec<Id>]) -> Vec<Vec<Id>> {
+fn negated_product(g: &mut ExprGraph, a: &[Vec<Id>], b: &[Vec<Id>]) -> Vec<Vec<Id>> {
     let n = a.len();
     (0..n)
         .map(|i| {

@@ -494,6 +494,20 @@ impl SymbolicDynamics {
     /// order [`Self::mass_matrix_inverse`] alone creates them in: the third output rounds
     /// exactly as that kernel does.
     pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
+        let (inverse, qdd, tau) = self.recursion_at_forward_dynamics();
+        let (dq, dv) = self.state_jacobians(&tau, &qdd);
+        let factor = self.mass_matrix_factor();
+        let g = &mut self.model.graph;
+        let dqdd_dq = derivatives::negated_inverse_times(g, &factor, &inverse, &dq);
+        let dqdd_dv = derivatives::negated_inverse_times(g, &factor, &inverse, &dv);
+        (dqdd_dq, dqdd_dv, inverse)
+    }
+
+    /// M⁻¹, q̈ = FD(q, q̇, u) and the recursion's torques at that q̈, built in this order (M⁻¹
+    /// first, so that its nodes round as [`Self::mass_matrix_inverse`] alone builds them):
+    /// what forward dynamics' derivatives differentiate, with q̈ held. Asserts that the
+    /// torques read u only through q̈ ([`derivatives::reads_force_only_through`]).
+    fn recursion_at_forward_dynamics(&mut self) -> (Matrix, Vec<Id>, Vec<Id>) {
         let inverse = self.mass_matrix_inverse();
         let qdd = self.forward_dynamics();
         let tau = self.inverse_dynamics_at(qdd.clone());
@@ -501,17 +515,7 @@ impl SymbolicDynamics {
             derivatives::reads_force_only_through(&self.model.graph, &tau, &qdd),
             "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
         );
-        let (dq, dv) = self.state_jacobians(&tau, &qdd);
-        let factor = self.mass_matrix_factor();
-        let g = &mut self.model.graph;
-        let (dqdd_dq, dqdd_dv) = if factor.is_sparse(g) {
-            let dqdd_dq = derivatives::negated_solve(g, &factor, &dq);
-            (dqdd_dq, derivatives::negated_solve(g, &factor, &dv))
-        } else {
-            let dqdd_dq = derivatives::negated_product(g, &inverse, &dq);
-            (dqdd_dq, derivatives::negated_product(g, &inverse, &dv))
-        };
-        (dqdd_dq, dqdd_dv, inverse)
+        (inverse, qdd, tau)
     }
 
     /// (∂τ/∂q, ∂τ/∂q̇) as [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
@@ -543,13 +547,7 @@ impl SymbolicDynamics {
     /// applied to each group's vectors, or by reverse sweeps seeded with the rows of −M⁻¹,
     /// whichever costs fewer operations.
     pub fn forward_dynamics_derivative_lanes(&mut self) -> (LanePartials, Matrix) {
-        let inverse = self.mass_matrix_inverse();
-        let qdd = self.forward_dynamics();
-        let tau = self.inverse_dynamics_at(qdd.clone());
-        assert!(
-            derivatives::reads_force_only_through(&self.model.graph, &tau, &qdd),
-            "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
-        );
+        let (inverse, qdd, tau) = self.recursion_at_forward_dynamics();
         let layout = self.layout();
         let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
@@ -561,11 +559,7 @@ impl SymbolicDynamics {
             g,
             |g| {
                 let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &qdd);
-                let rows = if factor.is_sparse(g) {
-                    derivatives::negated_solve(g, &factor, &rows)
-                } else {
-                    derivatives::negated_product(g, &inverse, &rows)
-                };
+                let rows = derivatives::negated_inverse_times(g, &factor, &inverse, &rows);
                 LanePartials::from_rows(&groups, rows, layout.nv())
             },
             |g| LanePartials::reverse(g, &tau, &negated, layout, &qdd),
