@@ -6,7 +6,9 @@
 //! floating-point addition is not associative and the emitted code must compute exactly
 //! what the program says. The sine and cosine of each joint angle are computed once, with
 //! the runtime's `Real::sin_cos` (or `Real::sin_cos_array` for several), at the top of the
-//! function.
+//! function. Each output is stored into the result as soon as the bindings it reads are
+//! computed, not returned as one expression at the end, so that it need not stay live
+//! until the return.
 //!
 //! The body is appended to one `String` rather than built as a token stream: a kernel of a
 //! million operations is tens of megabytes of text, where a `proc_macro2::TokenStream` of it
@@ -504,13 +506,13 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
     let plan = split::plan(program, &named, &prologue);
     match &plan {
-        None => {
+        None if layout == Layout::Scalar => {
             for t in (0..program.instrs.len()).filter(|&t| named[t]) {
                 emitter.write_binding(t, &mut body);
             }
-            let mut outputs = program.outputs.iter().map(|&o| emitter.operand(o));
-            layout.write_value(&mut outputs, &mut body);
+            emitter.write(program.outputs[0], &mut body);
         }
+        None => emitter.write_stored_as_computed(&layout, &ret, &named, &mut body),
         Some(plan) => {
             emitter.write_parts(kernel, plan, t, &mut body);
             let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
@@ -547,6 +549,77 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
 }
 
 impl Emitter<'_> {
+    /// The named bindings in program order, each output stored into the result right after
+    /// the last binding it reads, and the result: `let mut result = zeros; … let t7 = …;
+    /// result[0][3] = t7 * c2; … result`. Returned as one array expression at the end, every
+    /// output value stayed live, in a register or spilled to the stack, from its computation
+    /// to the return: built for AVX2, the Panda arm's `F64x4` mass matrix read or wrote the
+    /// stack 278 times per call before and 233 after, its `f64` one 211 and 199
+    /// (docs/performance.md). The outputs that are zero keep the initial zeros; the compiler
+    /// drops the others' initial zeros, overwritten before they are read.
+    fn write_stored_as_computed(
+        &self,
+        layout: &Layout,
+        ty: &str,
+        named: &[bool],
+        out: &mut String,
+    ) {
+        let last_binding = self.last_binding_read(named);
+        let mut stored_after: Vec<Vec<usize>> = vec![Vec::new(); self.program.instrs.len() + 1];
+        for (k, &o) in self.program.outputs.iter().enumerate() {
+            if matches!(o, Operand::Const(c) if c.to_bits() == 0) {
+                continue;
+            }
+            let after = o
+                .temp()
+                .and_then(|t| last_binding[t as usize])
+                .map_or(0, |t| t + 1);
+            stored_after[after].push(k);
+        }
+        let mut zero = String::new();
+        self.constant(0.0, &mut zero);
+        write!(out, "let mut result: {ty} = ").expect("writing to a String");
+        layout.write_value(&mut std::iter::repeat(zero), out);
+        out.push_str(";\n");
+        let places = layout.places();
+        let store = |outputs: &[usize], out: &mut String| {
+            for &k in outputs {
+                out.push_str("result");
+                out.push_str(&places[k]);
+                out.push_str(" = ");
+                self.write(self.program.outputs[k], out);
+                out.push_str(";\n");
+            }
+        };
+        store(&stored_after[0], out);
+        for (t, outputs) in stored_after[1..].iter().enumerate() {
+            if named[t] {
+                self.write_binding(t, out);
+            }
+            store(outputs, out);
+        }
+        out.push_str("result");
+    }
+
+    /// For each instruction, the latest named or prologue instruction its written-out value
+    /// reads (itself when it is one), or `None` when it reads only inputs and constants.
+    fn last_binding_read(&self, named: &[bool]) -> Vec<Option<usize>> {
+        let mut last: Vec<Option<usize>> = Vec::with_capacity(self.program.instrs.len());
+        for (t, &instr) in self.program.instrs.iter().enumerate() {
+            let value = if named[t] || self.joint_trig(instr).is_some() {
+                Some(t)
+            } else {
+                instr
+                    .operands()
+                    .filter_map(Operand::temp)
+                    .filter_map(|u| last[u as usize])
+                    .max()
+            };
+            last.push(value);
+        }
+        last
+    }
+
     /// `let t = …;` of named instruction `t`, appended to `out`.
     fn write_binding(&self, t: usize, out: &mut String) {
         let n = self.names[t].expect("a named instruction");
@@ -715,6 +788,38 @@ mod tests {
         assert!(
             body(&quotient).starts_with("qd[0]/(qd[1]*qd[2])"),
             "{quotient}"
+        );
+    }
+
+    /// Each output is stored right after the last binding it reads, a zero output not at
+    /// all (the result starts as zeros), and the result is returned last.
+    #[test]
+    fn outputs_are_stored_as_soon_as_computed() {
+        let program = Program {
+            instrs: vec![
+                Instr::Add(QD0, QD1),
+                Instr::Mul(Temp(0), QD2),
+                Instr::Mul(Temp(1), Temp(1)),
+            ],
+            outputs: vec![Temp(0), Const(0.0), Temp(2)],
+        };
+        let ctx = EmitContext {
+            fields: &[],
+            scalar: ScalarType::F64,
+            parameters: ParameterMode::Constant,
+            runtime: "::rt",
+        };
+        let dims = Dims {
+            nv: 3,
+            ..Dims::default()
+        };
+        let code = emit_kernel(Kernel::InverseDynamics, &program, dims, ctx)
+            .replace(char::is_whitespace, "");
+        let body = &code[code.find("->[f64;NV]{").expect("a body") + "->[f64;NV]{".len()..];
+        assert_eq!(
+            body,
+            "letmutresult:[f64;NV]=[0.0,0.0,0.0];lett0=qd[0]+qd[1];result[0]=t0;\
+             lett1=t0*qd[2];result[2]=t1*t1;result}",
         );
     }
 

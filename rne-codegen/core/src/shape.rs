@@ -103,6 +103,25 @@ impl Layout {
         }
     }
 
+    /// Each scalar's place in the value as the index suffix of an expression of this type
+    /// (`[2][3]`, `.1[0]`; empty for a scalar), in the order of [`Layout::write_value`].
+    pub fn places(&self) -> Vec<String> {
+        match self {
+            Layout::Scalar => vec![String::new()],
+            Layout::Array(element, size) => {
+                let inner = element.places();
+                (0..size.value)
+                    .flat_map(|k| inner.iter().map(move |p| format!("[{k}]{p}")))
+                    .collect()
+            }
+            Layout::Tuple(parts) => parts
+                .iter()
+                .enumerate()
+                .flat_map(|(k, part)| part.places().into_iter().map(move |p| format!(".{k}{p}")))
+                .collect(),
+        }
+    }
+
     /// The value built from `scalars` (Rust expressions), taken in order (row-major, tuple
     /// parts in turn), appended to `out` as source text.
     pub fn write_value(&self, scalars: &mut impl Iterator<Item = String>, out: &mut String) {
@@ -180,6 +199,22 @@ mod tests {
         assert_eq!(Layout::of(Kernel::FramePlacements, DIMS).len(), 36);
         assert_eq!(Layout::of(Kernel::FrameJacobians, DIMS).len(), 36);
         assert_eq!(Layout::of(Kernel::Regressor, DIMS).len(), 40);
+    }
+
+    #[test]
+    fn places_follow_the_order_values_are_written_in() {
+        let layout = Layout::of(Kernel::InverseDynamicsDerivatives, DIMS);
+        assert_eq!(
+            layout.places(),
+            [
+                ".0[0][0]", ".0[0][1]", ".0[1][0]", ".0[1][1]", ".1[0][0]", ".1[0][1]", ".1[1][0]",
+                ".1[1][1]"
+            ]
+        );
+        assert_eq!(Layout::Scalar.places(), [""]);
+        let placements = Layout::of(Kernel::FramePlacements, DIMS);
+        assert_eq!(placements.places().len(), placements.len());
+        assert_eq!(placements.places()[12], "[1].0[0][0]");
     }
 
     #[test]
