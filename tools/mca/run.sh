@@ -13,6 +13,10 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 cpu=${1:-znver3}
+if ! command -v llvm-mca > /dev/null; then
+  echo "tools/mca/run.sh: llvm-mca not found on PATH (it comes with LLVM, e.g. the llvm package)" >&2
+  exit 1
+fi
 export CARGO_TARGET_DIR="$here/../../target/mca"
 (cd "$here" && RUSTFLAGS="-C target-cpu=native" cargo rustc --release --quiet -- --emit asm)
 asm=$(ls -t "$CARGO_TARGET_DIR"/release/deps/rne_mca_check-*.s | head -1)
@@ -30,7 +34,11 @@ for kernel in $(grep -o '^_ZN13rne_mca_check[0-9]*mca_[^:]*:' "$asm" | sed 's/:$
   # without labels and assembler directives.
   awk -v f="$kernel:" '$0 == f {on = 1; next} on && /\.cfi_endproc/ {exit}
     on && $1 !~ /^\./ && $1 !~ /:$/ && $1 !~ /^#/ && NF {print}' "$asm" > "$body"
-  report=$(llvm-mca -mcpu="$cpu" -iterations=100 "$body" 2>/dev/null)
+  if ! report=$(llvm-mca -mcpu="$cpu" -iterations=100 "$body" 2>&1); then
+    echo "tools/mca/run.sh: llvm-mca failed on $name (-mcpu=$cpu):" >&2
+    echo "$report" | head -3 >&2
+    exit 1
+  fi
   throughput=$(echo "$report" | awk '/Block RThroughput/ {print $3}')
   busiest=$(echo "$report" | awk '
     /^Resources:/ {r = 1; next}
