@@ -1,7 +1,9 @@
 //! The hash-consed expression DAG and its simplifying constructors.
 
-use rustc_hash::FxHashMap;
+use hashbrown::hash_table::{Entry, HashTable};
+use rustc_hash::FxBuildHasher;
 use std::f64::consts::FRAC_PI_2;
+use std::hash::BuildHasher;
 
 use super::node::{Constant, Id, Node, Symbol};
 use super::symbols::SymbolTable;
@@ -9,7 +11,7 @@ use super::symbols::SymbolTable;
 /// A hash-consed directed acyclic graph of scalar expressions.
 ///
 /// Nodes live in an arena; only [`ExprGraph::split_off`] removes them, the newest first. Every
-/// node is unique (structural sharing through an FxHash `HashMap<Node, Id>` memo), and its
+/// node is unique (structural sharing through a memo of node ids, hashed by their nodes), and its
 /// children always come earlier in the arena, so `0..len()` is a topological order. The constructors (`add`, `mul`, `sin`, ...) fold
 /// constants and apply identities that are exact in real arithmetic and never increase the
 /// operation count: `x·0 = 0`, `x·1 = x`, `x + 0 = x`, `x + (−x) = 0`, `−(−x) = x`,
@@ -18,8 +20,16 @@ use super::symbols::SymbolTable;
 #[derive(Clone, Debug, Default)]
 pub struct ExprGraph {
     nodes: Vec<Node>,
-    memo: FxHashMap<Node, Id>,
+    /// Every node's id, found by the node's [`hash`] and compared through `nodes`: four bytes
+    /// an entry where a map from nodes to ids would take twenty-four.
+    memo: HashTable<Id>,
     symbols: SymbolTable,
+}
+
+/// The memo's hash of a node (FxHash: keys are small integers and constants' bits, where a
+/// DoS-resistant hash buys nothing).
+fn hash(node: &Node) -> u64 {
+    FxBuildHasher.hash_one(node)
 }
 
 impl ExprGraph {
@@ -27,7 +37,7 @@ impl ExprGraph {
     pub fn new(symbols: SymbolTable) -> ExprGraph {
         ExprGraph {
             nodes: Vec::new(),
-            memo: FxHashMap::default(),
+            memo: HashTable::new(),
             symbols,
         }
     }
@@ -81,8 +91,11 @@ impl ExprGraph {
     /// the graph.
     pub fn split_off(&mut self, len: usize) -> Vec<Node> {
         let tail = self.nodes.split_off(len);
-        for node in &tail {
-            self.memo.remove(node);
+        for (k, node) in tail.iter().enumerate() {
+            let id = Id::from_index(len + k);
+            if let Ok(entry) = self.memo.find_entry(hash(node), |&m| m == id) {
+                entry.remove();
+            }
         }
         tail
     }
@@ -92,24 +105,36 @@ impl ExprGraph {
     pub fn restore(&mut self, nodes: Vec<Node>) {
         for node in nodes {
             let id = Id::from_index(self.nodes.len());
+            let nodes = &self.nodes;
             debug_assert!(
-                !self.memo.contains_key(&node),
+                self.memo
+                    .find(hash(&node), |&m| nodes[m.index()] == node)
+                    .is_none(),
                 "restored onto another graph"
             );
+            self.memo
+                .insert_unique(hash(&node), id, |&m| hash(&nodes[m.index()]));
             self.nodes.push(node);
-            self.memo.insert(node, id);
         }
     }
 
     fn intern(&mut self, node: Node) -> Id {
-        if let Some(&id) = self.memo.get(&node) {
-            return id;
+        let nodes = &self.nodes;
+        let entry = self.memo.entry(
+            hash(&node),
+            |&m| nodes[m.index()] == node,
+            |&m| hash(&nodes[m.index()]),
+        );
+        match entry {
+            Entry::Occupied(existing) => *existing.get(),
+            Entry::Vacant(vacant) => {
+                debug_assert!(node.children().all(|c| c.index() < nodes.len()));
+                let id = Id::from_index(nodes.len());
+                vacant.insert(id);
+                self.nodes.push(node);
+                id
+            }
         }
-        debug_assert!(node.children().all(|c| c.index() < self.nodes.len()));
-        let id = Id::from_index(self.nodes.len());
-        self.nodes.push(node);
-        self.memo.insert(node, id);
-        id
     }
 
     /// A constant. Non-finite values are accepted (they arise only from user data that
@@ -356,6 +381,28 @@ mod tests {
         let d = g.add(x, b);
         assert_eq!(c, d);
         assert_eq!(g.len(), before + 1);
+    }
+
+    #[test]
+    fn split_off_forgets_nodes_and_restore_shares_them_again() {
+        let (mut g, x, y) = graph();
+        let start = g.len();
+        let product = g.mul(x, y);
+        let sum = g.add(product, x);
+        let tail = g.split_off(start);
+        assert_eq!(g.len(), start);
+        // The memo forgot the nodes: another construction takes their ids.
+        let other = g.sin(x);
+        assert_eq!(other, product);
+        g.split_off(start);
+        g.restore(tail);
+        assert_eq!(g.len(), start + 2);
+        // Restored nodes are found again rather than built twice, and the removed one is gone.
+        assert_eq!(g.mul(y, x), product);
+        assert_eq!(g.add(x, product), sum);
+        assert_eq!(g.len(), start + 2);
+        let sine = g.sin(x);
+        assert_eq!(sine.index(), start + 2);
     }
 
     #[test]
