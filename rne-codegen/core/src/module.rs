@@ -261,29 +261,54 @@ pub fn generate(
     let emit = |built: BuiltKernel, kernel: Kernel, dims: Dims, start: Instant| {
         emit_built(built, kernel, scene, &runtime_text, &fields, dims, start)
     };
-    // Two threads: this one builds forward dynamics and the derivatives (the costliest
-    // kernels, and the derivatives share the choice of sweep); the other finds the base
-    // parameters when a kernel reads them and builds every other kernel. Each kernel is built
-    // from the same dynamics and setup on either thread, so the module does not depend on it.
-    let on_this_thread = |kernel: Kernel| {
-        matches!(
-            kernel,
-            Kernel::ForwardDynamics
-                | Kernel::InverseDynamicsDerivatives
-                | Kernel::ForwardDynamicsDerivatives
-        )
+    // Two threads. This one builds the derivative kernels, the costliest. The other builds
+    // forward dynamics (both ways, to choose), finds the base parameters when a kernel reads
+    // them and builds every other kernel. When both derivative kernels are built in scalars,
+    // forward dynamics' takes the sweep inverse dynamics' chose (the same torques): this
+    // thread builds the graph of ∂ID, which chooses the sweep, and hands it over to be
+    // lowered and emitted on the other thread while it builds ∂FD. Each kernel is built from
+    // the same dynamics and setup on either thread, so the module does not depend on which.
+    let both_derivatives = outputs.contains(&Kernel::InverseDynamicsDerivatives)
+        && outputs.contains(&Kernel::ForwardDynamicsDerivatives);
+    let hands_over_sweep = both_derivatives && !setup.derivative_lanes;
+    let on_this_thread = |kernel: Kernel| match kernel {
+        Kernel::ForwardDynamicsDerivatives => true,
+        Kernel::InverseDynamicsDerivatives => !both_derivatives,
+        _ => false,
     };
     let (forward_dynamics_choice, dynamics) = std::thread::scope(|scope| {
+        // Made inside the scope: a panic here drops the sender before the scope joins the
+        // other thread, which then stops waiting.
+        let (handover, handed) = std::sync::mpsc::channel::<(SymbolicDynamics, Duration)>();
         let other = {
             let (dynamics, mut setup, mut dims) = (dynamics.clone(), setup.clone(), dims);
-            let kernels: Vec<(usize, Kernel)> = outputs
+            let mut kernels: Vec<(usize, Kernel)> = outputs
                 .iter()
                 .copied()
                 .enumerate()
                 .filter(|&(_, kernel)| !on_this_thread(kernel))
                 .collect();
+            // The handed-over graph last, when it is most likely ready.
+            kernels.sort_by_key(|&(_, kernel)| {
+                hands_over_sweep && kernel == Kernel::InverseDynamicsDerivatives
+            });
             let emit = &emit;
+            let builds_forward_dynamics = kernels
+                .iter()
+                .any(|&(_, kernel)| kernel == Kernel::ForwardDynamics);
             scope.spawn(move || {
+                let choosing = Instant::now();
+                let (forward_dynamics_choice, mut chosen_forward_dynamics) =
+                    if builds_forward_dynamics && articulated_applies(&dynamics) {
+                        let (choice, built) =
+                            choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics);
+                        (Some(choice), Some((built, choosing.elapsed())))
+                    } else {
+                        (None, None)
+                    };
+                setup.articulated = forward_dynamics_choice
+                    .as_ref()
+                    .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
                 if finds_base_parameters {
                     let base = dynamics.base_parameters();
                     dims.nb = base.len();
@@ -292,43 +317,50 @@ pub fn generate(
                 let emitted: Vec<(usize, (String, KernelReport))> = kernels
                     .into_iter()
                     .map(|(k, kernel)| {
-                        let start = Instant::now();
-                        let built = build_kernel_with(&dynamics, kernel, &setup);
+                        let (built, start) = match kernel {
+                            Kernel::ForwardDynamics if chosen_forward_dynamics.is_some() => {
+                                let (built, time) = chosen_forward_dynamics
+                                    .take()
+                                    .expect("forward dynamics is built once");
+                                (built, started(time))
+                            }
+                            Kernel::InverseDynamicsDerivatives if hands_over_sweep => {
+                                let (graph, time) = handed
+                                    .recv()
+                                    .expect("the other thread hands over the graph of ∂ID");
+                                let start = started(time);
+                                (build_kernel_with(&graph, kernel, &setup), start)
+                            }
+                            _ => {
+                                let start = Instant::now();
+                                (build_kernel_with(&dynamics, kernel, &setup), start)
+                            }
+                        };
                         (k, emit(built, kernel, dims, start))
                     })
                     .collect();
-                (setup.base_parameters, emitted)
+                (forward_dynamics_choice, setup.base_parameters, emitted)
             })
         };
-        let (forward_dynamics_choice, mut chosen_forward_dynamics) =
-            if outputs.contains(&Kernel::ForwardDynamics) && articulated_applies(&dynamics) {
-                let (choice, built) =
-                    choose_forward_dynamics(&dynamics, &setup, scene.forward_dynamics);
-                (Some(choice), Some(built))
-            } else {
-                (None, None)
-            };
-        setup.articulated = forward_dynamics_choice
-            .as_ref()
-            .is_some_and(|c| c.chosen == ForwardDynamicsMethod::Aba);
+        if hands_over_sweep {
+            let start = Instant::now();
+            let mut graph = dynamics.clone();
+            graph.inverse_dynamics_derivatives();
+            if let Some(sweep) = graph.derivative_sweep() {
+                dynamics = dynamics.with_derivative_sweep(sweep);
+            }
+            // Fails only when the other thread has ended by a panic, which the join resumes.
+            let _ = handover.send((graph, start.elapsed()));
+        }
         for (k, &kernel) in outputs.iter().enumerate() {
             if !on_this_thread(kernel) {
                 continue;
             }
             let start = Instant::now();
-            let prebuilt = match kernel {
-                Kernel::ForwardDynamics => chosen_forward_dynamics.take(),
-                _ => None,
-            };
-            let built = prebuilt.unwrap_or_else(|| build_kernel_with(&dynamics, kernel, &setup));
-            // The sweep one derivative kernel chose is the one the next would (the same
-            // torques): it builds that one alone.
-            if let Some(sweep) = built.dynamics.derivative_sweep() {
-                dynamics = dynamics.with_derivative_sweep(sweep);
-            }
+            let built = build_kernel_with(&dynamics, kernel, &setup);
             emitted[k] = Some(emit(built, kernel, dims, start));
         }
-        let (base_parameters, others) = other
+        let (forward_dynamics_choice, base_parameters, others) = other
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         for (k, function) in others {
@@ -463,6 +495,12 @@ fn emit_built(
         generation_time: start.elapsed(),
     };
     (function, report)
+}
+
+/// The instant `time` ago: when a kernel whose building took `time` so far started.
+fn started(time: Duration) -> Instant {
+    let now = Instant::now();
+    now.checked_sub(time).unwrap_or(now)
 }
 
 /// Builds `forward_dynamics` both ways and keeps the one `method` asks for, or with `Auto` the

@@ -102,3 +102,33 @@ fn every_kernel_of_the_runtime_has_a_construction() {
         );
     }
 }
+
+/// The text of `pub fn name` in `module`, to its closing brace.
+fn function<'m>(module: &'m str, name: &str) -> &'m str {
+    let start = module
+        .find(&format!("pub fn {name}("))
+        .unwrap_or_else(|| panic!("the module has `{name}`"));
+    let end = start + module[start..].find("\n}\n").expect("a function ends");
+    &module[start..end]
+}
+
+/// The module's threads share out the kernels according to which are asked for (the graph of
+/// ∂ID is built on one and lowered on the other when ∂FD comes with it): a kernel's code is
+/// the same whichever kernels come with it.
+#[test]
+fn a_kernel_is_the_same_whichever_kernels_come_with_it() {
+    let every = emitted("puma560.toml", &Kernel::ALL);
+    for kernel in [
+        Kernel::InverseDynamicsDerivatives,
+        Kernel::ForwardDynamics,
+        Kernel::MassMatrix,
+        Kernel::BaseRegressor,
+    ] {
+        let alone = emitted("puma560.toml", &[kernel]);
+        assert_eq!(
+            function(&alone, kernel.name()),
+            function(&every, kernel.name()),
+            "{kernel}"
+        );
+    }
+}
