@@ -20,16 +20,31 @@ use super::symbols::SymbolTable;
 #[derive(Clone, Debug, Default)]
 pub struct ExprGraph {
     nodes: Vec<Node>,
-    /// Every node's id, found by the node's [`hash`] and compared through `nodes`: four bytes
-    /// an entry where a map from nodes to ids would take twenty-four.
-    memo: HashTable<Id>,
+    /// Every node's id with its [`hash`], found by the hash and compared through `nodes`:
+    /// eight bytes an entry where a map from nodes to ids would take twenty-four, and the
+    /// table grows without reading the arena.
+    memo: HashTable<Memo>,
     symbols: SymbolTable,
 }
 
-/// The memo's hash of a node (FxHash: keys are small integers and constants' bits, where a
-/// DoS-resistant hash buys nothing).
-fn hash(node: &Node) -> u64 {
-    FxBuildHasher.hash_one(node)
+/// An entry of the memo: a node's id and [`hash`].
+#[derive(Copy, Clone, Debug)]
+struct Memo {
+    id: Id,
+    hash: u32,
+}
+
+/// The memo's hash of a node: FxHash (keys are small integers and constants' bits, where a
+/// DoS-resistant hash buys nothing), folded to 32 bits.
+fn hash(node: &Node) -> u32 {
+    let h = FxBuildHasher.hash_one(node);
+    (h >> 32) as u32 ^ h as u32
+}
+
+/// The table's 64-bit hash of a 32-bit [`hash`]: a bijection on the low bits, which index the
+/// table, that also fills the high bits, which the table keeps as tags.
+fn spread(hash: u32) -> u64 {
+    u64::from(hash).wrapping_mul(0x9e37_79b9_7f4a_7c15)
 }
 
 impl ExprGraph {
@@ -93,7 +108,7 @@ impl ExprGraph {
         let tail = self.nodes.split_off(len);
         for (k, node) in tail.iter().enumerate() {
             let id = Id::from_index(len + k);
-            if let Ok(entry) = self.memo.find_entry(hash(node), |&m| m == id) {
+            if let Ok(entry) = self.memo.find_entry(spread(hash(node)), |m| m.id == id) {
                 entry.remove();
             }
         }
@@ -104,33 +119,33 @@ impl ExprGraph {
     /// had then: each gets back its id.
     pub fn restore(&mut self, nodes: Vec<Node>) {
         for node in nodes {
-            let id = Id::from_index(self.nodes.len());
+            let (id, hash) = (Id::from_index(self.nodes.len()), hash(&node));
             let nodes = &self.nodes;
             debug_assert!(
                 self.memo
-                    .find(hash(&node), |&m| nodes[m.index()] == node)
+                    .find(spread(hash), |m| nodes[m.id.index()] == node)
                     .is_none(),
                 "restored onto another graph"
             );
             self.memo
-                .insert_unique(hash(&node), id, |&m| hash(&nodes[m.index()]));
+                .insert_unique(spread(hash), Memo { id, hash }, |m| spread(m.hash));
             self.nodes.push(node);
         }
     }
 
     fn intern(&mut self, node: Node) -> Id {
-        let nodes = &self.nodes;
+        let (nodes, hash) = (&self.nodes, hash(&node));
         let entry = self.memo.entry(
-            hash(&node),
-            |&m| nodes[m.index()] == node,
-            |&m| hash(&nodes[m.index()]),
+            spread(hash),
+            |m| m.hash == hash && nodes[m.id.index()] == node,
+            |m| spread(m.hash),
         );
         match entry {
-            Entry::Occupied(existing) => *existing.get(),
+            Entry::Occupied(existing) => existing.get().id,
             Entry::Vacant(vacant) => {
                 debug_assert!(node.children().all(|c| c.index() < nodes.len()));
                 let id = Id::from_index(nodes.len());
-                vacant.insert(id);
+                vacant.insert(Memo { id, hash });
                 self.nodes.push(node);
                 id
             }
