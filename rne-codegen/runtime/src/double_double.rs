@@ -87,11 +87,13 @@ impl DoubleDouble {
     pub const UNIT_ROUNDOFF: f64 = 1.232595164407831e-32;
 
     /// The double `x` exactly.
+    #[inline]
     pub const fn from_f64(x: f64) -> DoubleDouble {
         DoubleDouble { hi: x, lo: 0.0 }
     }
 
     /// `hi + lo` (any two doubles), renormalised so that `|lo| ≤ ulp(hi)/2`.
+    #[inline]
     pub fn from_parts(hi: f64, lo: f64) -> DoubleDouble {
         let (s, e) = two_sum(hi, lo);
         DoubleDouble { hi: s, lo: e }.or_f64(hi + lo)
@@ -108,6 +110,7 @@ impl DoubleDouble {
     }
 
     /// The `f64` nearest to the value.
+    #[inline]
     pub fn to_f64(self) -> f64 {
         self.hi + self.lo
     }
@@ -280,6 +283,7 @@ impl DoubleDouble {
     }
 
     /// `self + y` for a double y (JMP Algorithm 4, ≤ 2u²).
+    #[inline]
     fn add_f64(self, y: f64) -> DoubleDouble {
         let (sh, sl) = two_sum(self.hi, y);
         let v = self.lo + sl;
@@ -288,6 +292,7 @@ impl DoubleDouble {
     }
 
     /// `self · y` for a double y (JMP Algorithm 9, its fused multiply–add as two roundings).
+    #[inline]
     fn mul_f64(self, y: f64) -> DoubleDouble {
         let (ch, cl1) = two_prod(self.hi, y);
         let cl3 = self.lo * y + cl1;
@@ -309,6 +314,7 @@ impl DoubleDouble {
 
     /// `self` if finite, else `naive` (the `f64` result of the operation on the high parts),
     /// so that infinities and NaN come out as in `f64`.
+    #[inline]
     fn or_f64(self, naive: f64) -> DoubleDouble {
         if self.hi.is_finite() {
             self
@@ -393,6 +399,7 @@ impl From<f64> for DoubleDouble {
 impl Add for DoubleDouble {
     type Output = DoubleDouble;
     /// JMP Algorithm 6 ("AccurateDWPlusDW"): relative error ≤ 3u² + 13u³.
+    #[inline]
     fn add(self, y: DoubleDouble) -> DoubleDouble {
         let (sh, sl) = two_sum(self.hi, y.hi);
         let (th, tl) = two_sum(self.lo, y.lo);
@@ -404,6 +411,7 @@ impl Add for DoubleDouble {
 
 impl Sub for DoubleDouble {
     type Output = DoubleDouble;
+    #[inline]
     fn sub(self, y: DoubleDouble) -> DoubleDouble {
         self + -y
     }
@@ -414,6 +422,7 @@ impl Mul for DoubleDouble {
     /// JMP Algorithm 12 ("DWTimesDW3"): the exact product of the high parts plus the cross
     /// terms (accumulated with a multiplication and an addition where JMP fuse them; `core`
     /// has no fused multiply–add).
+    #[inline]
     fn mul(self, y: DoubleDouble) -> DoubleDouble {
         let (ch, cl1) = two_prod(self.hi, y.hi);
         let tl1 = self.hi * y.lo + self.lo * y.lo;
@@ -443,6 +452,7 @@ impl Div for DoubleDouble {
 
 impl Neg for DoubleDouble {
     type Output = DoubleDouble;
+    #[inline]
     fn neg(self) -> DoubleDouble {
         DoubleDouble {
             hi: -self.hi,
@@ -452,18 +462,21 @@ impl Neg for DoubleDouble {
 }
 
 impl AddAssign for DoubleDouble {
+    #[inline]
     fn add_assign(&mut self, y: DoubleDouble) {
         *self = *self + y;
     }
 }
 
 impl SubAssign for DoubleDouble {
+    #[inline]
     fn sub_assign(&mut self, y: DoubleDouble) {
         *self = *self - y;
     }
 }
 
 impl MulAssign for DoubleDouble {
+    #[inline]
     fn mul_assign(&mut self, y: DoubleDouble) {
         *self = *self * y;
     }

@@ -249,10 +249,14 @@ impl Split {
                 break;
             }
             let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
+            // Columns as slices (column-major storage), which the compiler unrolls.
+            let rows = w.nrows();
+            let (w_all, r_all) = (w.as_slice(), residual.as_mut_slice());
             for &(b, d) in &nonzero {
                 let coefficient = refined[(b, d)];
-                let kept = w.column(self.independent[b]);
-                for (r, &x) in residual.column_mut(d).iter_mut().zip(kept.iter()) {
+                let c = self.independent[b];
+                let kept = &w_all[c * rows..(c + 1) * rows];
+                for (r, &x) in r_all[d * rows..(d + 1) * rows].iter_mut().zip(kept) {
                     *r -= x * coefficient;
                 }
             }
