@@ -1,6 +1,7 @@
 //! A whole generated module: constants, the runtime `Params` struct, the kernels and the
 //! `Model` type implementing the runtime's `Dynamics` trait.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use proc_macro2::{Literal, TokenStream};
@@ -262,12 +263,14 @@ pub fn generate(
         emit_built(built, kernel, scene, &runtime_text, &fields, dims, start)
     };
     // Two threads. This one builds the derivative kernels, the costliest. The other builds
-    // forward dynamics (both ways, to choose), finds the base parameters when a kernel reads
-    // them and builds every other kernel. When both derivative kernels are built in scalars,
+    // forward dynamics (both ways, to choose) and finds the base parameters when a kernel reads
+    // them, then builds those kernels. When both derivative kernels are built in scalars,
     // forward dynamics' takes the sweep inverse dynamics' chose (the same torques): this
     // thread builds the graph of ∂ID, which chooses the sweep, and hands it over to be
-    // lowered and emitted on the other thread while it builds ∂FD. Each kernel is built from
-    // the same dynamics and setup on either thread, so the module does not depend on which.
+    // lowered and emitted on the other thread while it builds ∂FD. Every other kernel is
+    // shared: each thread, once done with its own, takes the next in order until none is
+    // left. Each kernel is built from the same dynamics and setup on either thread, so the
+    // module does not depend on which.
     let both_derivatives = outputs.contains(&Kernel::InverseDynamicsDerivatives)
         && outputs.contains(&Kernel::ForwardDynamicsDerivatives);
     let hands_over_sweep = both_derivatives && !setup.derivative_lanes;
@@ -276,23 +279,36 @@ pub fn generate(
         Kernel::InverseDynamicsDerivatives => !both_derivatives,
         _ => false,
     };
+    let on_the_other_thread = |kernel: Kernel| match kernel {
+        Kernel::ForwardDynamics => true,
+        Kernel::InverseDynamicsDerivatives => both_derivatives,
+        kernel => finds_base_parameters && reads_base(kernel),
+    };
+    let numbered = |keep: &dyn Fn(Kernel) -> bool| -> Vec<(usize, Kernel)> {
+        outputs
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|&(_, kernel)| keep(kernel))
+            .collect()
+    };
+    let shared = numbered(&|kernel| !on_this_thread(kernel) && !on_the_other_thread(kernel));
+    let next_shared = AtomicUsize::new(0);
+    let take_shared = || {
+        shared
+            .get(next_shared.fetch_add(1, Ordering::Relaxed))
+            .copied()
+    };
     let (forward_dynamics_choice, dynamics) = std::thread::scope(|scope| {
         // Made inside the scope: a panic here drops the sender before the scope joins the
         // other thread, which then stops waiting.
         let (handover, handed) = std::sync::mpsc::channel::<(SymbolicDynamics, Duration)>();
         let other = {
             let (dynamics, mut setup, mut dims) = (dynamics.clone(), setup.clone(), dims);
-            let mut kernels: Vec<(usize, Kernel)> = outputs
-                .iter()
-                .copied()
-                .enumerate()
-                .filter(|&(_, kernel)| !on_this_thread(kernel))
-                .collect();
-            // The handed-over graph last, when it is most likely ready.
-            kernels.sort_by_key(|&(_, kernel)| {
-                hands_over_sweep && kernel == Kernel::InverseDynamicsDerivatives
-            });
-            let emit = &emit;
+            let mut kernels = numbered(&on_the_other_thread);
+            // The handed-over graph after the others, when it is most likely ready.
+            kernels.sort_by_key(|&(_, kernel)| kernel == Kernel::InverseDynamicsDerivatives);
+            let (emit, take_shared) = (&emit, &take_shared);
             let builds_forward_dynamics = kernels
                 .iter()
                 .any(|&(_, kernel)| kernel == Kernel::ForwardDynamics);
@@ -316,6 +332,7 @@ pub fn generate(
                 }
                 let emitted: Vec<(usize, (String, KernelReport))> = kernels
                     .into_iter()
+                    .chain(std::iter::from_fn(take_shared))
                     .map(|(k, kernel)| {
                         let (built, start) = match kernel {
                             Kernel::ForwardDynamics if chosen_forward_dynamics.is_some() => {
@@ -352,10 +369,10 @@ pub fn generate(
             // Fails only when the other thread has ended by a panic, which the join resumes.
             let _ = handover.send((graph, start.elapsed()));
         }
-        for (k, &kernel) in outputs.iter().enumerate() {
-            if !on_this_thread(kernel) {
-                continue;
-            }
+        for (k, kernel) in numbered(&on_this_thread)
+            .into_iter()
+            .chain(std::iter::from_fn(&take_shared))
+        {
             let start = Instant::now();
             let built = build_kernel_with(&dynamics, kernel, &setup);
             emitted[k] = Some(emit(built, kernel, dims, start));
