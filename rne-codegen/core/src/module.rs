@@ -114,7 +114,16 @@ pub fn build_kernel_with(
             return built;
         }
     }
-    let mut dynamics = dynamics.clone();
+    build_in_scalars(dynamics.clone(), kernel, setup)
+}
+
+/// [`build_kernel_with`] without lanes, into `dynamics` itself: a graph in which only this
+/// kernel's expressions have been built (and cached) gives the same kernel as a fresh one.
+fn build_in_scalars(
+    mut dynamics: SymbolicDynamics,
+    kernel: Kernel,
+    setup: &KernelSetup,
+) -> BuiltKernel {
     let roots = build_outputs(kernel, &mut dynamics, setup);
     let nv = dynamics.layout().nv();
     let graph = &mut dynamics.model.graph;
@@ -345,8 +354,9 @@ pub fn generate(
                                 let (graph, time) = handed
                                     .recv()
                                     .expect("the other thread hands over the graph of ∂ID");
+                                // Not in lanes: the sweep is handed over only then.
                                 let start = started(time);
-                                (build_kernel_with(&graph, kernel, &setup), start)
+                                (build_in_scalars(graph, kernel, &setup), start)
                             }
                             _ => {
                                 let start = Instant::now();

@@ -249,7 +249,7 @@ impl Split {
                 break;
             }
             let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
-            // Columns as slices (column-major storage), which the compiler unrolls.
+            // Columns as slices of the column-major storage: no view's strides per element.
             let rows = w.nrows();
             let (w_all, r_all) = (w.as_slice(), residual.as_mut_slice());
             for &(b, d) in &nonzero {
