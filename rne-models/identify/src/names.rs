@@ -104,18 +104,20 @@ pub fn readable_names(names: &[String]) -> Option<(Vec<ParameterName>, Vec<Strin
     Some((out, bodies))
 }
 
-/// Relative distance below which a coefficient is printed as a short decimal or a fraction.
-const EXACT: f64 = 1e-10;
+/// Relative distance below which a coefficient is *printed* as a short decimal or a fraction.
+/// Printing only: an irrational coefficient falls this close to a short number with a
+/// probability of about 1e-4, so values that are computed with are snapped only within the
+/// much smaller tolerance the caller gives (`base::SNAP`).
+pub const PRINTED_EXACT: f64 = 1e-10;
 
 /// The short number `x` stands for: a decimal of at most 6 significant digits or a fraction
-/// with a denominator up to 64, within a relative 1e-10 of `x` (a computed coefficient
-/// carries rounding errors far below that; an irrational coefficient falls that close to such
-/// a number with a probability of about 1e-4). `None` if there is none.
-pub fn short_value(x: f64) -> Option<(f64, String)> {
+/// with a denominator up to 64, within a relative `tolerance` of `x`. `None` if there is
+/// none.
+pub fn short_value(x: f64, tolerance: f64) -> Option<(f64, String)> {
     if x == 0.0 || !x.is_finite() {
         return None;
     }
-    let close = |y: f64| (y - x).abs() <= EXACT * x.abs();
+    let close = |y: f64| (y - x).abs() <= tolerance * x.abs();
     let decimal = (1..=6).find_map(|digits| {
         let y: f64 = format!("{:.*e}", digits - 1, x).parse().ok()?;
         close(y).then(|| (y, plain(y)))
@@ -129,19 +131,19 @@ pub fn short_value(x: f64) -> Option<(f64, String)> {
     })
 }
 
-/// `x` in the shortest exact form: [`short_value`]'s text if there is one, else a decimal of
-/// at most 12 significant digits within a relative 1e-10, else all 17 digits.
+/// `x` in the shortest exact form: [`short_value`]'s text within [`PRINTED_EXACT`] if there is
+/// one, else a decimal of at most 12 significant digits within as much, else all 17 digits.
 pub fn exact_number(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    if let Some((_, text)) = short_value(x) {
+    if let Some((_, text)) = short_value(x, PRINTED_EXACT) {
         return text;
     }
     (7..=12)
         .find_map(|digits| {
             let y: f64 = format!("{:.*e}", digits - 1, x).parse().ok()?;
-            ((y - x).abs() <= EXACT * x.abs()).then(|| plain(y))
+            ((y - x).abs() <= PRINTED_EXACT * x.abs()).then(|| plain(y))
         })
         .unwrap_or_else(|| format!("{x:.16e}"))
 }

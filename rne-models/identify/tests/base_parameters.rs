@@ -171,6 +171,53 @@ fn the_planar_elbows_base_parameters_are_the_thesiss_groups() {
     }
 }
 
+/// A random robot (found by the property test below) one of whose regrouping coefficients,
+/// −0.558367000047, lies a relative 8e-11 from the short decimal −0.558367: snapping it to the
+/// decimal moved Y_b π_b off τ by a relative 2e-12. The coefficients keep their digits unless
+/// they are within rounding of a short number, and Y_b π_b = τ holds.
+#[test]
+fn a_coefficient_near_a_short_decimal_is_not_rounded_to_it() {
+    let model = parse_str(
+        NEAR_SHORT_DECIMAL,
+        "near_short_decimal.toml",
+        &LoadOptions::default(),
+    )
+    .expect("valid spec");
+    check(&model.to_numeric(), "near_short_decimal");
+}
+
+const NEAR_SHORT_DECIMAL: &str = r#"name = "random"
+gravity = [-4.0065889799090195, -6.156644244531412, 8.097684517121493]
+[[link]]
+name = "l0"
+joint = "revolute"
+dh = { a = 0, alpha = 0.4211027448891881, d = 0, theta = 0 }
+mass = 0.5
+com = [0.032064087253233335, -0.1054003829871511, -0.03518275008049578]
+inertia = { xx = 0.8389289627482239, yy = 0.47238796651695136, zz = 0.4747887998699543 }
+[[link]]
+name = "l1"
+joint = "revolute"
+dh = { a = 1.0465091463688474, alpha = -0.13964614780914963, d = -0.2570214664020444, theta = -0.031000701191241584 }
+mass = 5.181799601800871
+com = [0.1906349232937261, -0.0007417617418634374, 0.17807796117317107]
+inertia = { xx = 0.5642920668657727, yy = 0.7621552823103885, zz = 0.7660236397424427 }
+[[link]]
+name = "l2"
+joint = "revolute"
+dh = { a = 1.3178309264948755, alpha = 1.2960008932444702, d = -1.4062700502679832, theta = -0.06478557497975322 }
+mass = 8.946425655273307
+com = [-0.11887881903118006, 0.02908505189858652, -0.049644242688349424]
+inertia = { xx = 0.7950846613549976, yy = 0.550480775795936, zz = 0.6083277641747489 }
+[[link]]
+name = "l3"
+joint = "revolute"
+dh = { a = 1.4054025204651939, alpha = 0.5930121722737233, d = -0.42375889971939357, theta = -1.4731275330167315 }
+mass = 2.0091284387669996
+com = [0.14322540386830535, -0.19914122556416555, 0.008538053416235756]
+inertia = { xx = 0.515873187534388, yy = 0.2597361321838153, zz = 0.4450884091538755 }
+"#;
+
 /// One random link in standard DH with a random inertia.
 #[derive(Clone, Debug)]
 struct RandomLink {
