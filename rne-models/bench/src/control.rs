@@ -165,18 +165,12 @@ pub fn programs(cases: &Cases) -> Interpreted {
     Interpreted::with_kernels(&cases.model, &CONTROL)
 }
 
-/// Measures the [`CONTROL`] kernels of the robot of `cases` (one with a `control` module,
-/// [`has_control`]): errors over the whole sample against the double-double value of
-/// `program` ([`programs`]), times on the first `pool` states, all kernels timed together
-/// (`relative_time` is 1: each row is its own kernel's generated implementation).
-pub fn measure(
-    cases: &Cases,
-    program: &Interpreted,
-    plan: &Plan,
-    pool: usize,
-) -> Result<RobotKernels, BenchError> {
+/// The [`CONTROL`] kernels of the `control` module of the robot of `cases` (one with such a
+/// module, [`has_control`]) as candidates on its full sample, timed on the first `pool`
+/// states, with their kernels.
+pub fn generated(cases: &Cases, pool: usize) -> Result<Vec<(Kernel, Candidate<'_>)>, BenchError> {
     use variants::{panda, panda_arm, ur5};
-    let list = match cases.robot.name {
+    Ok(match cases.robot.name {
         "ur5" => candidates::<
             _,
             { ur5::control::NV },
@@ -204,8 +198,21 @@ pub fn measure(
                 problem: "no `control` module: add one in rne_models::generated::variants".into(),
             })
         }
-    };
-    let (kernels, mut list): (Vec<Kernel>, Vec<Candidate<'_>>) = list.into_iter().unzip();
+    })
+}
+
+/// Measures the [`CONTROL`] kernels of the robot of `cases` (one with a `control` module,
+/// [`has_control`]): errors over the whole sample against the double-double value of
+/// `program` ([`programs`]), times on the first `pool` states, all kernels timed together
+/// (`relative_time` is 1: each row is its own kernel's generated implementation).
+pub fn measure(
+    cases: &Cases,
+    program: &Interpreted,
+    plan: &Plan,
+    pool: usize,
+) -> Result<RobotKernels, BenchError> {
+    let (kernels, mut list): (Vec<Kernel>, Vec<Candidate<'_>>) =
+        generated(cases, pool)?.into_iter().unzip();
     let full = cases.sample(Case::Full);
     let mut summaries = Vec::new();
     for (&kernel, candidate) in kernels.iter().zip(list.iter_mut()) {

@@ -8,7 +8,8 @@
 //!   for error against the double-double value of the same model ([`precision`]);
 //! - **Control kernels** ([`control`]): the derivatives, M⁻¹, frame Jacobians, J̇q̇ and
 //!   regressor of the URDF robots, timed and measured for error likewise, which the comparison
-//!   with Pinocchio ([`pinocchio`]) sets beside its algorithms and generated code;
+//!   with Pinocchio ([`pinocchio`]) sets beside its algorithms and generated code, timing
+//!   rne's side again right after each run of Pinocchio's scripts ([`beside`]);
 //! - **Scene savings** ([`scenes`]): operations and time of the inverse dynamics against the
 //!   gravity torques and the zero-gravity, locked-joint and static-scene variants;
 //! - **Integrators** ([`integrators`]): time to solution against final-state error and energy
@@ -20,6 +21,7 @@
 
 #![deny(missing_docs)]
 
+pub mod beside;
 pub mod calls;
 pub mod control;
 pub mod error;
@@ -148,15 +150,17 @@ pub fn run(
     let mut pinocchio_results = Vec::new();
     for robot in BUILTIN_ROBOTS {
         let compared = pinocchio.filter(|_| pinocchio::COMPARED.contains(&robot.name));
-        let mut pinocchio_runs = Vec::new();
-        let run_pinocchio = |runs: &mut Vec<_>| -> Result<(), BenchError> {
+        let mut pinocchio_runs = beside::PairedTimes::default();
+        progress(&format!("{}: models and samples", robot.name));
+        let cases = robots::Cases::new(robot, effort.samples())?;
+        // The scripts, then rne's compared kernels right after them (`beside`).
+        let run_pinocchio = |runs: &mut beside::PairedTimes| -> Result<(), BenchError> {
             if let Some((script, scratch)) = compared {
-                runs.push(script.run_once(robot, scratch, runs.len())?);
+                let figures = script.run_once(robot, scratch, runs.runs())?;
+                runs.push(figures, beside::time_compared(&cases, &plan, pool)?);
             }
             Ok(())
         };
-        progress(&format!("{}: models and samples", robot.name));
-        let cases = robots::Cases::new(robot, effort.samples())?;
         let control_programs = control::has_control(robot.name).then(|| control::programs(&cases));
         run_pinocchio(&mut pinocchio_runs)?;
         progress(&format!("{}: kernels", robot.name));
@@ -170,7 +174,7 @@ pub fn run(
         scene_results.push(scenes::measure(&cases, &plan, pool)?);
         run_pinocchio(&mut pinocchio_runs)?;
         if let Some((script, _)) = compared {
-            pinocchio_results.push(script.times(robot.name, &pinocchio_runs));
+            pinocchio_results.push(script.times(robot.name, pinocchio_runs));
         }
     }
     let plan = effort.integrator_plan();

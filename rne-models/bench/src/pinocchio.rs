@@ -15,8 +15,11 @@
 //!
 //! Each prints lines `name value`. For each robot every script runs [`RUNS`] times (`run_cg.sh`
 //! in the first [`PinocchioScript::codegen_runs`] of them): before rne's kernels of that robot
-//! are timed, after them, and after its scene variants; the median of each figure is kept, so that a change of machine load during the run does not favour
-//! either side. Figures are kept under the script's name: `run.rnea_ns`, `cg.cg_aba_ns`, ….
+//! are timed, after them, and after its scene variants. Right after each run rne's compared
+//! kernels are timed again ([`crate::beside`]), and each ratio is the median over runs of the
+//! run's figure over rne's time right after it, so that a change of the machine's speed
+//! between runs does not favour either side. Figures are kept under the script's name:
+//! `run.rnea_ns`, `cg.cg_aba_ns`, ….
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -24,6 +27,7 @@ use std::process::Command;
 
 use rne_codegen::Kernel;
 
+use super::beside::PairedTimes;
 use super::error::BenchError;
 use super::timing::quantile;
 use rne_figures::FigureError;
@@ -174,13 +178,15 @@ pub const COMPARISONS: [Comparison; 10] = [
 ];
 
 /// Pinocchio's figures on one robot, the median over the runs of each script, keyed
-/// `prefix.name` ([`Peer::prefix`]).
+/// `prefix.name` ([`Peer::prefix`]), and the runs themselves with rne's times beside them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PinocchioTimes {
     /// The built-in robot.
     pub robot: &'static str,
-    /// Every figure the scripts printed.
+    /// Every figure the scripts printed: the median over the runs that printed it.
     pub figures: BTreeMap<String, f64>,
+    /// Each run's figures and rne's kernels timed right after it, which the ratios pair.
+    pub paired: PairedTimes,
     /// Calls per figure of `run.sh` and `run_extra.sh`.
     pub calls: u64,
     /// Calls per measurement of `run_cg.sh`, if it ran.
@@ -293,15 +299,17 @@ impl PinocchioScript {
         Ok(figures)
     }
 
-    /// The medians of `runs` on `robot`.
-    pub fn times(&self, robot: &'static str, runs: &[BTreeMap<String, f64>]) -> PinocchioTimes {
+    /// The runs on `robot`, with rne's times beside them, and the medians of their figures.
+    pub fn times(&self, robot: &'static str, paired: PairedTimes) -> PinocchioTimes {
+        let runs = paired.runs();
         PinocchioTimes {
             robot,
-            figures: median_of(runs),
+            figures: median_of(&paired.peer),
+            paired,
             calls: self.calls,
             codegen_calls: self.codegen.as_ref().map(|(_, calls)| *calls),
-            runs: runs.len(),
-            codegen_runs: self.codegen_runs.min(runs.len()),
+            runs,
+            codegen_runs: self.codegen_runs.min(runs),
         }
     }
 }

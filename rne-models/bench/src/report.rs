@@ -232,9 +232,12 @@ impl Report {
              times the plain algorithms (header-only C++, -O3 -march=native, seeded states, \
              mean over {calls} calls){codegen}; `tools/pinocchio/run_extra.sh ROBOT.urdf \
              {calls}` times the Jacobians (`computeJointJacobians`, then each joint's 6 × nv \
-             Jacobian in world axes), J̇q̇ and the regressor. rne's time is the generated f64 \
-             kernel's median and its error the largest normwise relative error against the \
-             double-double value (tables below). × = Pinocchio's time / rne's.\n\n\
+             Jacobian in world axes), J̇q̇ and the regressor. Right after each run the \
+             generated f64 kernels of this table are timed together again: rne's time is the \
+             median over those runs and its error the largest normwise relative error against \
+             the double-double value (tables below). × = the median over runs of Pinocchio's \
+             time in the run / rne's time right after it, so that the machine's changes of \
+             speed between runs favour neither side.\n\n\
              | robot | quantity | rne kernel | rne ns | rne max rel. error | Pinocchio | ns | × \
              | CG ns | × | CG floor ns | × | CG max diff |\n\
              |---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|"
@@ -244,15 +247,18 @@ impl Report {
                 let Some(ours) = self.generated(times.robot, c.kernel) else {
                     continue;
                 };
-                let rne = ours.timing.median();
-                let plain = times.get(c.plain.1);
-                let (cg, raw, diff) = c.codegen.map_or((f64::NAN, f64::NAN, None), |x| {
+                let rne = times.paired.rne(c.kernel);
+                // A figure of Pinocchio's, and rne's ratio to it (paired run by run).
+                let peer = |key: &str| (times.get(key), times.paired.ratio(key, c.kernel));
+                let plain = peer(c.plain.1);
+                let none = (f64::NAN, f64::NAN);
+                let (cg, raw) = c.codegen.map_or((none, none), |x| {
                     (
-                        times.codegen(x, "_ns"),
-                        times.codegen(x, "_raw_ns"),
-                        Some(times.codegen(x, "_maxdiff")),
+                        peer(&format!("cg.cg_{x}_ns")),
+                        peer(&format!("cg.cg_{x}_raw_ns")),
                     )
                 });
+                let diff = c.codegen.map(|x| times.codegen(x, "_maxdiff"));
                 let _ = writeln!(
                     md,
                     "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
@@ -262,12 +268,12 @@ impl Report {
                     ns(rne),
                     sci(ours.errors.max_relative),
                     c.plain.0,
-                    ns(plain),
-                    ratio(plain / rne),
-                    ns(cg),
-                    ratio(cg / rne),
-                    ns(raw),
-                    ratio(raw / rne),
+                    ns(plain.0),
+                    ratio(plain.1),
+                    ns(cg.0),
+                    ratio(cg.1),
+                    ns(raw.0),
+                    ratio(raw.1),
                     diff.map_or_else(|| "—".to_owned(), sci),
                 );
             }

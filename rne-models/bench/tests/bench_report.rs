@@ -143,3 +143,24 @@ fn quick_bench_measures_every_robot_and_writes_its_report() {
     );
     std::fs::remove_dir_all(&dir).expect("clean up");
 }
+
+/// Right after each run of Pinocchio's scripts every kernel of the comparison table is timed
+/// again (`beside`), the control module's as well as the dynamics kernels: the ratios pair
+/// each run's figures with these times.
+#[test]
+fn every_kernel_set_beside_pinocchio_is_timed_in_the_paired_pass() {
+    use rne_bench::pinocchio::COMPARISONS;
+    let effort = Effort::Quick;
+    let ur5 = BUILTIN_ROBOTS
+        .iter()
+        .find(|r| r.name == "ur5")
+        .expect("UR5 is built in");
+    let cases = rne_bench::robots::Cases::new(ur5, effort.samples()).expect("UR5's cases");
+    let times = rne_bench::beside::time_compared(&cases, &effort.kernel_plan(), effort.pool())
+        .expect("the paired pass runs");
+    for c in COMPARISONS {
+        let ns = times.get(&c.kernel).copied().unwrap_or(f64::NAN);
+        assert!(ns > 0.0, "{}: not timed ({ns})", c.kernel.name());
+    }
+    assert_eq!(times.len(), COMPARISONS.len());
+}
