@@ -8,7 +8,6 @@
 use super::derivatives::{self, Sweep};
 use super::SymbolicDynamics;
 use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
-use crate::input::{load_robot, LoadOptions};
 
 type Matrix = Vec<Vec<Id>>;
 
@@ -35,11 +34,7 @@ enum Construction {
 
 /// The cost of `construction` on `robot` (a fixture of `tests/fixtures/robots/`).
 fn cost(robot: &str, construction: Construction) -> usize {
-    let path = format!(
-        "{}/tests/fixtures/robots/{robot}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let model = load_robot(std::path::Path::new(&path), &LoadOptions::default()).unwrap();
+    let model = super::fixture_robot(robot);
     let mut d = SymbolicDynamics::new(&model);
     let tau = d.inverse_dynamics();
     let layout = d.layout();

@@ -211,7 +211,6 @@ mod tests {
     use super::LanePartials;
     use crate::dynamics::{Matrix, SymbolicDynamics};
     use crate::expr::{ExprGraph, Id, Symbol};
-    use crate::input::{load_robot, LoadOptions};
 
     /// The values of `partials`' (∂/∂q, ∂/∂q̇) at `state`, each read from its lane.
     fn lane_values(g: &ExprGraph, partials: &LanePartials, state: [f64; 3]) -> Vec<f64> {
@@ -238,11 +237,7 @@ mod tests {
     #[test]
     fn both_sweeps_in_lanes_give_the_scalar_derivatives() {
         for robot in ["ur5.urdf", "panda-arm.urdf"] {
-            let path = format!(
-                "{}/tests/fixtures/robots/{robot}",
-                env!("CARGO_MANIFEST_DIR")
-            );
-            let model = load_robot(std::path::Path::new(&path), &LoadOptions::default()).unwrap();
+            let model = crate::dynamics::fixture_robot(robot);
             let mut d = SymbolicDynamics::new(&model);
             let tau = d.inverse_dynamics();
             let (dq, dv): (Matrix, Matrix) = d.inverse_dynamics_derivatives();

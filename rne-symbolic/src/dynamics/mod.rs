@@ -738,6 +738,18 @@ mod derivative_tests;
 #[cfg(test)]
 mod coriolis_tests;
 
+/// The robot of `tests/fixtures/robots/{file}`, loaded with the default options: the unit
+/// tests' fixtures.
+#[cfg(test)]
+fn fixture_robot(file: &str) -> RobotModel {
+    let path = format!(
+        "{}/tests/fixtures/robots/{file}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    crate::input::load_robot(std::path::Path::new(&path), &Default::default())
+        .unwrap_or_else(|e| panic!("fixture {file}: {e}"))
+}
+
 /// The partials `forward` or `reverse` builds, whichever costs fewer operations
 /// ([`crate::OpCount::cost`]; forward on a tie): both are built in turn, the first taken out
 /// of the graph while the second is tried ([`ExprGraph::split_off`]).
