@@ -273,24 +273,26 @@ pub fn generate(
     };
     // Two threads. This one builds the derivative kernels, the costliest. The other builds
     // forward dynamics (both ways, to choose) and finds the base parameters when a kernel reads
-    // them, then builds those kernels. When both derivative kernels are built in scalars,
-    // forward dynamics' takes the sweep inverse dynamics' chose (the same torques): this
-    // thread builds the graph of ∂ID, which chooses the sweep, and hands it over to be
-    // lowered and emitted on the other thread while it builds ∂FD. Every other kernel is
-    // shared: each thread, once done with its own, takes the next in order until none is
-    // left. Each kernel is built from the same dynamics and setup on either thread, so the
-    // module does not depend on which.
+    // them, then builds those kernels. When both derivative kernels are built, forward
+    // dynamics' takes the sweep inverse dynamics' chose in scalars (the same torques). Built
+    // in scalars, this thread builds the graph of ∂ID, which chooses the sweep, and hands it
+    // over to be lowered and emitted on the other thread while it builds ∂FD. Built in lanes
+    // (`derivatives: lanes`), this thread builds ∂ID and then ∂FD: only a ∂ID too long for
+    // lanes falls back to scalars and chooses a sweep, known once it is built. Every other
+    // kernel is shared: each thread, once done with its own, takes the next in order until
+    // none is left. Each kernel is built from the same dynamics and setup on either thread,
+    // so the module does not depend on which.
     let both_derivatives = outputs.contains(&Kernel::InverseDynamicsDerivatives)
         && outputs.contains(&Kernel::ForwardDynamicsDerivatives);
-    let hands_over_sweep = both_derivatives && !setup.derivative_lanes;
+    let hands_over_id_graph = both_derivatives && !setup.derivative_lanes;
     let on_this_thread = |kernel: Kernel| match kernel {
         Kernel::ForwardDynamicsDerivatives => true,
-        Kernel::InverseDynamicsDerivatives => !both_derivatives,
+        Kernel::InverseDynamicsDerivatives => !hands_over_id_graph,
         _ => false,
     };
     let on_the_other_thread = |kernel: Kernel| match kernel {
         Kernel::ForwardDynamics => true,
-        Kernel::InverseDynamicsDerivatives => both_derivatives,
+        Kernel::InverseDynamicsDerivatives => hands_over_id_graph,
         kernel => finds_base_parameters && reads_base(kernel),
     };
     let numbered = |keep: &dyn Fn(Kernel) -> bool| -> Vec<(usize, Kernel)> {
@@ -350,11 +352,11 @@ pub fn generate(
                                     .expect("forward dynamics is built once");
                                 (built, started(time))
                             }
-                            Kernel::InverseDynamicsDerivatives if hands_over_sweep => {
+                            Kernel::InverseDynamicsDerivatives if hands_over_id_graph => {
                                 let (graph, time) = handed
                                     .recv()
                                     .expect("the other thread hands over the graph of ∂ID");
-                                // Not in lanes: the sweep is handed over only then.
+                                // Not in lanes: the graph is handed over only then.
                                 let start = started(time);
                                 (build_in_scalars(graph, kernel, &setup), start)
                             }
@@ -369,7 +371,7 @@ pub fn generate(
                 (forward_dynamics_choice, setup.base_parameters, emitted)
             })
         };
-        if hands_over_sweep {
+        if hands_over_id_graph {
             let start = Instant::now();
             let mut graph = dynamics.clone();
             graph.inverse_dynamics_derivatives();
@@ -379,12 +381,17 @@ pub fn generate(
             // Fails only when the other thread has ended by a panic, which the join resumes.
             let _ = handover.send((graph, start.elapsed()));
         }
-        for (k, kernel) in numbered(&on_this_thread)
-            .into_iter()
-            .chain(std::iter::from_fn(&take_shared))
-        {
+        let mut own = numbered(&on_this_thread);
+        // ∂ID before ∂FD, which takes the sweep ∂ID chose if it fell back to scalars.
+        own.sort_by_key(|&(_, kernel)| kernel == Kernel::ForwardDynamicsDerivatives);
+        for (k, kernel) in own.into_iter().chain(std::iter::from_fn(&take_shared)) {
             let start = Instant::now();
             let built = build_kernel_with(&dynamics, kernel, &setup);
+            if kernel == Kernel::InverseDynamicsDerivatives {
+                if let Some(sweep) = built.dynamics.derivative_sweep() {
+                    dynamics = dynamics.with_derivative_sweep(sweep);
+                }
+            }
             emitted[k] = Some(emit(built, kernel, dims, start));
         }
         let (forward_dynamics_choice, base_parameters, others) = other

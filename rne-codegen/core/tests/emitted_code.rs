@@ -112,23 +112,39 @@ fn function<'m>(module: &'m str, name: &str) -> &'m str {
     &module[start..end]
 }
 
-/// The module's threads share out the kernels according to which are asked for (the graph of
-/// ∂ID is built on one and lowered on the other when ∂FD comes with it): a kernel's code is
-/// the same whichever kernels come with it.
+/// The module's threads share out the kernels according to which are asked for (in scalars
+/// the graph of ∂ID is built on one and lowered on the other when ∂FD comes with it, and ∂FD
+/// takes the sweep ∂ID chose; in lanes both are built on one): a kernel's code is the same
+/// whichever kernels come with it, derivatives in scalars or in lanes.
 #[test]
 fn a_kernel_is_the_same_whichever_kernels_come_with_it() {
-    let every = emitted("puma560.toml", &Kernel::ALL);
-    for kernel in [
-        Kernel::InverseDynamicsDerivatives,
-        Kernel::ForwardDynamics,
-        Kernel::MassMatrix,
-        Kernel::BaseRegressor,
-    ] {
-        let alone = emitted("puma560.toml", &[kernel]);
-        assert_eq!(
-            function(&alone, kernel.name()),
-            function(&every, kernel.name()),
-            "{kernel}"
-        );
+    for derivative_lanes in [false, true] {
+        let module = |outputs: &[Kernel]| {
+            let scene = Scene {
+                outputs: outputs.to_vec(),
+                derivative_lanes,
+                ..Scene::default()
+            };
+            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/puma560.toml");
+            let model = read_robot(&path, "puma560.toml", &scene).expect("the robot loads");
+            generate(&model, &scene, "puma560.toml")
+                .expect("the module generates")
+                .to_pretty_string()
+        };
+        let every = module(&Kernel::ALL);
+        for kernel in [
+            Kernel::InverseDynamicsDerivatives,
+            Kernel::ForwardDynamicsDerivatives,
+            Kernel::ForwardDynamics,
+            Kernel::MassMatrix,
+            Kernel::BaseRegressor,
+        ] {
+            let alone = module(&[kernel]);
+            assert_eq!(
+                function(&alone, kernel.name()),
+                function(&every, kernel.name()),
+                "{kernel}, derivatives in lanes: {derivative_lanes}"
+            );
+        }
     }
 }

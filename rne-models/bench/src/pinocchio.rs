@@ -191,8 +191,6 @@ pub struct PinocchioTimes {
     pub calls: u64,
     /// Calls per measurement of `run_cg.sh`, if it ran.
     pub codegen_calls: Option<u64>,
-    /// How many runs of `run.sh` the medians are over.
-    pub runs: usize,
     /// How many runs of `run_cg.sh` its medians are over.
     pub codegen_runs: usize,
 }
@@ -308,7 +306,6 @@ impl PinocchioScript {
             paired,
             calls: self.calls,
             codegen_calls: self.codegen.as_ref().map(|(_, calls)| *calls),
-            runs,
             codegen_runs: self.codegen_runs.min(runs),
         }
     }

@@ -211,7 +211,7 @@ impl Report {
         let Some(first) = self.pinocchio.first() else {
             return;
         };
-        let (calls, runs) = (first.calls, first.runs);
+        let (calls, runs) = (first.calls, first.paired.runs());
         let codegen = match first.codegen_calls {
             Some(c) => format!(
                 "; `run_cg.sh ROBOT.urdf {c}` beside it (in {} of the runs) times Pinocchio's \
@@ -553,5 +553,84 @@ fn integrator_chart(study: &IntegratorStudy) -> Chart {
                 y_floor: floor,
             },
         ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::beside::PairedTimes;
+    use crate::pinocchio::PinocchioScript;
+    use crate::precision::ErrorSummary;
+    use crate::timing::Timing;
+
+    /// The comparison table's row: rne's time is the median of its paired passes, Pinocchio's
+    /// the median of its runs, and each × the median of the per-run ratios (CppADCodeGen's
+    /// over the one run that timed it), not a ratio of the two medians.
+    #[test]
+    fn the_pinocchio_table_shows_ratios_paired_run_by_run() {
+        let id = Kernel::InverseDynamics;
+        let row = KernelRow {
+            kernel: id,
+            implementation: Implementation::Generated,
+            timing: Timing {
+                samples: vec![60.0],
+                calls: 1,
+            },
+            relative_time: 1.0,
+            errors: ErrorSummary {
+                states: 1,
+                max_relative: 4e-15,
+                median_relative: 1e-16,
+                max_ulps: 2.0,
+                median_ulps: 0.5,
+            },
+        };
+        let figures = |pairs: &[(&str, f64)]| -> BTreeMap<String, f64> {
+            pairs.iter().map(|&(k, v)| (k.to_owned(), v)).collect()
+        };
+        let mut paired = PairedTimes::default();
+        paired.push(
+            figures(&[
+                ("run.rnea_ns", 400.0),
+                ("cg.cg_rnea_ns", 200.0),
+                ("cg.cg_rnea_raw_ns", 150.0),
+                ("cg.cg_rnea_maxdiff", 1e-15),
+            ]),
+            [(id, 50.0)].into(),
+        );
+        paired.push(figures(&[("run.rnea_ns", 800.0)]), [(id, 100.0)].into());
+        paired.push(figures(&[("run.rnea_ns", 900.0)]), [(id, 90.0)].into());
+        let script = PinocchioScript::new(PathBuf::from("run.sh"), 1000, Some(500), None);
+        let report = Report {
+            effort: Effort::Quick,
+            kernels: vec![RobotKernels {
+                robot: "ur5",
+                dof: 6,
+                rows: vec![row],
+            }],
+            control: Vec::new(),
+            scenes: Vec::new(),
+            integrators: Vec::new(),
+            pinocchio: vec![script.times("ur5", paired)],
+            elapsed: Duration::from_secs(1),
+        };
+        let mut md = String::new();
+        report.pinocchio_table(&mut md);
+        let line = md
+            .lines()
+            .find(|l| l.starts_with("| ur5 | ID |"))
+            .expect("a row for UR5's inverse dynamics");
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        // rne ns (median of 50, 100, 90), error, Pinocchio ns (median of 400, 800, 900), ×
+        // (median of 8, 8, 10), CG ns and × (200 / 50), floor ns and × (150 / 50).
+        assert_eq!(
+            cells[4..13],
+            ["90.0", "4.0e-15", "rnea", "800", "8.00×", "200", "4.00×", "150", "3.00×"],
+            "{line}"
+        );
+        assert!(md.contains("runs favour neither side"), "{md}");
     }
 }

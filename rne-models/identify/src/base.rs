@@ -26,7 +26,7 @@ const RATE_BOUND: f64 = 3.0;
 /// a short number with a probability of about 1e-6, and snapping it would move it by as much.
 /// (Snapping within the printing tolerance, 1e-10, moved a random robot's −0.558367000047 to
 /// −0.558367 and Y_b π_b off τ by a relative 2e-12.)
-const SNAP: f64 = 1e-12;
+const SHORT_VALUE_TOLERANCE: f64 = 1e-12;
 
 /// A joint state (q, q̇, q̈).
 pub type State = (Vec<f64>, Vec<f64>, Vec<f64>);
@@ -68,7 +68,7 @@ impl BaseSet {
         // Coefficients are products of lengths (and of coupling multipliers): the short
         // decimal or fraction each stands for is taken as exact.
         for k in parameters.k.iter_mut().flatten() {
-            if let Some((exact, _)) = short_value(*k, SNAP) {
+            if let Some((exact, _)) = short_value(*k, SHORT_VALUE_TOLERANCE) {
                 *k = exact;
             }
         }

@@ -107,8 +107,8 @@ pub fn readable_names(names: &[String]) -> Option<(Vec<ParameterName>, Vec<Strin
 /// Relative distance below which a coefficient is *printed* as a short decimal or a fraction.
 /// Printing only: an irrational coefficient falls this close to a short number with a
 /// probability of about 1e-4, so values that are computed with are snapped only within the
-/// much smaller tolerance the caller gives (`base::SNAP`).
-pub const PRINTED_EXACT: f64 = 1e-10;
+/// much smaller tolerance the caller gives (`base::SHORT_VALUE_TOLERANCE`).
+const PRINTED_EXACT: f64 = 1e-10;
 
 /// The short number `x` stands for: a decimal of at most 6 significant digits or a fraction
 /// with a denominator up to 64, within a relative `tolerance` of `x`. `None` if there is
@@ -131,8 +131,8 @@ pub fn short_value(x: f64, tolerance: f64) -> Option<(f64, String)> {
     })
 }
 
-/// `x` in the shortest exact form: [`short_value`]'s text within [`PRINTED_EXACT`] if there is
-/// one, else a decimal of at most 12 significant digits within as much, else all 17 digits.
+/// `x` printed short: [`short_value`]'s text within a relative 1e-10 if there is one, else a
+/// decimal of at most 12 significant digits within as much, else all 17 digits.
 pub fn exact_number(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");

@@ -182,8 +182,22 @@ fn a_coefficient_near_a_short_decimal_is_not_rounded_to_it() {
         "near_short_decimal.toml",
         &LoadOptions::default(),
     )
-    .expect("valid spec");
-    check(&model.to_numeric(), "near_short_decimal");
+    .expect("valid spec")
+    .to_numeric();
+    let base = BaseSet::find(&mut Reference::new(&model).with_friction(true)).expect("base");
+    let near: Vec<f64> = base
+        .parameters
+        .k
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|k| (k + 0.558367).abs() < 1e-9)
+        .collect();
+    assert!(
+        !near.is_empty() && near.iter().all(|&k| k != -0.558367),
+        "the coefficient near −0.558367 keeps its digits: {near:?}"
+    );
+    check(&model, "near_short_decimal");
 }
 
 const NEAR_SHORT_DECIMAL: &str = r#"name = "random"
