@@ -29,7 +29,9 @@ pub struct KernelReport {
     pub ops: OpCount,
     /// Its critical path in modelled cycles ([`Program::critical_path`]).
     pub critical_path: u32,
-    /// Time spent building and emitting this kernel.
+    /// Time spent building and emitting this kernel: for forward dynamics whose method is
+    /// chosen, building it both ways to choose included; for ∂ID built on one thread and
+    /// lowered on the other, both parts.
     pub generation_time: Duration,
 }
 

@@ -454,6 +454,7 @@ mod tests {
     /// A kernel whose result has 9 + 8 distinct values: in `F64x4` its blocks of four lie in
     /// the matrix (0–3, 4–7), across the two fields (8–11) and in the vector (12–15), with
     /// one value left over; in `F32x8` one block in the matrix, one across, one left over.
+    #[cfg(feature = "simd")]
     fn wide_kernel<T: Real>(q: &[T; 2], qd: &[T; 2]) -> ([[T; 3]; 3], [T; 8]) {
         let step = |k: usize| T::from_f64(k as f64 + 0.5);
         (

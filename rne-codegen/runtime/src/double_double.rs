@@ -100,11 +100,13 @@ impl DoubleDouble {
     }
 
     /// The high part: the `f64` nearest to the value.
+    #[inline]
     pub fn hi(self) -> f64 {
         self.hi
     }
 
     /// The low part: the value minus `hi`.
+    #[inline]
     pub fn lo(self) -> f64 {
         self.lo
     }
@@ -116,16 +118,19 @@ impl DoubleDouble {
     }
 
     /// Whether the value is neither infinite nor NaN.
+    #[inline]
     pub fn is_finite(self) -> bool {
         self.hi.is_finite()
     }
 
     /// Whether the value is NaN.
+    #[inline]
     pub fn is_nan(self) -> bool {
         self.hi.is_nan()
     }
 
     /// Absolute value.
+    #[inline]
     pub fn abs(self) -> DoubleDouble {
         if self.hi < 0.0 {
             -self
@@ -301,6 +306,7 @@ impl DoubleDouble {
     }
 
     /// `self / y` for a double y (JMP Algorithm 15).
+    #[inline]
     fn div_f64(self, y: f64) -> DoubleDouble {
         let th = self.hi / y;
         if !th.is_finite() || !y.is_finite() {
@@ -391,6 +397,7 @@ impl Digits {
 }
 
 impl From<f64> for DoubleDouble {
+    #[inline]
     fn from(x: f64) -> DoubleDouble {
         DoubleDouble::from_f64(x)
     }
@@ -436,6 +443,7 @@ impl Div for DoubleDouble {
     type Output = DoubleDouble;
     /// QD's accurate division: three successive quotient digits q₁ + q₂ + q₃, each from the
     /// remainder of the previous ones.
+    #[inline]
     fn div(self, y: DoubleDouble) -> DoubleDouble {
         let q1 = self.hi / y.hi;
         if !q1.is_finite() || !y.hi.is_finite() || q1 == 0.0 {
@@ -483,12 +491,14 @@ impl MulAssign for DoubleDouble {
 }
 
 impl DivAssign for DoubleDouble {
+    #[inline]
     fn div_assign(&mut self, y: DoubleDouble) {
         *self = *self / y;
     }
 }
 
 impl PartialEq for DoubleDouble {
+    #[inline]
     fn eq(&self, other: &DoubleDouble) -> bool {
         self.hi == other.hi && self.lo == other.lo
     }
@@ -497,6 +507,7 @@ impl PartialEq for DoubleDouble {
 impl PartialOrd for DoubleDouble {
     /// Compares the high parts, then the low parts (the representation is normalised, so
     /// this is the order of the values). `None` when either is NaN.
+    #[inline]
     fn partial_cmp(&self, other: &DoubleDouble) -> Option<Ordering> {
         match self.hi.partial_cmp(&other.hi)? {
             Ordering::Equal => self.lo.partial_cmp(&other.lo),
@@ -538,24 +549,29 @@ impl fmt::Display for DoubleDouble {
 }
 
 impl Real for DoubleDouble {
+    #[inline]
     fn from_f64(x: f64) -> DoubleDouble {
         DoubleDouble::from_f64(x)
     }
     fn sin_cos(self) -> (DoubleDouble, DoubleDouble) {
         DoubleDouble::sin_cos(self)
     }
+    #[inline]
     fn sqrt(self) -> DoubleDouble {
         DoubleDouble::sqrt(self)
     }
+    #[inline]
     fn abs(self) -> DoubleDouble {
         DoubleDouble::abs(self)
     }
+    #[inline]
     fn sign(self) -> DoubleDouble {
         crate::real::sign_of(self)
     }
 }
 
 impl OrderedReal for DoubleDouble {
+    #[inline]
     fn to_f64(self) -> f64 {
         DoubleDouble::to_f64(self)
     }
