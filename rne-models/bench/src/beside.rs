@@ -15,10 +15,9 @@ use rne_codegen::Kernel;
 
 use crate::control;
 use crate::error::BenchError;
-use crate::implementation::Implementation;
 use crate::kernels::time;
 use crate::pinocchio::COMPARISONS;
-use crate::robots::{subjects, Cases, BENCHED};
+use crate::robots::{generated_subject, Cases, BENCHED};
 use crate::timing::{quantile, Plan};
 
 /// ns per call of rne's generated `f64` kernel of each quantity of [`COMPARISONS`] that the
@@ -39,9 +38,7 @@ pub fn time_compared(
     for comparison in COMPARISONS {
         let kernel = comparison.kernel;
         let candidate = if BENCHED.contains(&kernel) {
-            subjects(kernel, cases, pool)?
-                .into_iter()
-                .find(|c| c.implementation == Implementation::Generated)
+            generated_subject(kernel, cases, pool)?
         } else {
             control
                 .iter()

@@ -203,8 +203,13 @@ impl PinocchioTimes {
 
     /// The generated code's figure `cg_{x}{suffix}`, NaN without it.
     pub fn codegen(&self, x: &str, suffix: &str) -> f64 {
-        self.get(&format!("cg.cg_{x}{suffix}"))
+        self.get(&codegen_key(x, suffix))
     }
+}
+
+/// The key of the generated code's figure `cg_{x}{suffix}` of `run_cg.sh`.
+pub fn codegen_key(x: &str, suffix: &str) -> String {
+    format!("{}.cg_{x}{suffix}", Peer::CodeGen.prefix())
 }
 
 /// The timing scripts and how many calls each figure averages.

@@ -11,7 +11,7 @@ use super::error::BenchError;
 use super::implementation::Implementation;
 use super::integrators::{Family, IntegratorStudy, REFERENCE_TOLERANCE};
 use super::kernels::{KernelRow, RobotKernels};
-use super::pinocchio::{PinocchioTimes, COMPARISONS};
+use super::pinocchio::{codegen_key, PinocchioTimes, COMPARISONS};
 use super::robots::{BENCHED, SEED};
 use super::sample::{QDD_BOUND, QD_BOUND, TAU_FLOOR};
 use super::scenes::{RobotScenes, SceneKernel};
@@ -254,8 +254,8 @@ impl Report {
                 let none = (f64::NAN, f64::NAN);
                 let (cg, raw) = c.codegen.map_or((none, none), |x| {
                     (
-                        peer(&format!("cg.cg_{x}_ns")),
-                        peer(&format!("cg.cg_{x}_raw_ns")),
+                        peer(&codegen_key(x, "_ns")),
+                        peer(&codegen_key(x, "_raw_ns")),
                     )
                 });
                 let diff = c.codegen.map(|x| times.codegen(x, "_maxdiff"));

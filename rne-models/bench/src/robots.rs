@@ -213,16 +213,27 @@ impl<'a> Candidates<'a> {
     }
 }
 
+/// Which implementations [`candidates`] makes.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Which {
+    /// Every implementation of the kernel.
+    All,
+    /// The default generated module's alone.
+    Generated,
+}
+
 /// The candidates of `kernel` for the robot of `cases` with its generated `modules`, in
 /// [`Implementation::ALL`] order: for a kernel of [`BENCHED`] every implementation that has
 /// it (gravity and velocities do not enter M, so the mass matrix has no zero-gravity or
-/// static-scene variant), then the interpreted programs and the reference; for the gravity
-/// torques the generated function alone (for the scene savings); nothing for the others.
+/// static-scene variant), then the interpreted programs and the reference, or with
+/// [`Which::Generated`] the generated function alone; for the gravity torques the generated
+/// function alone (for the scene savings); nothing for the others.
 pub fn candidates<'a, const N: usize, const L: usize, G, S, Z, K, R, P>(
     kernel: Kernel,
     cases: &'a Cases,
     pool: usize,
     modules: Modules<G, S, Z, K, R, P>,
+    which: Which,
 ) -> Result<Vec<Candidate<'a>>, BenchError>
 where
     G: Dynamics<N, N, Scalar = f64> + 'a,
@@ -250,11 +261,12 @@ where
         pool,
         list: Vec::new(),
     };
-    if kernel == Kernel::GravityTorques {
+    let benched = BENCHED.contains(&kernel);
+    if kernel == Kernel::GravityTorques || (benched && which == Which::Generated) {
         c.add(Implementation::Generated, modules.generated)?;
         return Ok(c.list);
     }
-    if !BENCHED.contains(&kernel) {
+    if !benched {
         return Ok(c.list);
     }
     c.add(Implementation::Generated, modules.generated)?;
@@ -311,6 +323,28 @@ pub fn subjects(
     cases: &Cases,
     pool: usize,
 ) -> Result<Vec<Candidate<'_>>, BenchError> {
+    subjects_of(kernel, cases, pool, Which::All)
+}
+
+/// The default generated module's `kernel` for the robot of `cases`, timed on the first
+/// `pool` states, if the kernel is one of [`BENCHED`] or the gravity torques.
+pub fn generated_subject(
+    kernel: Kernel,
+    cases: &Cases,
+    pool: usize,
+) -> Result<Option<Candidate<'_>>, BenchError> {
+    Ok(subjects_of(kernel, cases, pool, Which::Generated)?
+        .into_iter()
+        .next())
+}
+
+/// [`subjects`] or [`generated_subject`], as `which` says.
+fn subjects_of(
+    kernel: Kernel,
+    cases: &Cases,
+    pool: usize,
+    which: Which,
+) -> Result<Vec<Candidate<'_>>, BenchError> {
     use generated::{irb140, irb140_3dof, panda, panda_arm, planar_elbow, puma560, ur5};
     use variants as v;
     match cases.robot.name {
@@ -320,6 +354,7 @@ pub fn subjects(
                 cases,
                 pool,
                 modules!(planar_elbow, runtime),
+                which,
             )
         }
         "irb140-3dof" => {
@@ -328,6 +363,7 @@ pub fn subjects(
                 cases,
                 pool,
                 modules!(irb140_3dof, runtime),
+                which,
             )
         }
         "puma560" => candidates::<{ puma560::NV }, { v::puma560::locked::NV }, _, _, _, _, _, _>(
@@ -335,18 +371,21 @@ pub fn subjects(
             cases,
             pool,
             modules!(puma560),
+            which,
         ),
         "ur5" => candidates::<{ ur5::NV }, { v::ur5::locked::NV }, _, _, _, _, _, _>(
             kernel,
             cases,
             pool,
             modules!(ur5),
+            which,
         ),
         "panda" => candidates::<{ panda::NV }, { v::panda::locked::NV }, _, _, _, _, _, _>(
             kernel,
             cases,
             pool,
             modules!(panda),
+            which,
         ),
         "panda-arm" => {
             candidates::<{ panda_arm::NV }, { v::panda_arm::locked::NV }, _, _, _, _, _, _>(
@@ -354,6 +393,7 @@ pub fn subjects(
                 cases,
                 pool,
                 modules!(panda_arm),
+                which,
             )
         }
         "irb140" => candidates::<{ irb140::NV }, { v::irb140::locked::NV }, _, _, _, _, _, _>(
@@ -361,6 +401,7 @@ pub fn subjects(
             cases,
             pool,
             modules!(irb140, runtime),
+            which,
         ),
         other => Err(BenchError::Variants {
             robot: other.to_owned(),
