@@ -281,8 +281,8 @@ pub fn generate(
     // over to be lowered and emitted on the other thread while it builds ∂FD. Built in lanes
     // (`derivatives: lanes`), this thread builds ∂ID and then ∂FD: only a ∂ID too long for
     // lanes falls back to scalars and chooses a sweep, known once it is built. Every other
-    // kernel is shared: each thread, once done with its own, takes the next in order until
-    // none is left. Each kernel is built from the same dynamics and setup on either thread,
+    // kernel is shared: each thread, once done with its own, takes the next, costliest first,
+    // until none is left. Each kernel is built from the same dynamics and setup on either thread,
     // so the module does not depend on which.
     let both_derivatives = outputs.contains(&Kernel::InverseDynamicsDerivatives)
         && outputs.contains(&Kernel::ForwardDynamicsDerivatives);
@@ -305,7 +305,8 @@ pub fn generate(
             .filter(|&(_, kernel)| keep(kernel))
             .collect()
     };
-    let shared = numbered(&|kernel| !on_this_thread(kernel) && !on_the_other_thread(kernel));
+    let mut shared = numbered(&|kernel| !on_this_thread(kernel) && !on_the_other_thread(kernel));
+    shared.sort_by_key(|&(_, kernel)| costliest_first(kernel));
     let next_shared = AtomicUsize::new(0);
     let take_shared = || {
         shared
@@ -501,6 +502,39 @@ fn reads_base(kernel: Kernel) -> bool {
     matches!(kernel, Kernel::BaseRegressor | Kernel::BaseParameters)
 }
 
+/// Where `kernel` comes in the order the two threads take the shared kernels in: costliest
+/// first, so that the last kernel taken is a cheap one and the threads end close together
+/// (Graham's "longest processing time first", SIAM J. Appl. Math. 17(2), 1969). The order is
+/// that of the kernels' generation times on a 48-joint chain (`rne stats`, docs/performance.md),
+/// where the regressor (0.55 s), taken last in the module's order, had kept one thread busy
+/// for 0.4 s after the other had run out of work.
+fn costliest_first(kernel: Kernel) -> usize {
+    const ORDER: [Kernel; 18] = [
+        Kernel::ForwardDynamicsDerivatives,
+        Kernel::InverseDynamicsDerivatives,
+        Kernel::Regressor,
+        Kernel::BaseRegressor,
+        Kernel::MassMatrixInverse,
+        Kernel::CoriolisMatrix,
+        Kernel::FrameJacobians,
+        Kernel::ForwardDynamics,
+        Kernel::MassMatrix,
+        Kernel::BaseParameters,
+        Kernel::InverseDynamics,
+        Kernel::BiasTorques,
+        Kernel::FrameJacobianDotQd,
+        Kernel::GravityTorques,
+        Kernel::KineticEnergy,
+        Kernel::FramePlacements,
+        Kernel::PotentialEnergy,
+        Kernel::FrictionTorques,
+    ];
+    ORDER
+        .iter()
+        .position(|&k| k == kernel)
+        .unwrap_or(ORDER.len())
+}
+
 /// Emits a built kernel (its graph freed first: the largest kernels' graphs and text are not
 /// held at the same time) and reports it, timed from `start`.
 fn emit_built(
@@ -582,5 +616,19 @@ fn names_const(size: &str, names: &str, doc: &str, values: &[&str]) -> TokenStre
         pub const #size: usize = #count;
         #[doc = #doc]
         pub const #names: [&str; #size] = [#(#values),*];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every kernel has a place of its own in the threads' order: none falls to the end as
+    /// unknown, and no two tie (a tie would leave their order to the sort).
+    #[test]
+    fn the_shared_order_places_every_kernel() {
+        let mut places: Vec<usize> = Kernel::ALL.iter().map(|&k| costliest_first(k)).collect();
+        places.sort_unstable();
+        assert_eq!(places, (0..Kernel::ALL.len()).collect::<Vec<_>>());
     }
 }
