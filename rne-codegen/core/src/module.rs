@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
+use rne_symbolic::dynamics::derivatives::Sweep;
 use rne_symbolic::{Id, OpCount, RobotModel, SymbolicDynamics};
 
 use crate::emit::{emit_kernel, is_valid_parameter_name, parameter_fields, EmitContext};
@@ -277,8 +278,11 @@ pub fn generate(
     // forward dynamics (both ways, to choose) and finds the base parameters when a kernel reads
     // them, then builds those kernels. When both derivative kernels are built, forward
     // dynamics' takes the sweep inverse dynamics' chose in scalars (the same torques). Built
-    // in scalars, this thread builds the graph of ∂ID, which chooses the sweep, and hands it
-    // over to be lowered and emitted on the other thread while it builds ∂FD. Built in lanes
+    // in scalars, the graph of ∂ID is built both ways at once, by forward sweeps on this
+    // thread and by reverse sweeps on the other, which sends its cost; this thread chooses
+    // (`Sweep::cheaper`, as one thread trying both would), hands over its graph if the forward
+    // sweeps won, and builds ∂FD by the chosen sweep while the other lowers and emits ∂ID from
+    // the graph it was handed or its own. Built in lanes
     // (`derivatives: lanes`), this thread builds ∂ID and then ∂FD: only a ∂ID too long for
     // lanes falls back to scalars and chooses a sweep, known once it is built. Every other
     // kernel is shared: each thread, once done with its own, takes the next, costliest first,
@@ -316,7 +320,8 @@ pub fn generate(
     let (forward_dynamics_choice, dynamics) = std::thread::scope(|scope| {
         // Made inside the scope: a panic here drops the sender before the scope joins the
         // other thread, which then stops waiting.
-        let (handover, handed) = std::sync::mpsc::channel::<(SymbolicDynamics, Duration)>();
+        let (handover, handed) = std::sync::mpsc::channel::<Option<(SymbolicDynamics, Duration)>>();
+        let (reverse_cost_sender, reverse_cost) = std::sync::mpsc::channel::<usize>();
         let other = {
             let (dynamics, mut setup, mut dims) = (dynamics.clone(), setup.clone(), dims);
             let mut kernels = numbered(&on_the_other_thread);
@@ -327,6 +332,12 @@ pub fn generate(
                 .iter()
                 .any(|&(_, kernel)| kernel == Kernel::ForwardDynamics);
             scope.spawn(move || {
+                let mut by_reverse_sweeps = hands_over_id_graph.then(|| {
+                    let start = Instant::now();
+                    let mut reverse = dynamics.clone().with_derivative_sweep(Sweep::Reverse);
+                    let _ = reverse_cost_sender.send(reverse.inverse_dynamics_derivatives_cost());
+                    (reverse, start.elapsed())
+                });
                 let choosing = Instant::now();
                 let (forward_dynamics_choice, mut chosen_forward_dynamics) =
                     if builds_forward_dynamics && articulated_applies(&dynamics) {
@@ -358,7 +369,9 @@ pub fn generate(
                             Kernel::InverseDynamicsDerivatives if hands_over_id_graph => {
                                 let (graph, time) = handed
                                     .recv()
-                                    .expect("the other thread hands over the graph of ∂ID");
+                                    .expect("the other thread says which sweep won")
+                                    .or_else(|| by_reverse_sweeps.take())
+                                    .expect("∂ID is built once");
                                 // Not in lanes: the graph is handed over only then.
                                 let start = started(time);
                                 (build_in_scalars(graph, kernel, &setup), start)
@@ -376,13 +389,13 @@ pub fn generate(
         };
         if hands_over_id_graph {
             let start = Instant::now();
-            let mut graph = dynamics.clone();
-            graph.inverse_dynamics_derivatives();
-            if let Some(sweep) = graph.derivative_sweep() {
-                dynamics = dynamics.with_derivative_sweep(sweep);
-            }
-            // Fails only when the other thread has ended by a panic, which the join resumes.
-            let _ = handover.send((graph, start.elapsed()));
+            let mut forward = dynamics.clone().with_derivative_sweep(Sweep::Forward);
+            let forward_cost = forward.inverse_dynamics_derivatives_cost();
+            // Fails only when the other thread has ended by a panic, which the join resumes;
+            // until then this thread goes on as if the reverse sweeps had lost.
+            let sweep = Sweep::cheaper(forward_cost, reverse_cost.recv().unwrap_or(usize::MAX));
+            dynamics = dynamics.with_derivative_sweep(sweep);
+            let _ = handover.send((sweep == Sweep::Forward).then(|| (forward, start.elapsed())));
         }
         let mut own = numbered(&on_this_thread);
         // ∂ID before ∂FD, which takes the sweep ∂ID chose if it fell back to scalars.

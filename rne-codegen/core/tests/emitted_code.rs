@@ -4,6 +4,8 @@
 use std::path::PathBuf;
 
 use rne_codegen_core::{generate, read_robot, Kernel, ParameterMode, Scene};
+use rne_symbolic::dynamics::derivatives::Sweep;
+use rne_symbolic::SymbolicDynamics;
 
 /// The formatted module generated for `robots/<file>` with `outputs`.
 fn emitted(file: &str, outputs: &[Kernel]) -> String {
@@ -132,39 +134,73 @@ fn the_functions_come_in_the_order_asked_for() {
     }
 }
 
-/// The module's threads share out the kernels according to which are asked for (in scalars
-/// the graph of ∂ID is built on one and lowered on the other when ∂FD comes with it, and ∂FD
-/// takes the sweep ∂ID chose; in lanes both are built on one): a kernel's code is the same
-/// whichever kernels come with it, derivatives in scalars or in lanes.
+/// The module's threads share out the kernels according to which are asked for (in scalars,
+/// when ∂FD comes with ∂ID, the graph of ∂ID is built by forward sweeps on one thread and by
+/// reverse sweeps on the other, the cheaper kept, and ∂FD takes the sweep chosen; in lanes
+/// both are built on one): a kernel's code is the same whichever kernels come with it,
+/// derivatives in scalars or in lanes, for a robot whose torque derivatives are cheaper by
+/// forward sweeps (PUMA 560) and one whose are cheaper by reverse sweeps (the Panda arm).
 #[test]
 fn a_kernel_is_the_same_whichever_kernels_come_with_it() {
-    for derivative_lanes in [false, true] {
-        let module = |outputs: &[Kernel]| {
-            let scene = Scene {
-                outputs: outputs.to_vec(),
-                derivative_lanes,
-                ..Scene::default()
-            };
-            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/puma560.toml");
-            let model = read_robot(&path, "puma560.toml", &scene).expect("the robot loads");
-            generate(&model, &scene, "puma560.toml")
-                .expect("the module generates")
-                .to_pretty_string()
-        };
-        let every = module(&Kernel::ALL);
-        for kernel in [
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let robots = [
+        (manifest.join("tests/robots/puma560.toml"), Sweep::Forward),
+        (
+            manifest.join("../../rne-models/robots/panda-arm.urdf"),
+            Sweep::Reverse,
+        ),
+    ];
+    for (path, sweep) in robots {
+        let name = path
+            .file_name()
+            .expect("a file")
+            .to_string_lossy()
+            .into_owned();
+        let mut dynamics =
+            SymbolicDynamics::new(&read_robot(&path, &name, &Scene::default()).expect("loads"));
+        dynamics.inverse_dynamics_derivatives();
+        assert_eq!(dynamics.derivative_sweep(), Some(sweep), "{name}");
+        let derivatives = [
             Kernel::InverseDynamicsDerivatives,
             Kernel::ForwardDynamicsDerivatives,
-            Kernel::ForwardDynamics,
-            Kernel::MassMatrix,
-            Kernel::BaseRegressor,
-        ] {
-            let alone = module(&[kernel]);
-            assert_eq!(
-                function(&alone, kernel.name()),
-                function(&every, kernel.name()),
-                "{kernel}, derivatives in lanes: {derivative_lanes}"
-            );
+        ];
+        // Every kernel with PUMA 560; the derivatives with the Panda arm (the debug build's
+        // symbolic engine is slow on its other kernels).
+        let every: &[Kernel] = match sweep {
+            Sweep::Forward => &Kernel::ALL,
+            Sweep::Reverse => &derivatives,
+        };
+        let compared: &[Kernel] = match sweep {
+            Sweep::Forward => &[
+                Kernel::InverseDynamicsDerivatives,
+                Kernel::ForwardDynamicsDerivatives,
+                Kernel::ForwardDynamics,
+                Kernel::MassMatrix,
+                Kernel::BaseRegressor,
+            ],
+            Sweep::Reverse => &derivatives,
+        };
+        for derivative_lanes in [false, true] {
+            let module = |outputs: &[Kernel]| {
+                let scene = Scene {
+                    outputs: outputs.to_vec(),
+                    derivative_lanes,
+                    ..Scene::default()
+                };
+                let model = read_robot(&path, &name, &scene).expect("the robot loads");
+                generate(&model, &scene, &name)
+                    .expect("the module generates")
+                    .to_pretty_string()
+            };
+            let with_others = module(every);
+            for &kernel in compared {
+                let alone = module(&[kernel]);
+                assert_eq!(
+                    function(&alone, kernel.name()),
+                    function(&with_others, kernel.name()),
+                    "{name}: {kernel}, derivatives in lanes: {derivative_lanes}"
+                );
+            }
         }
     }
 }

@@ -46,6 +46,19 @@ pub enum Sweep {
     Reverse,
 }
 
+impl Sweep {
+    /// The sweep to keep given the [`OpCount::cost`](crate::OpCount::cost) of the
+    /// derivatives each builds: the reverse sweep when it is cheaper, the forward sweep on a
+    /// tie.
+    pub fn cheaper(forward_cost: usize, reverse_cost: usize) -> Sweep {
+        if reverse_cost < forward_cost {
+            Sweep::Reverse
+        } else {
+            Sweep::Forward
+        }
+    }
+}
+
 /// `(∂outputs/∂q, ∂outputs/∂q̇)`, each `outputs.len()` × NV, row i the derivatives of
 /// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`, the nodes `held`
 /// held constant ([`Differentiator::holding`]).

@@ -29,6 +29,12 @@ pub use lane_partials::{Direction, LanePartials, LANES};
 /// A matrix of expressions, row-major.
 pub type Matrix = Vec<Vec<Id>>;
 
+/// The [`OpCount::cost`](crate::OpCount::cost) of the state Jacobians `(dq, dv)`, shared
+/// subexpressions counted once: what the choice of their sweep compares.
+fn jacobians_cost(g: &ExprGraph, dq: &Matrix, dv: &Matrix) -> usize {
+    g.op_count(&[dq.concat(), dv.concat()].concat()).cost()
+}
+
 /// States the base parameters are found from ([`SymbolicDynamics::base_parameters`]): each
 /// gives NV equations, and a body has at most 10 + 4 parameters per joint variable, so 40
 /// states stack at least twice as many equations as there are parameters.
@@ -446,6 +452,15 @@ impl SymbolicDynamics {
         (dq, dv)
     }
 
+    /// The [`OpCount::cost`](crate::OpCount::cost) of the torque derivatives (built first
+    /// when they are not yet, by the sweep [`Self::with_derivative_sweep`] fixed or the
+    /// cheaper): with a sweep fixed each way on two copies of the same dynamics, what
+    /// [`derivatives::Sweep::cheaper`] compares to choose, the two built at the same time.
+    pub fn inverse_dynamics_derivatives_cost(&mut self) -> usize {
+        let (dq, dv) = self.inverse_dynamics_derivatives();
+        jacobians_cost(&self.model.graph, &dq, &dv)
+    }
+
     /// The state Jacobians of the torques `tau` with the nodes `held` constant
     /// ([`derivatives::state_jacobians`]).
     ///
@@ -466,20 +481,21 @@ impl SymbolicDynamics {
                 let start = g.len();
                 let build = |g: &mut ExprGraph, sweep| {
                     let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
-                    let cost = g.op_count(&[dq.concat(), dv.concat()].concat()).cost();
-                    (cost, sweep, dq, dv)
+                    (jacobians_cost(g, &dq, &dv), dq, dv)
                 };
                 let forward = build(g, derivatives::Sweep::Forward);
                 let forward_nodes = g.split_off(start);
                 let reverse = build(g, derivatives::Sweep::Reverse);
-                let (_, sweep, dq, dv) = if reverse.0 < forward.0 {
-                    reverse
-                } else {
-                    g.split_off(start);
-                    g.restore(forward_nodes);
-                    forward
-                };
-                (sweep, dq, dv)
+                match derivatives::Sweep::cheaper(forward.0, reverse.0) {
+                    derivatives::Sweep::Reverse => {
+                        (derivatives::Sweep::Reverse, reverse.1, reverse.2)
+                    }
+                    derivatives::Sweep::Forward => {
+                        g.split_off(start);
+                        g.restore(forward_nodes);
+                        (derivatives::Sweep::Forward, forward.1, forward.2)
+                    }
+                }
             }
         };
         self.derivative_sweep = Some(sweep);
