@@ -290,15 +290,15 @@ pub fn generate(
     // so the module does not depend on which.
     let both_derivatives = outputs.contains(&Kernel::InverseDynamicsDerivatives)
         && outputs.contains(&Kernel::ForwardDynamicsDerivatives);
-    let hands_over_id_graph = both_derivatives && !setup.derivative_lanes;
+    let id_sweeps_on_both_threads = both_derivatives && !setup.derivative_lanes;
     let on_this_thread = |kernel: Kernel| match kernel {
         Kernel::ForwardDynamicsDerivatives => true,
-        Kernel::InverseDynamicsDerivatives => !hands_over_id_graph,
+        Kernel::InverseDynamicsDerivatives => !id_sweeps_on_both_threads,
         _ => false,
     };
     let on_the_other_thread = |kernel: Kernel| match kernel {
         Kernel::ForwardDynamics => true,
-        Kernel::InverseDynamicsDerivatives => hands_over_id_graph,
+        Kernel::InverseDynamicsDerivatives => id_sweeps_on_both_threads,
         kernel => finds_base_parameters && reads_base(kernel),
     };
     let numbered = |keep: &dyn Fn(Kernel) -> bool| -> Vec<(usize, Kernel)> {
@@ -332,7 +332,7 @@ pub fn generate(
                 .iter()
                 .any(|&(_, kernel)| kernel == Kernel::ForwardDynamics);
             scope.spawn(move || {
-                let mut by_reverse_sweeps = hands_over_id_graph.then(|| {
+                let mut by_reverse_sweeps = id_sweeps_on_both_threads.then(|| {
                     let start = Instant::now();
                     let mut reverse = dynamics.clone().with_derivative_sweep(Sweep::Reverse);
                     let _ = reverse_cost_sender.send(reverse.inverse_dynamics_derivatives_cost());
@@ -366,13 +366,13 @@ pub fn generate(
                                     .expect("forward dynamics is built once");
                                 (built, started(time))
                             }
-                            Kernel::InverseDynamicsDerivatives if hands_over_id_graph => {
+                            Kernel::InverseDynamicsDerivatives if id_sweeps_on_both_threads => {
                                 let (graph, time) = handed
                                     .recv()
                                     .expect("the other thread says which sweep won")
                                     .or_else(|| by_reverse_sweeps.take())
                                     .expect("∂ID is built once");
-                                // Not in lanes: the graph is handed over only then.
+                                // Not in lanes: both sweeps are built only then.
                                 let start = started(time);
                                 (build_in_scalars(graph, kernel, &setup), start)
                             }
@@ -387,7 +387,7 @@ pub fn generate(
                 (forward_dynamics_choice, setup.base_parameters, emitted)
             })
         };
-        if hands_over_id_graph {
+        if id_sweeps_on_both_threads {
             let start = Instant::now();
             let mut forward = dynamics.clone().with_derivative_sweep(Sweep::Forward);
             let forward_cost = forward.inverse_dynamics_derivatives_cost();
