@@ -478,24 +478,18 @@ impl SymbolicDynamics {
                 (sweep, dq, dv)
             }
             None => {
-                let start = g.len();
-                let build = |g: &mut ExprGraph, sweep| {
-                    let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
-                    (jacobians_cost(g, &dq, &dv), dq, dv)
+                let build = |sweep| {
+                    move |g: &mut ExprGraph| {
+                        let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
+                        (jacobians_cost(g, &dq, &dv), (dq, dv))
+                    }
                 };
-                let forward = build(g, derivatives::Sweep::Forward);
-                let forward_nodes = g.split_off(start);
-                let reverse = build(g, derivatives::Sweep::Reverse);
-                match derivatives::Sweep::cheaper(forward.0, reverse.0) {
-                    derivatives::Sweep::Reverse => {
-                        (derivatives::Sweep::Reverse, reverse.1, reverse.2)
-                    }
-                    derivatives::Sweep::Forward => {
-                        g.split_off(start);
-                        g.restore(forward_nodes);
-                        (derivatives::Sweep::Forward, forward.1, forward.2)
-                    }
-                }
+                let (sweep, (dq, dv)) = cheaper_sweep(
+                    g,
+                    build(derivatives::Sweep::Forward),
+                    build(derivatives::Sweep::Reverse),
+                );
+                (sweep, dq, dv)
             }
         };
         self.derivative_sweep = Some(sweep);
@@ -766,24 +760,46 @@ fn fixture_robot(file: &str) -> RobotModel {
         .unwrap_or_else(|e| panic!("fixture {file}: {e}"))
 }
 
-/// The partials `forward` or `reverse` builds, whichever costs fewer operations
-/// ([`crate::OpCount::cost`]; forward on a tie): both are built in turn, the first taken out
-/// of the graph while the second is tried ([`ExprGraph::split_off`]).
+/// The partials `forward` or `reverse` builds in lanes, whichever costs fewer operations
+/// ([`cheaper_sweep`], each costed by [`crate::OpCount::cost`] over its vectors).
 fn cheaper_lanes(
     g: &mut ExprGraph,
     forward: impl FnOnce(&mut ExprGraph) -> LanePartials,
     reverse: impl FnOnce(&mut ExprGraph) -> LanePartials,
 ) -> LanePartials {
+    cheaper_sweep(g, costed_lanes(forward), costed_lanes(reverse)).1
+}
+
+/// `build` with the [`crate::OpCount::cost`] of the vectors it builds.
+fn costed_lanes(
+    build: impl FnOnce(&mut ExprGraph) -> LanePartials,
+) -> impl FnOnce(&mut ExprGraph) -> (usize, LanePartials) {
+    move |g| {
+        let partials = build(g);
+        (g.op_count(&partials.vectors).cost(), partials)
+    }
+}
+
+/// What the forward and the reverse sweeps build (each builder returning its
+/// [`crate::OpCount::cost`] and result), whichever costs less ([`derivatives::Sweep::cheaper`]:
+/// forward on a tie), and which that was. Both are built in turn, the first taken out of the
+/// graph while the second is tried ([`ExprGraph::split_off`]) and put back at the same ids if
+/// it is kept, so the graph holds the kept one's nodes alone.
+fn cheaper_sweep<T>(
+    g: &mut ExprGraph,
+    forward: impl FnOnce(&mut ExprGraph) -> (usize, T),
+    reverse: impl FnOnce(&mut ExprGraph) -> (usize, T),
+) -> (derivatives::Sweep, T) {
     let start = g.len();
-    let forward = forward(g);
-    let forward_cost = g.op_count(&forward.vectors).cost();
+    let (forward_cost, forward) = forward(g);
     let forward_nodes = g.split_off(start);
-    let reverse = reverse(g);
-    if g.op_count(&reverse.vectors).cost() < forward_cost {
-        reverse
-    } else {
-        g.split_off(start);
-        g.restore(forward_nodes);
-        forward
+    let (reverse_cost, reverse) = reverse(g);
+    match derivatives::Sweep::cheaper(forward_cost, reverse_cost) {
+        derivatives::Sweep::Reverse => (derivatives::Sweep::Reverse, reverse),
+        derivatives::Sweep::Forward => {
+            g.split_off(start);
+            g.restore(forward_nodes);
+            (derivatives::Sweep::Forward, forward)
+        }
     }
 }
