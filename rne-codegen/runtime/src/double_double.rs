@@ -318,6 +318,18 @@ impl DoubleDouble {
         DoubleDouble { hi, lo }.or_f64(th)
     }
 
+    /// `self · y` as `*` computes it (JMP Algorithm 12), given the exact product of the high
+    /// parts, `(p, e)` with `p = fl(self.hi · y.hi)` and `p + e = self.hi · y.hi`: for a
+    /// caller that forms it faster, e.g. `e = fma(self.hi, y.hi, −p)` where the processor has
+    /// a fused multiply–add. An exact `e` gives the bits of `self * y`.
+    #[inline]
+    pub fn mul_given_product(self, y: DoubleDouble, (ch, cl1): (f64, f64)) -> DoubleDouble {
+        let tl1 = self.hi * y.lo + self.lo * y.lo;
+        let cl2 = self.lo * y.hi + tl1;
+        let (hi, lo) = fast_two_sum(ch, cl1 + cl2);
+        DoubleDouble { hi, lo }.or_f64(self.hi * y.hi)
+    }
+
     /// `self` if finite, else `naive` (the `f64` result of the operation on the high parts),
     /// so that infinities and NaN come out as in `f64`.
     #[inline]
@@ -431,11 +443,7 @@ impl Mul for DoubleDouble {
     /// has no fused multiply–add).
     #[inline]
     fn mul(self, y: DoubleDouble) -> DoubleDouble {
-        let (ch, cl1) = two_prod(self.hi, y.hi);
-        let tl1 = self.hi * y.lo + self.lo * y.lo;
-        let cl2 = self.lo * y.hi + tl1;
-        let (hi, lo) = fast_two_sum(ch, cl1 + cl2);
-        DoubleDouble { hi, lo }.or_f64(self.hi * y.hi)
+        self.mul_given_product(y, two_prod(self.hi, y.hi))
     }
 }
 

@@ -12,6 +12,8 @@
 //! Kleinfinger's rules do for serial chains. Parameters whose column is zero (they never act)
 //! drop out.
 
+mod residual_update;
+
 use nalgebra::{DMatrix, DVector};
 
 use crate::expr::{Id, Symbol};
@@ -236,7 +238,9 @@ impl Split {
     /// Algorithms*, 2nd ed., 2002, §12.1) of K against W in double-double: the residual
     /// R = W₂ − W₁ K is formed in double-double and the correction solved in `f64` with the
     /// same factors ([`Split::solve`]). The zeros of K stay zeros (they are structural: no
-    /// regrouping), so the residual costs one product per row and non-zero coefficient.
+    /// regrouping), so the residual costs one product per row and non-zero coefficient,
+    /// each by [`residual_update::subtract_scaled`] (with the bits of the operators, through a
+    /// fused multiply–add where the processor has one).
     fn refine(&self, k: DMatrix<f64>, w: &DMatrix<DoubleDouble>) -> DMatrix<f64> {
         let (nb, nd) = k.shape();
         let nonzero: Vec<(usize, usize)> = (0..nd)
@@ -244,21 +248,26 @@ impl Split {
             .filter(|&(b, d)| k[(b, d)] != 0.0)
             .collect();
         let mut refined = k.map(DoubleDouble::from_f64);
+        // Columns as slices of the column-major storage: no view's strides per element.
+        let rows = w.nrows();
+        let w_all = w.as_slice();
+        let kept: Vec<residual_update::Column> = self
+            .independent
+            .iter()
+            .map(|&c| residual_update::Column::new(&w_all[c * rows..(c + 1) * rows]))
+            .collect();
         for _ in 0..REFINEMENT_STEPS {
             if nonzero.is_empty() {
                 break;
             }
             let mut residual = DMatrix::from_fn(w.nrows(), nd, |i, d| w[(i, self.dependent[d])]);
-            // Columns as slices of the column-major storage: no view's strides per element.
-            let rows = w.nrows();
-            let (w_all, r_all) = (w.as_slice(), residual.as_mut_slice());
+            let r_all = residual.as_mut_slice();
             for &(b, d) in &nonzero {
-                let coefficient = refined[(b, d)];
-                let c = self.independent[b];
-                let kept = &w_all[c * rows..(c + 1) * rows];
-                for (r, &x) in r_all[d * rows..(d + 1) * rows].iter_mut().zip(kept) {
-                    *r -= x * coefficient;
-                }
+                residual_update::subtract_scaled(
+                    &mut r_all[d * rows..(d + 1) * rows],
+                    kept[b],
+                    refined[(b, d)],
+                );
             }
             let Some(correction) = self.solve(&residual.map(DoubleDouble::to_f64)) else {
                 break;
