@@ -201,6 +201,9 @@ fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Dept
 struct Depths {
     /// By node index; `u32::MAX` where not computed yet.
     ready: Vec<u32>,
+    /// The walk's stack, kept between calls so that a depth costs no allocation (a call per
+    /// term and per partial sum of every sum rebuilt).
+    stack: Vec<Id>,
 }
 
 impl Depths {
@@ -221,7 +224,8 @@ impl Depths {
         if self.ready.len() < graph.len() {
             self.ready.resize(graph.len(), Self::UNKNOWN);
         }
-        let mut stack = vec![id];
+        let mut stack = core::mem::take(&mut self.stack);
+        stack.push(id);
         while let Some(&top) = stack.last() {
             if self.known(top).is_some() {
                 stack.pop();
@@ -241,6 +245,7 @@ impl Depths {
             self.ready[top.index()] = operands + node_cycles(node);
             stack.pop();
         }
+        self.stack = stack;
         self.ready[id.index()]
     }
 }
