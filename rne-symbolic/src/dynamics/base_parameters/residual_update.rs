@@ -1,6 +1,6 @@
 //! The step of the base parameters' refinement that costs most: `r ← r − x·c` down a column
 //! of W, in double-double (`Split::refine` forms R = W₂ − W₁ K by one such step per non-zero
-//! coefficient of K: 21 204 columns of 1 920 rows, twice, for a random 48-joint chain).
+//! coefficient of K: 21 204 steps of 1 920 rows each, twice, for a random 48-joint chain).
 //!
 //! Each step multiplies two double-doubles, whose exact product of the high parts is the
 //! costly part: Dekker's, from Veltkamp's splitting, 17 operations and three branches
@@ -29,6 +29,7 @@ fn products_exact(x: DoubleDouble) -> bool {
 #[derive(Clone, Copy)]
 pub(super) struct Column<'a> {
     entries: &'a [DoubleDouble],
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     fused: bool,
 }
 
