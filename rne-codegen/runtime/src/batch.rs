@@ -348,9 +348,10 @@ fn write_leaf<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
 
 /// [`evaluate`] on `threads` threads (at least one; feature `threads`, which needs the
 /// standard library): the states are cut into chunks of whole groups of `LANES`, about
-/// [`CHUNKS_PER_THREAD`] per thread, and `threads` tasks on rayon's global thread pool (the
-/// caller's among them) take the next chunk whenever they are done with one, so that at most
-/// `threads` of the pool's threads work on them at once. The pool's threads are started once
+/// [`CHUNKS_PER_THREAD`] per thread, and `threads` tasks on rayon's global thread pool (a
+/// scope's own task and `threads − 1` it spawns; the caller waits for the scope) take the next
+/// chunk whenever they are done with one, so that at most `threads` of the pool's threads
+/// work on them at once. The pool's threads are started once
 /// and kept, so a call costs microseconds beyond its work, where starting threads per call
 /// cost tens; and a thread the machine slows down (a vCPU shared with another guest) holds
 /// the batch up by a chunk, not by a fixed share of it (docs/performance.md).
