@@ -347,14 +347,14 @@ fn write_leaf<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
 }
 
 /// [`evaluate`] on `threads` threads (at least one; feature `threads`, which needs the
-/// standard library): the states are cut into chunks of whole groups of `LANES`, about
-/// [`CHUNKS_PER_THREAD`] per thread, and `threads` tasks on rayon's global thread pool (a
-/// scope's own task and `threads − 1` it spawns; the caller waits for the scope) take the next
-/// chunk whenever they are done with one, so that at most `threads` of the pool's threads
-/// work on them at once. The pool's threads are started once
-/// and kept, so a call costs microseconds beyond its work, where starting threads per call
-/// cost tens; and a thread the machine slows down (a vCPU shared with another guest) holds
-/// the batch up by a chunk, not by a fixed share of it (docs/performance.md).
+/// standard library): the states are cut into chunks of whole groups of `LANES`, about eight
+/// per thread, and `threads` tasks on rayon's global thread pool (a scope's own task and the
+/// `threads − 1` it spawns; the caller waits for the scope) take the next chunk whenever they
+/// are done with one, so that at most `threads` of the pool's threads work on them at once.
+/// The pool's threads are started once and kept, so a call costs microseconds beyond its
+/// work, where starting threads per call cost tens; and a thread the machine slows down (a
+/// vCPU shared with another guest) holds the batch up by a chunk, not by a fixed share of it
+/// (docs/performance.md).
 ///
 /// # Panics
 /// If `states` and `results` differ in length, or the kernel panics.
@@ -403,7 +403,7 @@ pub fn evaluate_threaded<I, O, K>(
 /// slowed down leaves little to wait for, few enough that taking a chunk (a lock) costs
 /// nothing beside its work (at 1 024 states in `F64x4`, 16 groups, a few microseconds).
 #[cfg(feature = "threads")]
-pub const CHUNKS_PER_THREAD: usize = 8;
+const CHUNKS_PER_THREAD: usize = 8;
 
 #[cfg(test)]
 mod tests {
