@@ -2,28 +2,44 @@
 //!
 //! The kernels need `sin q_k` and `cos q_k` of every joint angle; at a few nanoseconds each
 //! they are a large share of a small robot's inverse dynamics. [`sin_cos`] reduces the
-//! argument by Cody and Waite's method (π/2 split into three parts whose products with the
-//! quadrant number are exact for |x| < 2²⁰·π/2 ≈ 1.6·10⁶) and evaluates the minimax
-//! polynomials of Sun Microsystems' fdlibm kernels on [−π/4, π/4]; it has no branch except
-//! the one to Payne and Hanek's reduction (module `large`) for larger or non-finite
-//! arguments. The polynomials are evaluated by Estrin's scheme rather than fdlibm's Horner
+//! argument by Cody and Waite's method (π/2 split into two parts of 33 bits, whose products
+//! with the quadrant number are exact for |x| < 2²⁰·π/2 ≈ 1.6·10⁶, and a tail) and evaluates
+//! the minimax polynomials of Sun Microsystems' fdlibm kernels on [−π/4, π/4]; it has no
+//! branch except the one to Payne and Hanek's reduction (module `large`) for larger or
+//! non-finite arguments. The polynomials are evaluated by Estrin's scheme rather than fdlibm's Horner
 //! rule, which shortens the chain the kernels wait on (see `polynomial`). The error is
 //! within 1 ulp for |x| ≤ 100, the range of joint angles, and 2 ulp up to 1.5·10⁶ (where the
 //! reduced argument may lose one more bit; 2 ulp occur from |x| ≈ 10³ on, as with Horner's
 //! rule), checked against double-double values in the tests, and within 1 ulp beyond;
-//! `sin(−0)` is `+0`. Nothing here needs the standard library.
+//! `sin(−0)` is `+0`. Built for a target with FMA, the reduction's and the polynomials'
+//! multiply–adds are fused (trait `Arithmetic`), so the results differ from a build without
+//! it by rounding, within the same bounds (CI runs the tests in both builds); within a build,
+//! the scalar, the pairs, the quads and the lane types agree bit for bit. Nothing here needs
+//! the standard library.
 
 // The constants below are written with the digits fdlibm publishes; each rounds to the f64
 // the algorithm needs.
 #![allow(clippy::excessive_precision)]
 
+use core::ops::{Add, Mul, Sub};
+
 /// `+`, `−` and `×` of a register type of module `pair` or `quad` (a newtype of the
-/// intrinsics' vector), each one intrinsic.
+/// intrinsics' vector), each one intrinsic, and the type's [`Arithmetic`]: the multiply–adds
+/// one fused intrinsic each on targets with FMA (as the scalar's [`crate::float::mul_add`]).
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 macro_rules! register_arithmetic {
-    ($register:ident, $add:ident, $sub:ident, $mul:ident) => {
+    (
+        $register:ident,
+        $add:ident,
+        $sub:ident,
+        $mul:ident,
+        $splat:ident,
+        $fmadd:ident,
+        $fnmadd:ident
+    ) => {
         // SAFETY (each block): the module is compiled only for a target with the
-        // intrinsics' instruction set, and they touch no memory.
+        // intrinsics' instruction set (the fused ones only with FMA), and they touch no
+        // memory.
         impl core::ops::Add for $register {
             type Output = $register;
             #[inline(always)]
@@ -43,6 +59,26 @@ macro_rules! register_arithmetic {
             #[inline(always)]
             fn mul(self, rhs: $register) -> $register {
                 $register(unsafe { $mul(self.0, rhs.0) })
+            }
+        }
+        impl super::Arithmetic for $register {
+            #[inline(always)]
+            fn splat(x: f64) -> $register {
+                $register(unsafe { $splat(x) })
+            }
+            #[inline(always)]
+            fn mul_add(self, y: $register, z: $register) -> $register {
+                #[cfg(target_feature = "fma")]
+                return $register(unsafe { core::arch::x86_64::$fmadd(self.0, y.0, z.0) });
+                #[cfg(not(target_feature = "fma"))]
+                return self * y + z;
+            }
+            #[inline(always)]
+            fn neg_mul_add(self, y: $register, z: $register) -> $register {
+                #[cfg(target_feature = "fma")]
+                return $register(unsafe { core::arch::x86_64::$fnmadd(self.0, y.0, z.0) });
+                #[cfg(not(target_feature = "fma"))]
+                return z - self * y;
             }
         }
     };
@@ -83,20 +119,48 @@ pub(crate) const C: [f64; 6] = [
     -1.135_964_755_778_819_482_65e-11,
 ];
 
-/// `c₀ + c₁ z + … + c₅ z⁵` as `c₀ + ((c₁ z + z² (c₂ + c₃ z)) + z⁴ (c₄ + c₅ z))`, given `z²`
-/// and `splat`, which makes a `T` of a coefficient: Estrin's scheme (the pairs and `z⁴` are
-/// independent) with the leading coefficient added last, so that the result is rounded
-/// against it as in Horner's rule. Its chain of dependent operations is 7 long instead of
-/// Horner's 10: the kernels wait for their sines and cosines before their first link, and this
-/// shortens the wait. Generic so that the scalar and the lane types evaluate the same
-/// operations in the same order.
-#[inline(always)]
-pub(crate) fn polynomial<T>(z: T, z2: T, c: [f64; 6], splat: impl Fn(f64) -> T) -> T
-where
-    T: Copy + core::ops::Add<Output = T> + core::ops::Mul<Output = T>,
+/// The arithmetic of the fast path, for the scalar, the SSE2 pairs, the AVX2 quads and the
+/// `F64x4` lanes: `+ − ×` of IEEE 754 in every lane, a constant in every lane, and the two
+/// multiply–adds, each **one fused instruction on targets with FMA** (rounded once) **and
+/// otherwise the product and the sum, each rounded** — there exactly the expressions the fast
+/// path had before it used them, so that its results there are unchanged.
+pub(crate) trait Arithmetic:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
 {
-    let pair = |a: f64, b: f64| splat(a) + z * splat(b);
-    splat(c[0]) + ((z * splat(c[1]) + z2 * pair(c[2], c[3])) + (z2 * z2) * pair(c[4], c[5]))
+    /// `x` in every lane.
+    fn splat(x: f64) -> Self;
+    /// `self · y + z`.
+    fn mul_add(self, y: Self, z: Self) -> Self;
+    /// `z − self · y`.
+    fn neg_mul_add(self, y: Self, z: Self) -> Self;
+}
+
+impl Arithmetic for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn mul_add(self, y: f64, z: f64) -> f64 {
+        crate::float::mul_add(self, y, z)
+    }
+    #[inline(always)]
+    fn neg_mul_add(self, y: f64, z: f64) -> f64 {
+        crate::float::mul_add(-self, y, z)
+    }
+}
+
+/// `c₀ + c₁ z + … + c₅ z⁵` as `c₀ + ((c₁ z + z² (c₂ + c₃ z)) + z⁴ (c₄ + c₅ z))`, given `z²`:
+/// Estrin's scheme (the pairs and `z⁴` are independent) with the leading coefficient added
+/// last, so that the result is rounded against it as in Horner's rule. Its chain of dependent
+/// operations is 7 long instead of Horner's 10 (5 with FMA, where each pair and each
+/// product-and-sum is one multiply–add): the kernels wait for their sines and cosines before
+/// their first link, and this shortens the wait.
+#[inline(always)]
+pub(crate) fn polynomial<T: Arithmetic>(z: T, z2: T, c: [f64; 6]) -> T {
+    let pair = |a: f64, b: f64| z.mul_add(T::splat(b), T::splat(a));
+    let inner = z2.mul_add(pair(c[2], c[3]), z * T::splat(c[1]));
+    T::splat(c[0]) + (z2 * z2).mul_add(pair(c[4], c[5]), inner)
 }
 
 /// The arithmetic of the fast path, the same operations in the same order for the scalar,
@@ -104,18 +168,26 @@ where
 /// `(shifted, k, sin r, cos r)` — `x·2/π` shifted so that its low mantissa bits are the
 /// quadrant, the quadrant number k, and the sine and cosine of the reduced argument
 /// `r = x − k·π/2` (Cody and Waite's three parts) before the quadrant's swap and signs.
+///
+/// With FMA, `x·2/π` is rounded once before the shift (the quadrant may then differ from the
+/// unfused one where `x·2/π` is within half an ulp of a half-integer; |r| still exceeds π/4
+/// by no more than an ulp of it), `k·π/2`'s first two parts are exact products either way,
+/// and its tail and the polynomials' products are rounded with their sums. An evaluation is
+/// then 25 operations instead of 39 and its chain 44 cycles long instead of 51 (by the
+/// latencies of `rne stats`: 3 for a sum or product, 4 for a multiply–add); every kernel waits
+/// for it before its first link (docs/performance.md).
 #[inline(always)]
-pub(crate) fn fast_path<T>(x: T, splat: impl Fn(f64) -> T + Copy) -> (T, T, T, T)
-where
-    T: Copy + core::ops::Add<Output = T> + core::ops::Sub<Output = T> + core::ops::Mul<Output = T>,
-{
-    let shifted = x * splat(FRAC_2_PI) + splat(ROUND);
-    let k = shifted - splat(ROUND);
-    let r = ((x - k * splat(PIO2_1)) - k * splat(PIO2_2)) - k * splat(PIO2_2T);
+pub(crate) fn fast_path<T: Arithmetic>(x: T) -> (T, T, T, T) {
+    let shifted = x.mul_add(T::splat(FRAC_2_PI), T::splat(ROUND));
+    let k = shifted - T::splat(ROUND);
+    let r = k.neg_mul_add(
+        T::splat(PIO2_2T),
+        k.neg_mul_add(T::splat(PIO2_2), k.neg_mul_add(T::splat(PIO2_1), x)),
+    );
     let z = r * r;
     let z2 = z * z;
-    let sin = r + r * z * polynomial(z, z2, S, splat);
-    let cos = splat(1.0) - (splat(0.5) * z - z2 * polynomial(z, z2, C, splat));
+    let sin = (r * z).mul_add(polynomial(z, z2, S), r);
+    let cos = T::splat(1.0) - z2.neg_mul_add(polynomial(z, z2, C), T::splat(0.5) * z);
     (shifted, k, sin, cos)
 }
 
@@ -124,7 +196,7 @@ where
 /// so that a loop over several arguments vectorises.
 #[inline(always)]
 fn reduced(x: f64) -> (f64, f64, bool) {
-    let (shifted, k, sin, cos) = fast_path(x, |c| c);
+    let (shifted, k, sin, cos) = fast_path(x);
     let in_range = k.abs() < 1_048_576.0;
     // Quadrant k mod 4, from the low bits of the shifted value's mantissa.
     let quadrant = shifted.to_bits() & 3;
@@ -280,8 +352,39 @@ fn sin_cos_each<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::sin_cos;
+pub(crate) mod tests {
+    use super::{sin_cos, Arithmetic};
+
+    /// `T`'s multiply–adds are fused exactly where the scalar's are (x86-64 with FMA) and are
+    /// otherwise the product and the sum, each rounded, in every lane (`lanes`): the factors
+    /// 1 ± 2⁻³⁰ have the product 1 − 2⁻⁶⁰, which rounds to 1 before a separate sum.
+    pub(crate) fn check_multiply_adds<T: Arithmetic, const L: usize>(
+        lanes: impl Fn(T) -> [f64; L],
+    ) {
+        let fused = cfg!(all(target_arch = "x86_64", target_feature = "fma"));
+        let tiny = 1.0 / (1u64 << 30) as f64;
+        let (a, b) = (T::splat(1.0 + tiny), T::splat(1.0 - tiny));
+        let (sum, difference) = if fused {
+            (-tiny * tiny, tiny * tiny)
+        } else {
+            (0.0, 0.0)
+        };
+        for lane in lanes(a.mul_add(b, T::splat(-1.0))) {
+            assert_eq!(lane.to_bits(), sum.to_bits(), "mul_add, fused: {fused}");
+        }
+        for lane in lanes(a.neg_mul_add(b, T::splat(1.0))) {
+            assert_eq!(
+                lane.to_bits(),
+                difference.to_bits(),
+                "neg_mul_add, fused: {fused}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_scalar_multiply_adds_are_fused_where_the_target_has_fma() {
+        check_multiply_adds(|x: f64| [x]);
+    }
 
     /// Distance between `a` and `b` in units of the last place of `b`.
     fn ulps(a: f64, b: f64) -> f64 {

@@ -5,7 +5,7 @@ use wide::{f64x4, u64x4, CmpLt};
 
 use super::ops::{lane_arithmetic, lane_sign};
 use crate::real::Real;
-use crate::trig::{fast_path, reduce_each};
+use crate::trig::{fast_path, reduce_each, Arithmetic};
 
 /// Four `f64` evaluated together (feature `simd`): a generic kernel called with `F64x4`
 /// computes four states per call.
@@ -77,9 +77,8 @@ impl F64x4 {
     /// that several arguments' evaluations interleave.
     #[inline(always)]
     fn reduced(self) -> (F64x4, F64x4, bool) {
-        let x = self.0;
         let splat = f64x4::splat;
-        let (shifted, k, sin, cos) = fast_path(x, splat);
+        let (shifted, k, sin, cos) = fast_path(self.0);
         let in_range = k.abs().cmp_lt(splat(1_048_576.0)).all();
         let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
         // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
@@ -111,6 +110,30 @@ impl F64x4 {
 fn sin_cos_each<const N: usize>(x: &[F64x4; N]) -> ([F64x4; N], [F64x4; N]) {
     let pairs = x.map(F64x4::sin_cos);
     (pairs.map(|p| p.0), pairs.map(|p| p.1))
+}
+
+/// The sine and cosine's arithmetic in `wide`'s vector: its multiply–adds are fused exactly
+/// where the scalar's [`crate::float::mul_add`] is (x86-64 with FMA), so that every lane
+/// rounds as the scalar does.
+impl Arithmetic for f64x4 {
+    #[inline(always)]
+    fn splat(x: f64) -> f64x4 {
+        f64x4::splat(x)
+    }
+    #[inline(always)]
+    fn mul_add(self, y: f64x4, z: f64x4) -> f64x4 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+        return f64x4::mul_add(self, y, z);
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+        return self * y + z;
+    }
+    #[inline(always)]
+    fn neg_mul_add(self, y: f64x4, z: f64x4) -> f64x4 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+        return f64x4::mul_neg_add(self, y, z);
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+        return z - self * y;
+    }
 }
 
 lane_arithmetic!(F64x4, f64x4, f64, 4);
@@ -164,6 +187,11 @@ mod tests {
                 assert_eq!(rows[i].lane(k), block[k].lane(i), "row {i}, lane {k}");
             }
         }
+    }
+
+    #[test]
+    fn the_sine_and_cosine_multiply_adds_round_as_the_scalar_ones() {
+        crate::trig::tests::check_multiply_adds(|x: wide::f64x4| x.to_array());
     }
 
     #[test]

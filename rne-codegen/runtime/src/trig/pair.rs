@@ -24,10 +24,6 @@ struct Pair(__m128d);
 
 impl Pair {
     #[inline(always)]
-    fn splat(x: f64) -> Pair {
-        Pair(unsafe { _mm_set1_pd(x) })
-    }
-    #[inline(always)]
     fn bits(self) -> __m128i {
         unsafe { _mm_castpd_si128(self.0) }
     }
@@ -42,14 +38,21 @@ impl Pair {
     }
 }
 
-register_arithmetic!(Pair, _mm_add_pd, _mm_sub_pd, _mm_mul_pd);
+register_arithmetic!(
+    Pair,
+    _mm_add_pd,
+    _mm_sub_pd,
+    _mm_mul_pd,
+    _mm_set1_pd,
+    _mm_fmadd_pd,
+    _mm_fnmadd_pd
+);
 
 /// `((sin a, sin b), (cos a, cos b), both in the fast path's range)`.
 #[inline(always)]
 pub(super) fn reduced(a: f64, b: f64) -> ((f64, f64), (f64, f64), bool) {
     let x = Pair(unsafe { _mm_set_pd(b, a) });
-    let splat = Pair::splat;
-    let (shifted, k, sin, cos) = fast_path(x, splat);
+    let (shifted, k, sin, cos) = fast_path(x);
     let in_range = unsafe {
         let magnitude = _mm_and_pd(k.0, _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX)));
         _mm_movemask_pd(_mm_cmplt_pd(magnitude, _mm_set1_pd(1_048_576.0))) == 3
@@ -71,4 +74,15 @@ pub(super) fn reduced(a: f64, b: f64) -> ((f64, f64), (f64, f64), bool) {
         )
     };
     (sin.halves(), cos.halves(), in_range)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_multiply_adds_round_as_the_scalar_ones() {
+        super::super::tests::check_multiply_adds(|x: super::Pair| {
+            let (a, b) = x.halves();
+            [a, b]
+        });
+    }
 }

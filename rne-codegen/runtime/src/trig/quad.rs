@@ -21,10 +21,6 @@ struct Quad(__m256d);
 
 impl Quad {
     #[inline(always)]
-    fn splat(x: f64) -> Quad {
-        Quad(unsafe { _mm256_set1_pd(x) })
-    }
-    #[inline(always)]
     fn bits(self) -> __m256i {
         unsafe { _mm256_castpd_si256(self.0) }
     }
@@ -45,15 +41,22 @@ impl Quad {
     }
 }
 
-register_arithmetic!(Quad, _mm256_add_pd, _mm256_sub_pd, _mm256_mul_pd);
+register_arithmetic!(
+    Quad,
+    _mm256_add_pd,
+    _mm256_sub_pd,
+    _mm256_mul_pd,
+    _mm256_set1_pd,
+    _mm256_fmadd_pd,
+    _mm256_fnmadd_pd
+);
 
 /// `(sin xᵢ, cos xᵢ)` of the four arguments and whether all four are in the fast path's
 /// range.
 #[inline(always)]
 pub(super) fn reduced(x: [f64; 4]) -> ([f64; 4], [f64; 4], bool) {
     let x = Quad(unsafe { _mm256_set_pd(x[3], x[2], x[1], x[0]) });
-    let splat = Quad::splat;
-    let (shifted, k, sin, cos) = fast_path(x, splat);
+    let (shifted, k, sin, cos) = fast_path(x);
     let in_range = unsafe {
         let magnitude = _mm256_and_pd(k.0, _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX)));
         _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OS>(
@@ -79,4 +82,12 @@ pub(super) fn reduced(x: [f64; 4]) -> ([f64; 4], [f64; 4], bool) {
         )
     };
     (sin.lanes(), cos.lanes(), in_range)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_multiply_adds_round_as_the_scalar_ones() {
+        super::super::tests::check_multiply_adds(|x: super::Quad| x.lanes());
+    }
 }
