@@ -6,12 +6,12 @@
 //! with the quadrant number are exact for |x| < 2²⁰·π/2 ≈ 1.6·10⁶, and a tail) and evaluates
 //! the minimax polynomials of Sun Microsystems' fdlibm kernels on [−π/4, π/4]; it has no
 //! branch except the one to Payne and Hanek's reduction (module `large`) for larger or
-//! non-finite arguments. The polynomials are evaluated by Estrin's scheme rather than fdlibm's Horner
-//! rule, which shortens the chain the kernels wait on (see `polynomial`). The error is
-//! within 1 ulp for |x| ≤ 100, the range of joint angles, and 2 ulp up to 1.5·10⁶ (where the
-//! reduced argument may lose one more bit; 2 ulp occur from |x| ≈ 10³ on, as with Horner's
-//! rule), checked against double-double values in the tests, and within 1 ulp beyond;
-//! `sin(−0)` is `+0`. Built for a target with FMA, the reduction's and the polynomials'
+//! non-finite arguments. The polynomials are evaluated by Estrin's scheme rather than
+//! fdlibm's Horner rule, which shortens the chain the kernels wait on (see `polynomial`). The
+//! error is within 1 ulp for |x| ≤ 100, the range of joint angles, and 2 ulp up to 1.5·10⁶
+//! (where the reduced argument may lose one more bit; 2 ulp occur from |x| ≈ 10³ on, as with
+//! Horner's rule), checked against double-double values in the tests, and within 1 ulp
+//! beyond; `sin(−0)` is `+0`. Built for a target with FMA, the reduction's and the polynomials'
 //! multiply–adds are fused (trait `Arithmetic`), so the results differ from a build without
 //! it by rounding, within the same bounds (CI runs the tests in both builds); within a build,
 //! the scalar, the pairs, the quads and the lane types agree bit for bit. Nothing here needs
@@ -191,9 +191,9 @@ pub(crate) fn fast_path<T: Arithmetic>(x: T) -> (T, T, T, T) {
     (shifted, k, sin, cos)
 }
 
-/// The fast path for one argument (mirrored lane by lane by the `simd` lanes): `(sin x, cos x)` and whether the reduction applies
-/// (|x| < 2²⁰·π/2 and finite). Branch-free — every step is arithmetic or a bit operation —
-/// so that a loop over several arguments vectorises.
+/// The fast path for one argument (mirrored lane by lane by the `simd` lanes): `(sin x,
+/// cos x)` and whether the reduction applies (|x| < 2²⁰·π/2 and finite). Branch-free — every
+/// step is arithmetic or a bit operation — so that a loop over several arguments vectorises.
 #[inline(always)]
 fn reduced(x: f64) -> (f64, f64, bool) {
     let (shifted, k, sin, cos) = fast_path(x);
