@@ -164,10 +164,11 @@ impl Real for F64x4 {
     fn sqrt(self) -> F64x4 {
         F64x4(self.0.sqrt())
     }
-    /// `wide`'s `mul_add`: fused where the target has FMA, as the scalar's.
+    /// Fused exactly where the scalar's is (the sines' and cosines' `Arithmetic` of
+    /// `wide`'s vector, one decision for both).
     #[inline(always)]
     fn mul_add(self, a: F64x4, b: F64x4) -> F64x4 {
-        F64x4(self.0.mul_add(a.0, b.0))
+        F64x4(Arithmetic::mul_add(self.0, a.0, b.0))
     }
     lane_sign!();
 }
