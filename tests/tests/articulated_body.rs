@@ -9,21 +9,33 @@ mod common;
 
 use rand::Rng;
 use rne_codegen_core::{distribute_constants, kernel_program, Kernel, Program};
+use rne_reference::Reference;
 use rne_symbolic::spec::{parse_str, LoadOptions};
 use rne_symbolic::{OpCount, RobotModel, Symbol, SymbolicDynamics};
 
+/// How a random chain's joint frames sit in their parents'.
+#[derive(Clone, Copy, Debug)]
+enum Origins {
+    /// Any roll–pitch–yaw.
+    Rotated,
+    /// No rotation (`rpy = 0`, as `tools/scale/random_chain.py` writes), and every third
+    /// joint's axis that of the joint before it, so that some neighbouring axes are parallel.
+    Unrotated,
+}
+
 /// A serial chain of `joints` revolute joints with random unit axes and random origins
-/// (offsets up to 0.2 m, roll-pitch-yaw up to π), seeded.
-fn random_axis_chain(joints: usize, seed: u64) -> RobotModel {
+/// (offsets up to 0.2 m), seeded.
+fn random_axis_chain(joints: usize, seed: u64, origins: Origins) -> RobotModel {
     let mut rng = common::rng(seed);
     let mut text = format!("name = \"random-axis-{joints}\"\n");
+    let mut previous_axis = [0.0, 0.0, 1.0];
     for k in 0..joints {
         let parent = if k == 0 {
             String::new()
         } else {
             format!("parent = \"l{}\"\n", k - 1)
         };
-        let axis = loop {
+        let random_axis = loop {
             let a: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
             let norm = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
             if norm > 0.2 {
@@ -31,7 +43,13 @@ fn random_axis_chain(joints: usize, seed: u64) -> RobotModel {
             }
         };
         let xyz: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.2..0.2));
-        let rpy: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+        let random_rpy: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-3.1..3.1));
+        let (axis, rpy) = match origins {
+            Origins::Rotated => (random_axis, random_rpy),
+            Origins::Unrotated if k % 3 == 2 => (previous_axis, [0.0; 3]),
+            Origins::Unrotated => (random_axis, [0.0; 3]),
+        };
+        previous_axis = axis;
         let com: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.1..0.1));
         let mass = rng.gen_range(0.5..3.0);
         text.push_str(&format!(
@@ -63,52 +81,72 @@ fn counts(model: &RobotModel) -> (OpCount, OpCount, OpCount) {
     (id, ldlt, program_count(&mut aba, &outputs))
 }
 
+/// The articulated-body accelerations against the numeric reference (its own ABA, which
+/// shares no code with the symbolic one) and against M + LᵀDL, on chains whose joint frames
+/// are rotated every way and on chains with unrotated frames and parallel neighbouring axes
+/// (the DH-like joint frames' two cases).
 #[test]
-fn articulated_body_accelerations_equal_the_factorised_ones_on_random_axis_chains() {
-    let model = random_axis_chain(7, 5);
-    let mut d = SymbolicDynamics::new(&model);
-    let factorised = d.forward_dynamics();
-    let articulated = d.forward_dynamics_articulated().expect("a chain");
-    let mut rng = common::rng(6);
-    for _ in 0..50 {
-        let (q, qd, tau) = common::state(&mut rng, 7);
-        let values = |ids: &[rne_symbolic::Id]| {
-            d.model.graph.eval::<f64>(ids, |s| match s {
-                Symbol::Position(k) => q[k as usize],
-                Symbol::Velocity(k) => qd[k as usize],
-                Symbol::Force(k) => tau[k as usize],
-                _ => f64::NAN,
-            })
-        };
-        let (a, b) = (values(&factorised), values(&articulated));
-        assert!(common::rel_err(&b, &a) < 1e-11, "ABA {b:?}, M + LᵀDL {a:?}");
+fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on_random_axis_chains(
+) {
+    for origins in [Origins::Rotated, Origins::Unrotated] {
+        let model = random_axis_chain(7, 5, origins);
+        let mut reference = Reference::new(&model.to_numeric());
+        let mut d = SymbolicDynamics::new(&model);
+        let factorised = d.forward_dynamics();
+        let articulated = d.forward_dynamics_articulated().expect("a chain");
+        let mut rng = common::rng(6);
+        for _ in 0..50 {
+            let (q, qd, tau) = common::state(&mut rng, 7);
+            let values = |ids: &[rne_symbolic::Id]| {
+                d.model.graph.eval::<f64>(ids, |s| match s {
+                    Symbol::Position(k) => q[k as usize],
+                    Symbol::Velocity(k) => qd[k as usize],
+                    Symbol::Force(k) => tau[k as usize],
+                    _ => f64::NAN,
+                })
+            };
+            let (a, b) = (values(&factorised), values(&articulated));
+            let expected = reference.forward_dynamics(&q, &qd, &tau).expect("a state");
+            assert!(
+                common::rel_err(&b, expected.as_slice()) < 1e-11,
+                "{origins:?}: ABA {b:?}, reference {expected}"
+            );
+            assert!(
+                common::rel_err(&b, &a) < 1e-11,
+                "{origins:?}: ABA {b:?}, M + LᵀDL {a:?}"
+            );
+        }
     }
 }
 
 #[test]
 fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_a_12_joint_chain() {
-    let (id, ldlt, aba) = counts(&random_axis_chain(12, 12));
-    println!("12 joints: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
-    assert!(
-        aba.mul <= 3 * id.mul,
-        "ABA {} against ID {} multiplications",
-        aba.mul,
-        id.mul
-    );
-    assert!(aba.mul < ldlt.mul);
+    for origins in [Origins::Rotated, Origins::Unrotated] {
+        let (id, ldlt, aba) = counts(&random_axis_chain(12, 12, origins));
+        println!("12 joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
+        assert!(
+            aba.mul <= 3 * id.mul,
+            "{origins:?}: ABA {} against ID {} multiplications",
+            aba.mul,
+            id.mul
+        );
+        assert!(aba.mul < ldlt.mul);
+    }
 }
 
 #[test]
 #[ignore = "about a minute in a debug build; prints the counts of docs/performance.md"]
 fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_long_chains() {
-    for joints in [24, 48] {
-        let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64));
-        println!("{joints} joints: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
-        assert!(
-            aba.mul <= 3 * id.mul,
-            "{joints} joints: ABA {} against ID {}",
-            aba.mul,
-            id.mul
-        );
+    for origins in [Origins::Rotated, Origins::Unrotated] {
+        for joints in [24, 48] {
+            let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64, origins));
+            println!("{joints} joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
+            assert!(
+                aba.mul <= 3 * id.mul,
+                "{joints} joints, {origins:?}: ABA {} against ID {}",
+                aba.mul,
+                id.mul
+            );
+        }
     }
 }

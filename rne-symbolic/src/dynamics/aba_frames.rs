@@ -8,6 +8,15 @@
 //! `Q_pᵀ E_i Q_i · Rot_z(q_i)` and the attachment `Q_pᵀ t_i`: constants fold. (RBDA §4.4 makes
 //! the same choice with its joint models; DH frames are its special case `Q_i = 1`.)
 //! A link whose axis is not constant keeps its body frame (`Q_i = 1`, axis `u_i`).
+//!
+//! The rotation about the axis is free, and it is chosen as Denavit and Hartenberg choose
+//! theirs (Craig's modified convention, *Introduction to Robotics* §3.4): a revolute link's x
+//! axis lies along the common normal to its first revolute child's axis. The child's
+//! placement is then `Rot_x(α) Rot_z(θ)`, and with `θ` moved into the joint,
+//! `Rot_x(α) · Rot_z(q + θ)`: one elementary rotation (a one and four zeros) instead of a
+//! dense one, at the cost of the angle sum `cos(q + θ)`, `sin(q + θ)` (four products). Its
+//! attachment, `Q_pᵀ t_i`, has no component along the common normal's perpendicular `u_p ×
+//! x_p` when the axes are parallel.
 
 use crate::expr::{transpose, ExprGraph, Mat3, Vec3};
 use crate::model::{axis_angle_rotation, JointKind, Link};
@@ -15,6 +24,9 @@ use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
 use super::articulated_inertia::{ArticulatedInertia, Spatial};
 use super::inertial_parameters::BodyParameters;
+
+/// A 3×3 matrix of numbers, row-major.
+type Matrix = [[f64; 3]; 3];
 
 /// One link in its joint frame.
 pub(super) struct JointFrame {
@@ -29,7 +41,7 @@ pub(super) struct JointFrame {
 /// `Q` with `Q e_z = u` for a constant unit axis `u`, as numbers: `1` for `e_z`, else the
 /// columns `x = (e × u)/|e × u|` (e the coordinate axis least aligned with u), `y = u × x`,
 /// `u`; exact for the coordinate axes.
-fn axis_frame(u: [f64; 3]) -> [[f64; 3]; 3] {
+fn axis_frame(u: [f64; 3]) -> Matrix {
     if u == [0.0, 0.0, 1.0] {
         return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     }
@@ -52,6 +64,163 @@ fn axis_frame(u: [f64; 3]) -> [[f64; 3]; 3] {
     std::array::from_fn(|i| [x[i], y[i], u[i]])
 }
 
+/// The numbers of a revolute link's constant geometry: `E_i`, `t_i` and `u_i`.
+#[derive(Clone, Copy)]
+struct Geometry {
+    rotation: Matrix,
+    translation: [f64; 3],
+    axis: [f64; 3],
+}
+
+impl Geometry {
+    /// `None` unless the link is revolute and its placement and axis are constants.
+    fn of(g: &ExprGraph, link: &Link) -> Option<Geometry> {
+        if link.kind != JointKind::Revolute || link.joint.is_none() {
+            return None;
+        }
+        let number = |v: &Vec3| -> Option<[f64; 3]> {
+            Some([g.as_const(v[0])?, g.as_const(v[1])?, g.as_const(v[2])?])
+        };
+        let r = &link.rotation;
+        Some(Geometry {
+            rotation: [number(&r[0])?, number(&r[1])?, number(&r[2])?],
+            translation: number(&link.translation)?,
+            axis: number(&link.axis)?,
+        })
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `v / |v|`, or `None` for a vector too short to give a direction.
+fn direction(v: [f64; 3]) -> Option<[f64; 3]> {
+    let norm = dot(v, v).sqrt();
+    (norm > 1e-9).then(|| v.map(|x| x / norm))
+}
+
+/// `m v`.
+fn times(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
+    m.map(|row| dot(row, v))
+}
+
+/// The common normal's direction from the axis `u` through the origin to the axis `w`
+/// through `t`: `u × w`, or for parallel axes the part of `t` perpendicular to them; `None`
+/// when the axes coincide.
+fn common_normal(u: [f64; 3], w: [f64; 3], t: [f64; 3]) -> Option<[f64; 3]> {
+    direction(cross(u, w)).or_else(|| {
+        let along = dot(t, u);
+        direction([0, 1, 2].map(|k| t[k] - along * u[k]))
+    })
+}
+
+/// `(cos, sin)` with a cosine or sine within rounding of zero made zero and the other ±1,
+/// so that a right angle or none folds in the kernels.
+fn snapped(cos: f64, sin: f64) -> (f64, f64) {
+    const ROUNDING: f64 = 4.0 * f64::EPSILON;
+    if sin.abs() <= ROUNDING {
+        (cos.signum(), 0.0)
+    } else if cos.abs() <= ROUNDING {
+        (0.0, sin.signum())
+    } else {
+        (cos, sin)
+    }
+}
+
+/// How a link's joint frame sits in its parent's when the parent's x axis is the common
+/// normal to the link's axis: `Rot_x(α)` as `(cos α, sin α)`, the angle `θ` that the joint
+/// adds to its variable as `(cos θ, sin θ)`, and whether the axes are parallel (the
+/// attachment then has no y component).
+#[derive(Clone, Copy)]
+struct Normal {
+    twist: (f64, f64),
+    offset: (f64, f64),
+    parallel: bool,
+}
+
+/// Every link's `Q_i` as numbers (`None` for a link that keeps its body frame) and, for a
+/// link whose parent's x axis was chosen along their common normal, how it sits there.
+fn axis_frames(g: &ExprGraph, links: &[Link]) -> (Vec<Option<Matrix>>, Vec<Option<Normal>>) {
+    let geometry: Vec<Option<Geometry>> = links.iter().map(|link| Geometry::of(g, link)).collect();
+    // The first revolute child of each revolute link, with their common normal in the
+    // parent's body frame.
+    let mut normal_to: Vec<Option<(usize, [f64; 3], bool)>> = vec![None; links.len()];
+    for (i, link) in links.iter().enumerate() {
+        let (Some(p), Some(child)) = (link.parent, geometry[i]) else {
+            continue;
+        };
+        let Some(parent) = geometry[p] else { continue };
+        if normal_to[p].is_some() {
+            continue;
+        }
+        let w = times(&child.rotation, child.axis);
+        if let Some(n) = common_normal(parent.axis, w, child.translation) {
+            let parallel = direction(cross(parent.axis, w)).is_none();
+            normal_to[p] = Some((i, n, parallel));
+        }
+    }
+    let frames: Vec<Option<Matrix>> = links
+        .iter()
+        .enumerate()
+        .map(|(i, link)| {
+            let moving = matches!(link.kind, JointKind::Revolute | JointKind::Prismatic);
+            let u = [
+                g.as_const(link.axis[0])?,
+                g.as_const(link.axis[1])?,
+                g.as_const(link.axis[2])?,
+            ];
+            moving.then(|| match normal_to[i] {
+                Some((_, x, _)) => {
+                    let y = cross(u, x);
+                    std::array::from_fn(|k| [x[k], y[k], u[k]])
+                }
+                None => axis_frame(u),
+            })
+        })
+        .collect();
+    let normals = links
+        .iter()
+        .enumerate()
+        .map(|(i, link)| {
+            let p = link.parent?;
+            let (child, _, parallel) = normal_to[p]?;
+            if child != i {
+                return None;
+            }
+            let (parent_frame, frame, geometry) = (frames[p]?, frames[i]?, geometry[i]?);
+            // F = Q_pᵀ E_i Q_i = Rot_x(α) Rot_z(θ), whose first row is (cos θ, −sin θ, 0)
+            // and third column (0, −sin α, cos α).
+            let column = |m: &Matrix, k: usize| [m[0][k], m[1][k], m[2][k]];
+            let entry = |r: usize, k: usize| {
+                dot(
+                    column(&parent_frame, r),
+                    times(&geometry.rotation, column(&frame, k)),
+                )
+            };
+            // Zero by construction, to rounding; nearly parallel axes, whose normal is taken
+            // as for parallel ones, keep their dense placement.
+            if entry(0, 2).abs() > 4.0 * f64::EPSILON {
+                return None;
+            }
+            Some(Normal {
+                twist: snapped(entry(2, 2), -entry(1, 2)),
+                offset: snapped(entry(0, 0), -entry(0, 1)),
+                parallel,
+            })
+        })
+        .collect();
+    (frames, normals)
+}
+
 /// Every link in its joint frame, for the motion's coordinates; the bodies' inertias are the
 /// links' unless `bodies` gives them (one per link).
 pub(super) fn joint_frames(
@@ -62,26 +231,17 @@ pub(super) fn joint_frames(
 ) -> Vec<JointFrame> {
     let body = LinkPlacement::all(g, links, motion);
     let zero = g.zero();
-    let constant_axis = |g: &ExprGraph, link: &Link| -> Option<[f64; 3]> {
-        let u = [
-            g.as_const(link.axis[0])?,
-            g.as_const(link.axis[1])?,
-            g.as_const(link.axis[2])?,
-        ];
-        Some(u)
-    };
+    let (numbers, normals) = axis_frames(g, links);
     // Q_i, and the joint axis in the joint frame.
     let frames: Vec<(Mat3, Vec3)> = links
         .iter()
-        .map(|link| {
-            let moving = matches!(link.kind, JointKind::Revolute | JointKind::Prismatic);
-            match constant_axis(g, link).filter(|_| moving) {
-                Some(u) => {
-                    let q = axis_frame(u).map(|row| row.map(|x| g.constant(x)));
-                    (q, g.const_vec([0.0, 0.0, 1.0]))
-                }
-                None => (g.identity(), link.axis),
-            }
+        .zip(&numbers)
+        .map(|(link, q)| match q {
+            Some(q) => (
+                q.map(|row| row.map(|x| g.constant(x))),
+                g.const_vec([0.0, 0.0, 1.0]),
+            ),
+            None => (g.identity(), link.axis),
         })
         .collect();
     let identity = g.identity();
@@ -92,13 +252,36 @@ pub(super) fn joint_frames(
             let (q, axis) = frames[i];
             let parent = link.parent.map_or(identity, |p| frames[p].0);
             let parent_t = transpose(&parent);
-            let fixed_in_parent = g.mat_mul(&parent_t, &link.rotation);
-            let fixed = g.mat_mul(&fixed_in_parent, &q);
-            let attachment = g.mat_vec(&parent_t, body[i].attachment);
             let coordinate = LinkCoordinate::of(g, link, motion);
+            let mut attachment = g.mat_vec(&parent_t, body[i].attachment);
+            let (fixed, offset) = match normals[i] {
+                Some(normal) => {
+                    let (c, s) = normal.twist;
+                    let (one, c, s, minus_s) =
+                        (g.one(), g.constant(c), g.constant(s), g.constant(-s));
+                    if normal.parallel {
+                        attachment[1] = zero;
+                    }
+                    (
+                        [[one, zero, zero], [zero, c, minus_s], [zero, s, c]],
+                        Some(normal.offset),
+                    )
+                }
+                None => {
+                    let fixed_in_parent = g.mat_mul(&parent_t, &link.rotation);
+                    (g.mat_mul(&fixed_in_parent, &q), None)
+                }
+            };
             let joint = match (link.kind, coordinate) {
                 (JointKind::Revolute, Some(c)) => {
-                    let (cos, sin) = (g.cos(c.q), g.sin(c.q));
+                    let (mut cos, mut sin) = (g.cos(c.q), g.sin(c.q));
+                    if let Some((cos_offset, sin_offset)) = offset {
+                        // cos(q + θ), sin(q + θ).
+                        let (co, so) = (g.constant(cos_offset), g.constant(sin_offset));
+                        let (cc, ss) = (g.mul(co, cos), g.mul(so, sin));
+                        let (sc, cs) = (g.mul(so, cos), g.mul(co, sin));
+                        (cos, sin) = (g.sub(cc, ss), g.add(sc, cs));
+                    }
                     Some(axis_angle_rotation(g, axis, cos, sin))
                 }
                 _ => None,
@@ -141,7 +324,31 @@ pub(super) fn joint_frames(
 
 #[cfg(test)]
 mod tests {
-    use super::axis_frame;
+    use super::{axis_frame, common_normal, snapped};
+
+    /// The common normal is perpendicular to both axes when they are skew, points from the
+    /// first axis to the second when they are parallel, and is missing when they coincide.
+    #[test]
+    fn common_normals_of_skew_parallel_and_coincident_axes() {
+        let s = 1.0 / 2f64.sqrt();
+        let skew = common_normal([0.0, 0.0, 1.0], [0.0, s, s], [0.3, 0.1, 0.2]).unwrap();
+        assert_eq!(skew, [-1.0, 0.0, 0.0]);
+        let parallel = common_normal([0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [0.0, 0.4, 0.7]);
+        assert_eq!(parallel, Some([0.0, 1.0, 0.0]));
+        assert_eq!(
+            common_normal([1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.0, 0.0]),
+            None
+        );
+    }
+
+    /// Right angles and none fold to exact zeros and ones; other angles are kept.
+    #[test]
+    fn angles_within_rounding_of_a_right_angle_snap() {
+        assert_eq!(snapped(1.0 - f64::EPSILON, 1e-17), (1.0, 0.0));
+        assert_eq!(snapped(-6e-17, -1.0), (0.0, -1.0));
+        assert_eq!(snapped(0.6, 0.8), (0.6, 0.8));
+        assert_eq!(snapped(1.0, 1e-9), (1.0, 1e-9));
+    }
 
     /// Q is a rotation (orthonormal, determinant 1) whose third column is the axis.
     #[test]
