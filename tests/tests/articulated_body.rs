@@ -119,34 +119,31 @@ fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on
     }
 }
 
+/// Prints a chain's counts (those of docs/performance.md) and holds its ABA to at most 3×
+/// its inverse dynamics' multiplications and under M + LᵀDL's.
+fn check_linear_cost(joints: usize, origins: Origins) {
+    let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64, origins));
+    println!("{joints} joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
+    assert!(
+        aba.mul <= 3 * id.mul,
+        "{joints} joints, {origins:?}: ABA {} against ID {} multiplications",
+        aba.mul,
+        id.mul
+    );
+    assert!(aba.mul < ldlt.mul, "{joints} joints, {origins:?}");
+}
+
 #[test]
 fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_a_12_joint_chain() {
-    for origins in [Origins::Rotated, Origins::Unrotated] {
-        let (id, ldlt, aba) = counts(&random_axis_chain(12, 12, origins));
-        println!("12 joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
-        assert!(
-            aba.mul <= 3 * id.mul,
-            "{origins:?}: ABA {} against ID {} multiplications",
-            aba.mul,
-            id.mul
-        );
-        assert!(aba.mul < ldlt.mul);
-    }
+    check_linear_cost(12, Origins::Rotated);
+    check_linear_cost(12, Origins::Unrotated);
 }
 
 #[test]
 #[ignore = "about a minute in a debug build; prints the counts of docs/performance.md"]
 fn articulated_body_forward_dynamics_costs_at_most_three_inverse_dynamics_on_long_chains() {
     for origins in [Origins::Rotated, Origins::Unrotated] {
-        for joints in [24, 48] {
-            let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64, origins));
-            println!("{joints} joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
-            assert!(
-                aba.mul <= 3 * id.mul,
-                "{joints} joints, {origins:?}: ABA {} against ID {}",
-                aba.mul,
-                id.mul
-            );
-        }
+        check_linear_cost(24, origins);
+        check_linear_cost(48, origins);
     }
 }
