@@ -23,9 +23,14 @@ enum Origins {
     Unrotated,
 }
 
-/// A serial chain of `joints` revolute joints with random unit axes and random origins
-/// (offsets up to 0.2 m), seeded.
-fn random_axis_chain(joints: usize, seed: u64, origins: Origins) -> RobotModel {
+/// A serial chain of `joints` joints with random unit axes and random origins (offsets up
+/// to 0.2 m), seeded: revolute but for the indices in `prismatic`.
+fn random_axis_chain(
+    joints: usize,
+    seed: u64,
+    origins: Origins,
+    prismatic: &[usize],
+) -> RobotModel {
     let mut rng = common::rng(seed);
     let mut text = format!("name = \"random-axis-{joints}\"\n");
     let mut previous_axis = [0.0, 0.0, 1.0];
@@ -52,8 +57,13 @@ fn random_axis_chain(joints: usize, seed: u64, origins: Origins) -> RobotModel {
         previous_axis = axis;
         let com: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.1..0.1));
         let mass = rng.gen_range(0.5..3.0);
+        let kind = if prismatic.contains(&k) {
+            "prismatic"
+        } else {
+            "revolute"
+        };
         text.push_str(&format!(
-            "[[link]]\nname = \"l{k}\"\n{parent}joint = \"revolute\"\n\
+            "[[link]]\nname = \"l{k}\"\n{parent}joint = \"{kind}\"\n\
              origin = {{ xyz = {xyz:?}, rpy = {rpy:?} }}\naxis = {axis:?}\n\
              mass = {mass}\ncom = {com:?}\n\
              inertia = {{ xx = 0.01, yy = 0.012, zz = 0.009, xy = 0.001, xz = -0.0005 }}\n"
@@ -84,12 +94,19 @@ fn counts(model: &RobotModel) -> (OpCount, OpCount, OpCount) {
 /// The articulated-body accelerations against the numeric reference (its own ABA, which
 /// shares no code with the symbolic one) and against M + LᵀDL, on chains whose joint frames
 /// are rotated every way and on chains with unrotated frames and parallel neighbouring axes
-/// (the DH-like joint frames' two cases).
+/// (the DH-like joint frames' two cases), all revolute and with prismatic joints between
+/// (which keep their frames, and whose neighbours have no common normal with them).
 #[test]
 fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on_random_axis_chains(
 ) {
-    for origins in [Origins::Rotated, Origins::Unrotated] {
-        let model = random_axis_chain(7, 5, origins);
+    let cases: [(Origins, &[usize]); 4] = [
+        (Origins::Rotated, &[]),
+        (Origins::Unrotated, &[]),
+        (Origins::Rotated, &[2, 5]),
+        (Origins::Unrotated, &[0, 3]),
+    ];
+    for (origins, prismatic) in cases {
+        let model = random_axis_chain(7, 5, origins, prismatic);
         let mut reference = Reference::new(&model.to_numeric());
         let mut d = SymbolicDynamics::new(&model);
         let factorised = d.forward_dynamics();
@@ -109,11 +126,11 @@ fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on
             let expected = reference.forward_dynamics(&q, &qd, &tau).expect("a state");
             assert!(
                 common::rel_err(&b, expected.as_slice()) < 1e-11,
-                "{origins:?}: ABA {b:?}, reference {expected}"
+                "{origins:?}, prismatic {prismatic:?}: ABA {b:?}, reference {expected}"
             );
             assert!(
                 common::rel_err(&b, &a) < 1e-11,
-                "{origins:?}: ABA {b:?}, M + LᵀDL {a:?}"
+                "{origins:?}, prismatic {prismatic:?}: ABA {b:?}, M + LᵀDL {a:?}"
             );
         }
     }
@@ -122,7 +139,7 @@ fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on
 /// Prints a chain's counts (those of docs/performance.md) and holds its ABA to at most 3×
 /// its inverse dynamics' multiplications and under M + LᵀDL's.
 fn check_linear_cost(joints: usize, origins: Origins) {
-    let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64, origins));
+    let (id, ldlt, aba) = counts(&random_axis_chain(joints, joints as u64, origins, &[]));
     println!("{joints} joints, {origins:?}: ID {id:?}\nM + LTDL {ldlt:?}\nABA {aba:?}");
     assert!(
         aba.mul <= 3 * id.mul,
