@@ -1,6 +1,6 @@
-//! The articulated-body forward dynamics on random-axis serial chains: equal to the
-//! factorised (M + LᵀDL) forward dynamics, and linear in cost, within 3× the chain's
-//! inverse-dynamics multiplications (issue 15).
+//! The articulated-body forward dynamics on the built-in robots and on random-axis serial
+//! chains: equal to the numeric reference and to the factorised (M + LᵀDL) forward dynamics,
+//! and linear in cost, within 3× the chain's inverse-dynamics multiplications (issue 15).
 //!
 //! The 24- and 48-joint counts take a minute in a debug build:
 //! `cargo test -p rne-tests --test articulated_body -- --ignored --nocapture`.
@@ -9,6 +9,7 @@ mod common;
 
 use rand::Rng;
 use rne_codegen_core::{distribute_constants, kernel_program, Kernel, Program};
+use rne_models::{RobotSource, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::spec::{parse_str, LoadOptions};
 use rne_symbolic::{OpCount, RobotModel, Symbol, SymbolicDynamics};
@@ -134,6 +135,48 @@ fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on
             );
         }
     }
+}
+
+/// The articulated-body accelerations of every built-in robot it applies to (fixed base, no
+/// mimic coupling: URDF placements, trees such as the Panda's hand and its fingers, prismatic
+/// joints) against the numeric reference, though the default kernels of these robots take
+/// M + LᵀDL.
+#[test]
+fn articulated_body_accelerations_equal_the_reference_on_the_builtin_robots() {
+    let mut checked = Vec::new();
+    for robot in BUILTIN_ROBOTS {
+        let model = RobotSource::Builtin(robot)
+            .load(&LoadOptions::default())
+            .unwrap();
+        let mut d = SymbolicDynamics::new(&model);
+        let Some(articulated) = d.forward_dynamics_articulated() else {
+            continue;
+        };
+        let mut reference = Reference::new(&model.to_numeric());
+        let n = model.joint_names().len();
+        let mut rng = common::rng(0x5eed_00ab);
+        for _ in 0..200 {
+            let (q, qd, tau) = common::state(&mut rng, n);
+            let qdd = d.model.graph.eval::<f64>(&articulated, |s| match s {
+                Symbol::Position(k) => q[k as usize],
+                Symbol::Velocity(k) => qd[k as usize],
+                Symbol::Force(k) => tau[k as usize],
+                _ => f64::NAN,
+            });
+            let expected = reference.forward_dynamics(&q, &qd, &tau).expect("a state");
+            assert!(
+                common::rel_err(&qdd, expected.as_slice()) < 1e-12,
+                "{}: ABA {qdd:?}, reference {expected}",
+                robot.name
+            );
+        }
+        checked.push(robot.name);
+    }
+    println!("ABA against the reference: {checked:?}");
+    assert!(
+        checked.contains(&"panda") && checked.contains(&"ur5"),
+        "the tree with prismatic fingers and an arm with parallel axes among {checked:?}"
+    );
 }
 
 /// Prints a chain's counts (those of docs/performance.md) and holds its ABA to at most 3×
