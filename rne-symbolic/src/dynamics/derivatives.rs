@@ -159,7 +159,7 @@ pub fn tangent_directions(g: &mut ExprGraph, layout: StateLayout) -> Vec<Vec<(us
     directions
 }
 
-/// Σ_c weight_c · partials[c], entry by entry.
+/// `Σ_c weight_c · partials[c]`, entry by entry.
 fn combine(g: &mut ExprGraph, partials: &[Vec<Id>], weights: &[(usize, Id)], n: usize) -> Vec<Id> {
     (0..n)
         .map(|i| {
