@@ -73,6 +73,20 @@ fn random_axis_chain(
     parse_str(&text, "random-axis.toml", &LoadOptions::default()).expect("a valid chain")
 }
 
+/// The values of forward-dynamics outputs `qdd` of `d`'s graph at the state `(q, q̇, τ)`.
+fn accelerations(
+    d: &SymbolicDynamics,
+    qdd: &[rne_symbolic::Id],
+    (q, qd, tau): (&[f64], &[f64], &[f64]),
+) -> Vec<f64> {
+    d.model.graph.eval::<f64>(qdd, |s| match s {
+        Symbol::Position(k) => q[k as usize],
+        Symbol::Velocity(k) => qd[k as usize],
+        Symbol::Force(k) => tau[k as usize],
+        _ => f64::NAN,
+    })
+}
+
 /// The optimised program's count of some outputs of a kernel's graph (what `rne stats`
 /// reports for a kernel).
 fn program_count(d: &mut SymbolicDynamics, outputs: &[rne_symbolic::Id]) -> OpCount {
@@ -115,15 +129,8 @@ fn articulated_body_accelerations_equal_the_reference_and_the_factorised_ones_on
         let mut rng = common::rng(6);
         for _ in 0..50 {
             let (q, qd, tau) = common::state(&mut rng, 7);
-            let values = |ids: &[rne_symbolic::Id]| {
-                d.model.graph.eval::<f64>(ids, |s| match s {
-                    Symbol::Position(k) => q[k as usize],
-                    Symbol::Velocity(k) => qd[k as usize],
-                    Symbol::Force(k) => tau[k as usize],
-                    _ => f64::NAN,
-                })
-            };
-            let (a, b) = (values(&factorised), values(&articulated));
+            let a = accelerations(&d, &factorised, (&q, &qd, &tau));
+            let b = accelerations(&d, &articulated, (&q, &qd, &tau));
             let expected = reference.forward_dynamics(&q, &qd, &tau).expect("a state");
             assert!(
                 common::rel_err(&b, expected.as_slice()) < 1e-11,
@@ -157,12 +164,7 @@ fn articulated_body_accelerations_equal_the_reference_on_the_builtin_robots() {
         let mut rng = common::rng(0x5eed_00ab);
         for _ in 0..200 {
             let (q, qd, tau) = common::state(&mut rng, n);
-            let qdd = d.model.graph.eval::<f64>(&articulated, |s| match s {
-                Symbol::Position(k) => q[k as usize],
-                Symbol::Velocity(k) => qd[k as usize],
-                Symbol::Force(k) => tau[k as usize],
-                _ => f64::NAN,
-            });
+            let qdd = accelerations(&d, &articulated, (&q, &qd, &tau));
             let expected = reference.forward_dynamics(&q, &qd, &tau).expect("a state");
             assert!(
                 common::rel_err(&qdd, expected.as_slice()) < 1e-12,
