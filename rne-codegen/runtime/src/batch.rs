@@ -351,10 +351,11 @@ fn write_leaf<O: LaneData>(value: &O, j: usize, out: &mut [O::State]) {
 /// per thread, and `threads` tasks on rayon's global thread pool (a scope's own task and the
 /// `threads − 1` it spawns; the caller waits for the scope) take the next chunk whenever they
 /// are done with one, so that at most `threads` of the pool's threads work on them at once.
-/// The pool's threads are started once and kept, so a call costs microseconds beyond its
-/// work, where starting threads per call cost tens; and a thread the machine slows down (a
-/// vCPU shared with another guest) holds the batch up by a chunk, not by a fixed share of it
-/// (docs/performance.md).
+/// The pool's threads are started once and kept, so a call costs a few to some twenty
+/// microseconds beyond its work, where starting threads per call cost tens; on some hosts that
+/// is about what 1 024 states of a small kernel take on one thread, so the helper is for large
+/// batches. A thread the machine slows down (a vCPU shared with another guest) holds the batch
+/// up by a chunk, not by a fixed share of it (docs/performance.md).
 ///
 /// # Panics
 /// If `states` and `results` differ in length, or the kernel panics.
