@@ -21,15 +21,14 @@
 //! feet would save about 5 % more on long chains, but the foot of nearly parallel axes' normal
 //! lies far out (docs/performance.md, "Forward dynamics by the articulated-body algorithm").
 
+use nalgebra::{Matrix3, Vector3};
+
 use crate::expr::{transpose, ExprGraph, Mat3, Vec3};
 use crate::model::{axis_angle_rotation, JointKind, Link};
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
 use super::articulated_inertia::{ArticulatedInertia, Spatial};
 use super::inertial_parameters::BodyParameters;
-
-/// A 3×3 matrix of numbers, row-major.
-type Matrix = [[f64; 3]; 3];
 
 /// One link in its joint frame.
 pub(super) struct JointFrame {
@@ -44,35 +43,21 @@ pub(super) struct JointFrame {
 /// `Q` with `Q e_z = u` for a constant unit axis `u`, as numbers: `1` for `e_z`, else the
 /// columns `x = (e × u)/|e × u|` (e the coordinate axis least aligned with u), `y = u × x`,
 /// `u`; exact for the coordinate axes.
-fn axis_frame(u: [f64; 3]) -> Matrix {
-    if u == [0.0, 0.0, 1.0] {
-        return [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+fn axis_frame(u: Vector3<f64>) -> Matrix3<f64> {
+    if u == Vector3::z() {
+        return Matrix3::identity();
     }
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let least = (0..3)
-        .min_by(|&i, &j| u[i].abs().total_cmp(&u[j].abs()))
-        .unwrap_or(0);
-    let mut e = [0.0; 3];
-    e[least] = 1.0;
-    let x = cross(e, u);
-    let norm = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
-    let x = x.map(|v| v / norm);
-    let y = cross(u, x);
-    std::array::from_fn(|i| [x[i], y[i], u[i]])
+    let least = u.iamin();
+    let x = Vector3::ith(least, 1.0).cross(&u).normalize();
+    Matrix3::from_columns(&[x, u.cross(&x), u])
 }
 
 /// The numbers of a revolute link's constant geometry: `E_i`, `t_i` and `u_i`.
 #[derive(Clone, Copy)]
 struct Geometry {
-    rotation: Matrix,
-    translation: [f64; 3],
-    axis: [f64; 3],
+    rotation: Matrix3<f64>,
+    translation: Vector3<f64>,
+    axis: Vector3<f64>,
 }
 
 impl Geometry {
@@ -81,49 +66,38 @@ impl Geometry {
         if link.kind != JointKind::Revolute || link.joint.is_none() {
             return None;
         }
-        let number = |v: &Vec3| -> Option<[f64; 3]> {
-            Some([g.as_const(v[0])?, g.as_const(v[1])?, g.as_const(v[2])?])
-        };
         let r = &link.rotation;
         Some(Geometry {
-            rotation: [number(&r[0])?, number(&r[1])?, number(&r[2])?],
-            translation: number(&link.translation)?,
-            axis: number(&link.axis)?,
+            rotation: Matrix3::from_rows(&[
+                numbers(g, &r[0])?.transpose(),
+                numbers(g, &r[1])?.transpose(),
+                numbers(g, &r[2])?.transpose(),
+            ]),
+            translation: numbers(g, &link.translation)?,
+            axis: numbers(g, &link.axis)?,
         })
     }
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+/// A vector of constants as numbers; `None` unless every entry is a constant.
+fn numbers(g: &ExprGraph, v: &Vec3) -> Option<Vector3<f64>> {
+    Some(Vector3::new(
+        g.as_const(v[0])?,
+        g.as_const(v[1])?,
+        g.as_const(v[2])?,
+    ))
 }
 
 /// `v / |v|`, or `None` for a vector too short to give a direction.
-fn direction(v: [f64; 3]) -> Option<[f64; 3]> {
-    let norm = dot(v, v).sqrt();
-    (norm > 1e-9).then(|| v.map(|x| x / norm))
-}
-
-/// `m v`.
-fn times(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
-    m.map(|row| dot(row, v))
+fn direction(v: Vector3<f64>) -> Option<Vector3<f64>> {
+    v.try_normalize(1e-9)
 }
 
 /// The common normal's direction from the axis `u` through the origin to the axis `w`
 /// through `t`: `u × w`, or for parallel axes the part of `t` perpendicular to them; `None`
 /// when the axes coincide.
-fn common_normal(u: [f64; 3], w: [f64; 3], t: [f64; 3]) -> Option<[f64; 3]> {
-    direction(cross(u, w)).or_else(|| {
-        let along = dot(t, u);
-        direction([0, 1, 2].map(|k| t[k] - along * u[k]))
-    })
+fn common_normal(u: Vector3<f64>, w: Vector3<f64>, t: Vector3<f64>) -> Option<Vector3<f64>> {
+    direction(u.cross(&w)).or_else(|| direction(t - u * t.dot(&u)))
 }
 
 /// `(cos, sin)` with a cosine or sine within rounding of zero made zero and the other ±1,
@@ -152,11 +126,14 @@ struct Normal {
 
 /// Every link's `Q_i` as numbers (`None` for a link that keeps its body frame) and, for a
 /// link whose parent's x axis was chosen along their common normal, how it sits there.
-fn frame_rotations(g: &ExprGraph, links: &[Link]) -> (Vec<Option<Matrix>>, Vec<Option<Normal>>) {
+fn frame_rotations(
+    g: &ExprGraph,
+    links: &[Link],
+) -> (Vec<Option<Matrix3<f64>>>, Vec<Option<Normal>>) {
     let geometry: Vec<Option<Geometry>> = links.iter().map(|link| Geometry::of(g, link)).collect();
     // The first revolute child of each revolute link, with their common normal in the
     // parent's body frame.
-    let mut normal_to: Vec<Option<(usize, [f64; 3], bool)>> = vec![None; links.len()];
+    let mut normal_to: Vec<Option<(usize, Vector3<f64>, bool)>> = vec![None; links.len()];
     for (i, link) in links.iter().enumerate() {
         let (Some(p), Some(child)) = (link.parent, geometry[i]) else {
             continue;
@@ -165,27 +142,20 @@ fn frame_rotations(g: &ExprGraph, links: &[Link]) -> (Vec<Option<Matrix>>, Vec<O
         if normal_to[p].is_some() {
             continue;
         }
-        let w = times(&child.rotation, child.axis);
+        let w = child.rotation * child.axis;
         if let Some(n) = common_normal(parent.axis, w, child.translation) {
-            let parallel = direction(cross(parent.axis, w)).is_none();
+            let parallel = direction(parent.axis.cross(&w)).is_none();
             normal_to[p] = Some((i, n, parallel));
         }
     }
-    let frames: Vec<Option<Matrix>> = links
+    let frames: Vec<Option<Matrix3<f64>>> = links
         .iter()
         .enumerate()
         .map(|(i, link)| {
             let moving = matches!(link.kind, JointKind::Revolute | JointKind::Prismatic);
-            let u = [
-                g.as_const(link.axis[0])?,
-                g.as_const(link.axis[1])?,
-                g.as_const(link.axis[2])?,
-            ];
+            let u = numbers(g, &link.axis)?;
             moving.then(|| match normal_to[i] {
-                Some((_, x, _)) => {
-                    let y = cross(u, x);
-                    std::array::from_fn(|k| [x[k], y[k], u[k]])
-                }
+                Some((_, x, _)) => Matrix3::from_columns(&[x, u.cross(&x), u]),
                 None => axis_frame(u),
             })
         })
@@ -202,12 +172,10 @@ fn frame_rotations(g: &ExprGraph, links: &[Link]) -> (Vec<Option<Matrix>>, Vec<O
             let (parent_frame, frame, geometry) = (frames[p]?, frames[i]?, geometry[i]?);
             // F = Q_pᵀ E_i Q_i = Rot_x(α) Rot_z(θ), whose first row is (cos θ, −sin θ, 0)
             // and third column (0, −sin α, cos α).
-            let column = |m: &Matrix, k: usize| [m[0][k], m[1][k], m[2][k]];
             let entry = |r: usize, k: usize| {
-                dot(
-                    column(&parent_frame, r),
-                    times(&geometry.rotation, column(&frame, k)),
-                )
+                parent_frame
+                    .column(r)
+                    .dot(&(geometry.rotation * frame.column(k)))
             };
             // Zero by construction, to rounding; nearly parallel axes, whose normal is taken
             // as for parallel ones, keep their dense placement.
@@ -241,7 +209,7 @@ pub(super) fn joint_frames(
         .zip(&numbers)
         .map(|(link, q)| match q {
             Some(q) => (
-                q.map(|row| row.map(|x| g.constant(x))),
+                std::array::from_fn(|r| std::array::from_fn(|c| g.constant(q[(r, c)]))),
                 g.const_vec([0.0, 0.0, 1.0]),
             ),
             None => (g.identity(), link.axis),
@@ -327,6 +295,8 @@ pub(super) fn joint_frames(
 
 #[cfg(test)]
 mod tests {
+    use nalgebra::{Matrix3, Vector3};
+
     use super::{axis_frame, common_normal, snapped};
 
     /// The common normal is perpendicular to both axes when they are skew, points from the
@@ -334,12 +304,13 @@ mod tests {
     #[test]
     fn common_normals_of_skew_parallel_and_coincident_axes() {
         let s = 1.0 / 2f64.sqrt();
-        let skew = common_normal([0.0, 0.0, 1.0], [0.0, s, s], [0.3, 0.1, 0.2]).unwrap();
-        assert_eq!(skew, [-1.0, 0.0, 0.0]);
-        let parallel = common_normal([0.0, 0.0, 1.0], [0.0, 0.0, -1.0], [0.0, 0.4, 0.7]);
-        assert_eq!(parallel, Some([0.0, 1.0, 0.0]));
+        let v = Vector3::new;
+        let skew = common_normal(v(0.0, 0.0, 1.0), v(0.0, s, s), v(0.3, 0.1, 0.2)).unwrap();
+        assert_eq!(skew, v(-1.0, 0.0, 0.0));
+        let parallel = common_normal(v(0.0, 0.0, 1.0), v(0.0, 0.0, -1.0), v(0.0, 0.4, 0.7));
+        assert_eq!(parallel, Some(v(0.0, 1.0, 0.0)));
         assert_eq!(
-            common_normal([1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.0, 0.0]),
+            common_normal(v(1.0, 0.0, 0.0), v(1.0, 0.0, 0.0), v(0.5, 0.0, 0.0)),
             None
         );
     }
@@ -366,25 +337,19 @@ mod tests {
             [0.36, 0.48, 0.8],
             [s, -s, s],
         ] {
+            let u = Vector3::from(u);
             let q = axis_frame(u);
-            for i in 0..3 {
-                assert!((q[i][2] - u[i]).abs() < 1e-15, "{u:?}");
-                for j in 0..3 {
-                    let dot: f64 = (0..3).map(|k| q[k][i] * q[k][j]).sum();
-                    assert!(
-                        (dot - f64::from(u8::from(i == j))).abs() < 1e-15,
-                        "{u:?}: QᵀQ"
-                    );
-                }
-            }
-            let det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1])
-                - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0])
-                + q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+            assert!((q.column(2) - u).amax() < 1e-15, "{u:?}");
+            assert!(
+                (q.transpose() * q - Matrix3::identity()).amax() < 1e-15,
+                "{u:?}: QᵀQ"
+            );
+            let det = q.determinant();
             assert!((det - 1.0).abs() < 1e-15, "{u:?}: det {det}");
         }
-        let exact = axis_frame([0.0, -1.0, 0.0]);
+        let exact = axis_frame(Vector3::new(0.0, -1.0, 0.0));
         assert!(
-            exact.iter().flatten().all(|x| [0.0, 1.0, -1.0].contains(x)),
+            exact.iter().all(|x| [0.0, 1.0, -1.0].contains(x)),
             "{exact:?}"
         );
     }
