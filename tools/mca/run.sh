@@ -3,8 +3,10 @@
 # to assembly for the machine (`-C target-cpu=native`, as the native `rne bench` build), each
 # kernel's function body is cut out and llvm-mca, LLVM's model of the processor's pipelines,
 # runs it as a loop. Per kernel (`lib.rs`): instructions, how many of them read or write the
-# stack (spills and reloads), llvm-mca's block reciprocal throughput (the fewest cycles per
-# call the pipelines allow if nothing waited on anything) and the busiest pipeline's
+# stack (spills and reloads), how many load a constant into every lane (`vbroadcastsd`), how
+# many take one as an AVX-512 embedded broadcast (`{1toN}`), llvm-mca's block reciprocal
+# throughput (the fewest cycles per call the pipelines allow if nothing waited on anything)
+# and the busiest pipeline's
 # cycles per call with its name (Zen 3: FPP0/FPP1 multiply and fused multiply-add,
 # FPP2/FPP3 add, FPP45 the floating-point loads and stores). Issue 15 asks what bounds a
 # kernel where rne is not 3x Pinocchio's generated code; docs/performance.md has the figures.
@@ -22,7 +24,7 @@ export CARGO_TARGET_DIR="$here/../../target/mca"
 asm=$(ls -t "$CARGO_TARGET_DIR"/release/deps/rne_mca_check-*.s | head -1)
 body=$(mktemp)
 trap 'rm -f "$body"' EXIT
-printf '%-20s %6s %6s %11s  %s\n' kernel instrs stack throughput "busiest pipeline"
+printf '%-20s %6s %6s %6s %8s %11s  %s\n' kernel instrs stack bcast embedded throughput "busiest pipeline"
 for kernel in $(grep -o '^_ZN13rne_mca_check[0-9]*mca_[^:]*:' "$asm" | sed 's/:$//'); do
   # The mangled name's path segment after the crate's: its length, then `mca_<name>`.
   name=$(echo "$kernel" | awk '{
@@ -50,5 +52,6 @@ for kernel in $(grep -o '^_ZN13rne_mca_check[0-9]*mca_[^:]*:' "$asm" | sed 's/:$
       for (i = 1; i <= n; i++) { gsub(/[][]/, "", h[i]); if (v[i] + 0 > best) {best = v[i] + 0; which = name[h[i]]} }
       printf "%.0f %s", best, which
     }')
-  printf '%-20s %6d %6d %11s  %s\n' "$name" "$(wc -l < "$body")" "$(grep -c 'rsp' "$body" || true)" "$throughput" "$busiest"
+  printf '%-20s %6d %6d %6d %8d %11s  %s\n' "$name" "$(wc -l < "$body")" "$(grep -c 'rsp' "$body" || true)" \
+    "$(grep -c 'vbroadcastsd' "$body" || true)" "$(grep -c '{1to' "$body" || true)" "$throughput" "$busiest"
 done
