@@ -2,6 +2,8 @@
 
 use std::path::PathBuf;
 
+use crate::kernel::Kernel;
+
 /// Why a module could not be generated.
 #[derive(Debug, thiserror::Error)]
 pub enum CodegenError {
@@ -38,11 +40,13 @@ pub enum CodegenError {
     /// The gravity vector has a NaN or infinite component.
     #[error("gravity must be finite, got {0:?}")]
     Gravity([f64; 3]),
-    /// Forward dynamics was asked for a model whose M(q) is singular at every q.
-    #[error("{robot}: forward_dynamics cannot be generated: {joint}")]
+    /// Kernels that solve with M(q) were asked for a model whose M(q) is singular at every q.
+    #[error("{robot}: {} cannot be generated: {joint}", kernel_list(kernels))]
     Massless {
         /// The robot file.
         robot: String,
+        /// The kernels asked for that solve with M ([`Kernel::inverts_mass_matrix`]).
+        kernels: Vec<Kernel>,
         /// The joint that moves no mass.
         joint: rne_symbolic::model::MasslessJoint,
     },
@@ -82,4 +86,14 @@ pub enum CodegenError {
     /// A required environment variable of a build script is missing.
     #[error("environment variable {0} is not set (is this running inside a build script?)")]
     MissingEnv(&'static str),
+}
+
+/// `a`, `a and b`, `a, b and c`: the kernels' names in a sentence.
+fn kernel_list(kernels: &[Kernel]) -> String {
+    let names: Vec<&str> = kernels.iter().map(|k| k.name()).collect();
+    match names.split_last() {
+        Some((last, [])) => (*last).to_owned(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    }
 }

@@ -205,16 +205,18 @@ pub fn generate(
     let start = Instant::now();
     let runtime = scene.runtime_path()?;
     let model = scene.apply(model)?;
-    let needs_inverse = [
-        Kernel::ForwardDynamics,
-        Kernel::ForwardDynamicsDerivatives,
-        Kernel::MassMatrixInverse,
-    ];
-    if scene.outputs.iter().any(|k| needs_inverse.contains(k)) {
+    let inverting: Vec<Kernel> = scene
+        .outputs
+        .iter()
+        .copied()
+        .filter(|k| k.inverts_mass_matrix())
+        .collect();
+    if !inverting.is_empty() {
         model
             .check_mass_matrix_invertible()
             .map_err(|joint| CodegenError::Massless {
                 robot: source.to_owned(),
+                kernels: inverting,
                 joint,
             })?;
     }

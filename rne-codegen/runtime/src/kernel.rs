@@ -150,6 +150,17 @@ impl Kernel {
         )
     }
 
+    /// Whether this kernel solves with M(q): defined only for a robot whose every joint
+    /// variable moves some mass (M invertible).
+    pub fn inverts_mass_matrix(self) -> bool {
+        matches!(
+            self,
+            Kernel::ForwardDynamics
+                | Kernel::ForwardDynamicsDerivatives
+                | Kernel::MassMatrixInverse
+        )
+    }
+
     /// Whether this kernel is about the standard or base parameters (NP, NB).
     pub fn is_identification(self) -> bool {
         matches!(

@@ -8,7 +8,9 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::CliError;
-use rne_corpus::{check_robot, markdown_table, replace_table, CaseReport, PinocchioValues};
+use rne_corpus::{
+    check_robot, markdown_table, replace_table, summary, CaseReport, KernelSummary, PinocchioValues,
+};
 
 /// Arguments of `rne corpus`.
 #[derive(Debug, Args)]
@@ -49,8 +51,21 @@ pub fn run(args: &CorpusArgs, out: &mut dyn Write) -> Result<(), CliError> {
                     if symbolic.max(numeric) > args.tolerance || symbolic.is_nan() {
                         failures.push(format!("{} ({base})", report.file));
                     }
+                    let KernelSummary { worst, failed } = summary(&c.kernels);
+                    for (kernel, why) in &failed {
+                        failures.push(format!("{} ({base}) {kernel}: {why}", report.file));
+                    }
+                    let every = match worst {
+                        Some((error, kernel)) => {
+                            if error > args.tolerance {
+                                failures.push(format!("{} ({base}) {kernel}", report.file));
+                            }
+                            format!("every kernel {error:.1e} ({kernel})")
+                        }
+                        None => String::new(),
+                    };
                     format!(
-                        "NV {:3}  gen {:8.1} ms  max error {symbolic:.1e} ({what}) / {numeric:.1e}",
+                        "NV {:3}  gen {:8.1} ms  max error {symbolic:.1e} ({what}) / {numeric:.1e}  {every}",
                         c.nv,
                         c.generation.as_secs_f64() * 1e3
                     )

@@ -18,8 +18,14 @@ use rne_symbolic::model::Base;
 use rne_symbolic::spec::{load_robot, LoadOptions, SpecWarningKind};
 use rne_symbolic::RobotModel;
 
+use super::kernels::{check_every_kernel, KernelCheck};
 use super::values::{BaseValues, RobotValues, State};
 use rne_interpreted::{Interpreted, StateRef};
+
+/// Seeded random states per robot and base at which every kernel is compared with the
+/// reference ([`check_every_kernel`]), and their seed.
+pub const KERNEL_STATES: usize = 4;
+const KERNEL_SEED: u64 = 2026;
 
 /// [`BaseValues::mimic`] of values computed with every mimic follower a joint of its own.
 pub(crate) const FREE: &str = "free";
@@ -84,6 +90,9 @@ pub struct Comparison {
     pub numeric: Errors,
     /// Why forward dynamics was not compared, when it was not.
     pub forward_skipped: Option<String>,
+    /// Every kernel the generator can emit against the numeric reference
+    /// ([`check_every_kernel`]).
+    pub kernels: Vec<KernelCheck>,
 }
 
 /// Largest relative errors over the states (see the module docs for the scales).
@@ -213,7 +222,10 @@ fn case_report(
         };
     }
     match compare(&model, pinocchio) {
-        Ok(comparison) => CaseReport::Compared(comparison),
+        Ok(comparison) => CaseReport::Compared(Comparison {
+            kernels: check_every_kernel(&model, KERNEL_STATES, KERNEL_SEED),
+            ..comparison
+        }),
         Err(e) => CaseReport::RneRefuses(e),
     }
 }
@@ -451,5 +463,6 @@ fn compare(model: &RobotModel, pinocchio: &BaseValues) -> Result<Comparison, Str
         symbolic,
         numeric,
         forward_skipped,
+        kernels: Vec::new(),
     })
 }

@@ -8,9 +8,13 @@
 //! are checked by the same code in a test.
 
 mod compare;
+mod kernels;
 mod report;
 mod values;
 
-pub use compare::{check_robot, CaseReport, Comparison, Errors, RobotReport, CORPUS_KERNELS};
+pub use compare::{
+    check_robot, CaseReport, Comparison, Errors, RobotReport, CORPUS_KERNELS, KERNEL_STATES,
+};
+pub use kernels::{check_every_kernel, summary, KernelCheck, KernelOutcome, KernelSummary};
 pub use report::{markdown_table, replace_table, TABLE_BEGIN, TABLE_END};
 pub use values::{BaseValues, PinocchioValues, RobotValues, State};

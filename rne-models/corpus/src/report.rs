@@ -5,6 +5,7 @@
 use std::fmt::Write;
 
 use super::compare::{CaseReport, Comparison, RobotReport, FREE};
+use super::kernels::{summary, KernelCheck, KernelOutcome, KernelSummary};
 use super::values::PinocchioValues;
 
 /// The line after which the generated table starts.
@@ -20,14 +21,23 @@ pub fn markdown_table(values: &PinocchioValues, reports: &[RobotReport], toleran
         "Pinocchio {}, {} seeded states per robot and base (seed {}); errors relative to the \
          robot's torque scale (M to its largest entry), symbolic / numeric reference; ✓ = every \
          error ≤ {tolerance:e}. DOF: rne's joint variables with mimic followers constrained. \
-         Generation: the interpreted programs of ID, M, g, bias and FD, ms.\n",
-        values.pinocchio, values.states, values.seed
+         Generation: the interpreted programs of ID, M, g, bias and FD, ms. Every kernel: all \
+         {} kernels the generator can emit (dynamics, derivatives, kinematics, identification), \
+         each generated on its own and compared with the numeric reference at {} seeded \
+         states: ✓ = every error ≤ {tolerance:e}, with the largest; kernels undefined for the \
+         robot (forward dynamics of a joint that moves no mass) are named in the notes.\n",
+        values.pinocchio,
+        values.states,
+        values.seed,
+        rne_codegen::Kernel::ALL.len(),
+        crate::KERNEL_STATES
     );
     out.push_str(
-        "| robot | DOF | rne loads | warnings | fixed: gen | fixed: max error | floating: NV | \
-         floating: gen | floating: max error | notes |\n",
+        "| robot | DOF | rne loads | warnings | fixed: gen | fixed: max error | fixed: every \
+         kernel | floating: NV | floating: gen | floating: max error | floating: every kernel \
+         | notes |\n",
     );
-    out.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for report in reports {
         let (dof, loads, warnings) = match &report.load {
             Ok(loaded) => (
@@ -52,26 +62,28 @@ pub fn markdown_table(values: &PinocchioValues, reports: &[RobotReport], toleran
         });
         let _ = writeln!(
             out,
-            "| `{}` | {dof} | {loads} | {warnings} | {} | {} | {} | {} | {} | {} |",
+            "| `{}` | {dof} | {loads} | {warnings} | {} | {} | {} | {} | {} | {} | {} | {} |",
             report.file,
             fixed.1,
             fixed.2,
+            fixed.3,
             floating.0,
             floating.1,
             floating.2,
+            floating.3,
             notes.join("; ")
         );
     }
     out
 }
 
-/// (NV, generation, error) cells of one case, with notes added to `notes`.
+/// (NV, generation, error, every kernel) cells of one case, with notes added to `notes`.
 fn case_cells(
     case: &CaseReport,
     tolerance: f64,
     base: &str,
     notes: &mut Vec<String>,
-) -> (String, String, String) {
+) -> (String, String, String, String) {
     let dash = || "–".to_owned();
     match case {
         CaseReport::Compared(c) => {
@@ -97,17 +109,23 @@ fn case_cells(
                 c.nv.to_string(),
                 format!("{:.0}", c.generation.as_secs_f64() * 1e3),
                 error_cell(c, tolerance),
+                kernels_cell(&c.kernels, tolerance, base, notes),
             )
         }
         CaseReport::PinocchioRefuses(e) => {
             notes.push(format!("{base}: Pinocchio refuses: {}", one_line(e)));
-            (dash(), dash(), "Pinocchio refuses".to_owned())
+            (dash(), dash(), "Pinocchio refuses".to_owned(), dash())
         }
         CaseReport::RneRefuses(e) => {
             notes.push(format!("{base}: rne refuses: {}", one_line(e)));
-            (dash(), dash(), "**rne refuses**".to_owned())
+            (dash(), dash(), "**rne refuses**".to_owned(), dash())
         }
-        CaseReport::NothingMoves => ("0".to_owned(), dash(), "nothing moves (both)".to_owned()),
+        CaseReport::NothingMoves => (
+            "0".to_owned(),
+            dash(),
+            "nothing moves (both)".to_owned(),
+            dash(),
+        ),
     }
 }
 
@@ -120,6 +138,44 @@ fn error_cell(c: &Comparison, tolerance: f64) -> String {
         "**✗**"
     };
     format!("{mark} {symbolic:.1e} ({what_s}) / {numeric:.1e} ({what_n})")
+}
+
+/// The cell of every kernel against the reference, with undefined and failed kernels noted.
+fn kernels_cell(
+    checks: &[KernelCheck],
+    tolerance: f64,
+    base: &str,
+    notes: &mut Vec<String>,
+) -> String {
+    let undefined: Vec<&str> = checks
+        .iter()
+        .filter(|c| matches!(c.outcome, KernelOutcome::Undefined(_)))
+        .map(|c| c.kernel.name())
+        .collect();
+    if let Some(KernelOutcome::Undefined(why)) = checks
+        .iter()
+        .map(|c| &c.outcome)
+        .find(|o| matches!(o, KernelOutcome::Undefined(_)))
+    {
+        notes.push(format!(
+            "{base}: {} undefined: {}",
+            undefined.join(", "),
+            one_line(why)
+        ));
+    }
+    let KernelSummary { worst, failed } = summary(checks);
+    for (kernel, why) in &failed {
+        notes.push(format!("{base}: `{kernel}` failed: {}", one_line(why)));
+    }
+    let compared = checks.len() - undefined.len() - failed.len();
+    match worst {
+        _ if !failed.is_empty() => format!("**✗ {} failed**", failed.len()),
+        Some((error, kernel)) => {
+            let mark = if error <= tolerance { "✓" } else { "**✗**" };
+            format!("{mark} {compared}, {error:.1e} ({kernel})")
+        }
+        None => "–".to_owned(),
+    }
 }
 
 fn warning_summary(kinds: &[&str]) -> String {

@@ -45,6 +45,9 @@ pub enum Error {
         /// The most supported.
         max: usize,
     },
+    /// A frame of the kinematics kernels is no link of the numeric reference's model.
+    #[error("frame `{0}` is no link of the numeric reference's model")]
+    Frame(String),
     /// The numeric reference cannot evaluate the model.
     #[error("numeric reference: {0}")]
     Reference(#[from] ReferenceError),

@@ -219,3 +219,32 @@ impl Interpreted {
         )
     }
 }
+
+impl crate::agreement::Engine for Interpreted {
+    fn has(&self, kernel: Kernel) -> bool {
+        Interpreted::has(self, kernel)
+    }
+
+    fn evaluate(&self, kernel: Kernel, state: StateRef<'_>) -> Result<Vec<f64>, Error> {
+        Interpreted::evaluate(self, kernel, state)
+    }
+
+    fn base_parameters(&self, standard: &[f64]) -> Result<Vec<f64>, Error> {
+        let kernel = Kernel::BaseParameters;
+        let program = self
+            .program(kernel)
+            .ok_or(Error::MissingKernel { kernel })?;
+        Ok(program.eval(|s| match s {
+            Symbol::Parameter(i) => standard.get(usize::from(i)).copied().unwrap_or(f64::NAN),
+            _ => f64::NAN,
+        }))
+    }
+
+    fn frames(&self) -> Vec<String> {
+        self.dynamics
+            .frames()
+            .iter()
+            .map(|f| f.name.clone())
+            .collect()
+    }
+}

@@ -11,6 +11,7 @@
 //! [`Real`]: rne_codegen::Real
 #![deny(missing_docs)]
 
+pub mod agreement;
 mod error;
 mod evaluate;
 mod interpreted;

@@ -58,7 +58,7 @@ fn cost(robot: &str, construction: Construction) -> usize {
     let forward = |g: &mut ExprGraph, wrt: &[Symbol]| -> Matrix {
         wrt.iter()
             .map(|&s| {
-                let mut differentiator = Differentiator::holding(s, &[], g);
+                let mut differentiator = Differentiator::new(s);
                 tau.iter()
                     .map(|&t| differentiator.derivative(g, t))
                     .collect()
@@ -72,7 +72,7 @@ fn cost(robot: &str, construction: Construction) -> usize {
                 _ => Sweep::Reverse,
             };
             let g = &mut d.model.graph;
-            let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep, &[]);
+            let (dq, dv) = derivatives::state_jacobians(g, &tau, layout, sweep);
             vec![dq, dv]
         }
         Construction::ReverseQ => vec![reverse(&mut d.model.graph, &positions)],

@@ -190,29 +190,3 @@ fn frame_jacobians_and_jdot_qd_match_finite_differences_of_the_placements() {
         }
     }
 }
-
-#[test]
-fn holding_is_sound_only_when_every_path_to_the_torques_passes_a_held_node() {
-    use crate::expr::{ExprGraph, Symbol, SymbolTable};
-    let mut g = ExprGraph::new(SymbolTable::with_joints(["q1"]));
-    let (q, u) = (g.symbol(Symbol::Position(0)), g.symbol(Symbol::Force(0)));
-    let sin = g.sin(q);
-    let held = g.mul(u, sin);
-    let through = g.mul(held, sin);
-    assert!(super::derivatives::reads_force_only_through(
-        &g,
-        &[through],
-        &[held]
-    ));
-    let around = g.add(through, u);
-    assert!(!super::derivatives::reads_force_only_through(
-        &g,
-        &[around],
-        &[held]
-    ));
-    assert!(!super::derivatives::reads_force_only_through(
-        &g,
-        &[through],
-        &[]
-    ));
-}

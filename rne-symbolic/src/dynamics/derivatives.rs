@@ -24,12 +24,17 @@
 //! taken through the LᵀDL factor of M when the factor has structural zeros (a branching tree,
 //! or an arm whose geometry zeroes entries of M; they make the solve cheaper than the dense
 //! M⁻¹: G1's forward-dynamics derivatives drop from 228k to 174k multiplications) and as a
-//! product with M⁻¹ otherwise. The recursion is built
-//! once, reading the nodes of FD as its accelerations, and differentiated with those nodes
-//! held constant: they depend on the input torques u, which τ reads nowhere else, so no other
-//! path of τ passes through them (asserted on every build, [`reads_force_only_through`]).
+//! product with M⁻¹ otherwise. ∂τ/∂x at q̈ = FD is the derivative of the recursion with q̈
+//! constant: the recursion is differentiated with its accelerations the symbols q̈, and only
+//! then are the nodes of FD substituted for them ([`ExprGraph::substitute`]). Building the
+//! recursion on the nodes of FD first and holding them constant would not do: the graph's
+//! simplifying constructors look through a node as they build on it (a constant times a
+//! scaled u, `c₁·(c₂·u)`, becomes one product; a negation moves out of a product), so a
+//! path of τ to u could bypass the held node and its derivative would be lost — which is
+//! what happened on robots with a decoupled joint of constant inertia (a wheel, a gripper
+//! finger) or a free rigid body.
 
-use crate::expr::{Differentiator, ExprGraph, Id, Node, Symbol};
+use crate::expr::{Differentiator, ExprGraph, Id, Symbol};
 use crate::model::StateLayout;
 use crate::motion::quaternion_rotation;
 
@@ -60,14 +65,12 @@ impl Sweep {
 }
 
 /// `(∂outputs/∂q, ∂outputs/∂q̇)`, each `outputs.len()` × NV, row i the derivatives of
-/// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`, the nodes `held`
-/// held constant ([`Differentiator::holding`]).
+/// `outputs[i]`; ∂/∂q in the tangent space (module docs), built by `sweep`.
 pub fn state_jacobians(
     g: &mut ExprGraph,
     outputs: &[Id],
     layout: StateLayout,
     sweep: Sweep,
-    held: &[Id],
 ) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
     let symbols: Vec<Symbol> = (0..layout.nq())
         .map(|c| Symbol::Position(c as u16))
@@ -78,33 +81,18 @@ pub fn state_jacobians(
         Sweep::Forward => symbols
             .iter()
             .map(|&s| {
-                let mut d = Differentiator::holding(s, held, g);
+                let mut d = Differentiator::new(s);
                 outputs.iter().map(|&o| d.derivative(g, o)).collect()
             })
             .collect(),
         Sweep::Reverse => {
-            let rows: Vec<Vec<Id>> = outputs
-                .iter()
-                .map(|&o| g.gradient_holding(o, &symbols, held))
-                .collect();
+            let rows: Vec<Vec<Id>> = outputs.iter().map(|&o| g.gradient(o, &symbols)).collect();
             transpose(&rows, symbols.len())
         }
     };
     let (positions, velocities) = partials.split_at(layout.nq());
     let dq = tangent_jacobian(g, positions, layout, outputs.len());
     (dq, transpose(velocities, outputs.len()))
-}
-
-/// Whether `outputs` reach the input torques u (`Force` symbols) only through the nodes
-/// `held`. Holding those nodes constant is sound exactly then: forward dynamics'
-/// derivatives differentiate the recursion at q̈ = FD(q, q̇, u) with the nodes of FD held,
-/// which must stand for every way τ depends on u; a path to u around them (an FD node shared
-/// by hash-consing with a node the recursion builds) would be differentiated through.
-pub fn reads_force_only_through(g: &ExprGraph, outputs: &[Id], held: &[Id]) -> bool {
-    g.reachable_stopping_at(outputs, held)
-        .into_iter()
-        .filter(|&id| matches!(g.node(id), Node::Symbol(Symbol::Force(_))))
-        .all(|id| held.contains(&id))
 }
 
 /// The tangent-space Jacobian from the partials with respect to the configuration symbols

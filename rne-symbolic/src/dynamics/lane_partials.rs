@@ -62,7 +62,6 @@ impl LanePartials {
         g: &mut ExprGraph,
         outputs: &[Id],
         layout: StateLayout,
-        held: &[Id],
     ) -> (Vec<Vec<Direction>>, Vec<Vec<Id>>) {
         let directions: Vec<Direction> = (0..layout.nv())
             .flat_map(|k| [Direction::Position(k), Direction::Velocity(k)])
@@ -98,7 +97,7 @@ impl LanePartials {
                     .into_iter()
                     .map(|(symbol, terms)| (symbol, g.sum(terms)))
                     .collect();
-                let mut d = Differentiator::along(&seeds, held, g);
+                let mut d = Differentiator::along(&seeds, g);
                 outputs.iter().map(|&o| d.derivative(g, o)).collect()
             })
             .collect();
@@ -150,7 +149,6 @@ impl LanePartials {
         outputs: &[Id],
         weights: &[Vec<Id>],
         layout: StateLayout,
-        held: &[Id],
     ) -> LanePartials {
         let symbols: Vec<Symbol> = (0..layout.nq())
             .map(|c| Symbol::Position(c as u16))
@@ -184,7 +182,7 @@ impl LanePartials {
                     (output, g.sum(terms))
                 })
                 .collect();
-            let gradient = g.gradient_seeded(&seeds, &symbols, held);
+            let gradient = g.gradient_seeded(&seeds, &symbols);
             let (by_position, by_velocity) = gradient.split_at(layout.nq());
             let first = partials.vectors.len();
             for weights in &tangents {
@@ -243,7 +241,7 @@ mod tests {
             let (dq, dv): (Matrix, Matrix) = d.inverse_dynamics_derivatives();
             let layout = d.layout();
             let g = &mut d.model.graph;
-            let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &[]);
+            let (groups, rows) = LanePartials::forward_rows(g, &tau, layout);
             let forward = LanePartials::from_rows(&groups, rows, layout.nv());
             let identity: Vec<Vec<Id>> = (0..tau.len())
                 .map(|i| {
@@ -252,7 +250,7 @@ mod tests {
                         .collect()
                 })
                 .collect();
-            let reverse = LanePartials::reverse(g, &tau, &identity, layout, &[]);
+            let reverse = LanePartials::reverse(g, &tau, &identity, layout);
             for state in [[0.4, -1.1, 2.0], [-2.3, 0.7, -0.5]] {
                 let scalar = g.eval::<f64>(&[dq.concat(), dv.concat()].concat(), |s| match s {
                     Symbol::Position(k) => state[0] + 0.3 * f64::from(k),

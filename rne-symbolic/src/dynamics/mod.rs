@@ -35,6 +35,23 @@ fn jacobians_cost(g: &ExprGraph, dq: &Matrix, dv: &Matrix) -> usize {
     g.op_count(&[dq.concat(), dv.concat()].concat()).cost()
 }
 
+/// The nodes `qdd` as the values of the acceleration symbols q̈₀, q̈₁, … (the forward
+/// dynamics' derivatives put FD in for q̈, [`SymbolicDynamics::forward_dynamics_derivatives`]).
+fn acceleration_values(qdd: &[Id]) -> Vec<(Symbol, Id)> {
+    qdd.iter()
+        .enumerate()
+        .map(|(k, &a)| (Symbol::Acceleration(k as u16), a))
+        .collect()
+}
+
+/// The rows of expressions `rows` with `values` substituted ([`ExprGraph::substitute`]).
+fn substitute_rows(g: &mut ExprGraph, rows: &[Vec<Id>], values: &[(Symbol, Id)]) -> Matrix {
+    let mut entries = g.substitute(&rows.concat(), values).into_iter();
+    rows.iter()
+        .map(|row| entries.by_ref().take(row.len()).collect())
+        .collect()
+}
+
 /// States the base parameters are found from ([`SymbolicDynamics::base_parameters`]): each
 /// gives NV equations, and a body has at most 10 + 4 parameters per joint variable, so 40
 /// states stack at least twice as many equations as there are parameters.
@@ -226,15 +243,6 @@ impl SymbolicDynamics {
     /// is included.
     pub fn inverse_dynamics(&mut self) -> Vec<Id> {
         let torques = self.full().torques.clone();
-        self.plus_friction(torques)
-    }
-
-    /// τ(q, q̇, q̈) with the accelerations `qdd` (velocity-sized nodes of the graph), plus the
-    /// joint friction when it is included.
-    fn inverse_dynamics_at(&mut self, qdd: Vec<Id>) -> Vec<Id> {
-        let qd = self.velocity_symbols(Symbol::Velocity);
-        let gravity = self.model.gravity;
-        let torques = self.run(qd, qdd, gravity).torques;
         self.plus_friction(torques)
     }
 
@@ -447,7 +455,7 @@ impl SymbolicDynamics {
             return d.clone();
         }
         let tau = self.inverse_dynamics();
-        let (dq, dv) = self.state_jacobians(&tau, &[]);
+        let (dq, dv) = self.state_jacobians(&tau);
         self.inverse_dynamics_derivatives = Some((dq.clone(), dv.clone()));
         (dq, dv)
     }
@@ -461,26 +469,25 @@ impl SymbolicDynamics {
         jacobians_cost(&self.model.graph, &dq, &dv)
     }
 
-    /// The state Jacobians of the torques `tau` with the nodes `held` constant
-    /// ([`derivatives::state_jacobians`]).
+    /// The state Jacobians of the torques `tau` ([`derivatives::state_jacobians`]).
     ///
     /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), one
     /// after the other in the graph (the first taken out while the second is tried,
     /// [`ExprGraph::split_off`]); the one of lower [`OpCount::cost`](crate::OpCount::cost) is
     /// kept, the forward sweep on a tie. A sweep known beforehand
     /// ([`Self::with_derivative_sweep`]) is built alone; the one chosen is remembered.
-    fn state_jacobians(&mut self, tau: &[Id], held: &[Id]) -> (Matrix, Matrix) {
+    fn state_jacobians(&mut self, tau: &[Id]) -> (Matrix, Matrix) {
         let layout = self.layout();
         let g = &mut self.model.graph;
         let (sweep, dq, dv) = match self.derivative_sweep {
             Some(sweep) => {
-                let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
+                let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep);
                 (sweep, dq, dv)
             }
             None => {
                 let build = |sweep| {
                     move |g: &mut ExprGraph| {
-                        let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep, held);
+                        let (dq, dv) = derivatives::state_jacobians(g, tau, layout, sweep);
                         (jacobians_cost(g, &dq, &dv), (dq, dv))
                     }
                 };
@@ -497,15 +504,18 @@ impl SymbolicDynamics {
     }
 
     /// (∂q̈/∂q, ∂q̈/∂q̇, M⁻¹) at q̈ = FD(q, q̇, u), with u the `Force` symbols:
-    /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x of the recursion run at that q̈ with q̈ held constant, the
-    /// product taken through the factor of M when it is sparse ([`derivatives`]).
+    /// ∂q̈/∂x = −M⁻¹ ∂τ/∂x, ∂τ/∂x the torques' derivatives at constant q̈
+    /// ([`Self::inverse_dynamics_derivatives`]) with FD put in for q̈, the product with M⁻¹
+    /// taken through the factor of M when it is sparse ([`derivatives`]).
     ///
     /// M⁻¹ and q̈ are built before the derivatives, so that the nodes of M⁻¹ come in the
     /// order [`Self::mass_matrix_inverse`] alone creates them in: the third output rounds
     /// exactly as that kernel does.
     pub fn forward_dynamics_derivatives(&mut self) -> (Matrix, Matrix, Matrix) {
-        let (inverse, qdd, tau) = self.recursion_at_forward_dynamics();
-        let (dq, dv) = self.state_jacobians(&tau, &qdd);
+        let inverse = self.mass_matrix_inverse();
+        let qdd = self.forward_dynamics();
+        let (dq, dv) = self.inverse_dynamics_derivatives();
+        let [dq, dv] = self.at_accelerations([dq, dv], &qdd);
         let factor = self.mass_matrix_factor();
         let g = &mut self.model.graph;
         let dqdd_dq = derivatives::negated_inverse_times(g, &factor, &inverse, &dq);
@@ -513,19 +523,14 @@ impl SymbolicDynamics {
         (dqdd_dq, dqdd_dv, inverse)
     }
 
-    /// M⁻¹, q̈ = FD(q, q̇, u) and the recursion's torques at that q̈, built in this order (M⁻¹
-    /// first, so that its nodes round as [`Self::mass_matrix_inverse`] alone builds them):
-    /// what forward dynamics' derivatives differentiate, with q̈ held. Asserts that the
-    /// torques read u only through q̈ ([`derivatives::reads_force_only_through`]).
-    fn recursion_at_forward_dynamics(&mut self) -> (Matrix, Vec<Id>, Vec<Id>) {
-        let inverse = self.mass_matrix_inverse();
-        let qdd = self.forward_dynamics();
-        let tau = self.inverse_dynamics_at(qdd.clone());
-        assert!(
-            derivatives::reads_force_only_through(&self.model.graph, &tau, &qdd),
-            "the recursion at q̈ = FD reads the torques u only through q̈, which is held"
-        );
-        (inverse, qdd, tau)
+    /// The matrices `m` (expressions of the acceleration symbols q̈) with the nodes `qdd` put
+    /// in for q̈ ([`ExprGraph::substitute`]).
+    fn at_accelerations(&mut self, [dq, dv]: [Matrix; 2], qdd: &[Id]) -> [Matrix; 2] {
+        let values = acceleration_values(qdd);
+        let g = &mut self.model.graph;
+        let both = substitute_rows(g, &[dq, dv].concat(), &values);
+        let (dq, dv) = both.split_at(both.len() / 2);
+        [dq.to_vec(), dv.to_vec()]
     }
 
     /// (∂τ/∂q, ∂τ/∂q̇) as [`inverse_dynamics_derivatives`](Self::inverse_dynamics_derivatives)
@@ -545,10 +550,10 @@ impl SymbolicDynamics {
         cheaper_lanes(
             g,
             |g| {
-                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &[]);
+                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout);
                 LanePartials::from_rows(&groups, rows, layout.nv())
             },
-            |g| LanePartials::reverse(g, &tau, &identity, layout, &[]),
+            |g| LanePartials::reverse(g, &tau, &identity, layout),
         )
     }
 
@@ -557,9 +562,12 @@ impl SymbolicDynamics {
     /// applied to each group's vectors, or by reverse sweeps seeded with the rows of −M⁻¹,
     /// whichever costs fewer operations.
     pub fn forward_dynamics_derivative_lanes(&mut self) -> (LanePartials, Matrix) {
-        let (inverse, qdd, tau) = self.recursion_at_forward_dynamics();
+        let inverse = self.mass_matrix_inverse();
+        let qdd = self.forward_dynamics();
+        let tau = self.inverse_dynamics();
         let layout = self.layout();
         let factor = self.mass_matrix_factor();
+        let values = acceleration_values(&qdd);
         let g = &mut self.model.graph;
         let negated: Matrix = inverse
             .iter()
@@ -568,11 +576,16 @@ impl SymbolicDynamics {
         let partials = cheaper_lanes(
             g,
             |g| {
-                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout, &qdd);
+                let (groups, rows) = LanePartials::forward_rows(g, &tau, layout);
+                let rows = substitute_rows(g, &rows, &values);
                 let rows = derivatives::negated_inverse_times(g, &factor, &inverse, &rows);
                 LanePartials::from_rows(&groups, rows, layout.nv())
             },
-            |g| LanePartials::reverse(g, &tau, &negated, layout, &qdd),
+            |g| {
+                let mut partials = LanePartials::reverse(g, &tau, &negated, layout);
+                partials.vectors = g.substitute(&partials.vectors, &values);
+                partials
+            },
         );
         (partials, inverse)
     }

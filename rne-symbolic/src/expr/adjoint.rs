@@ -21,24 +21,18 @@ impl ExprGraph {
     /// A node's contributions are summed in the order its users are visited (decreasing
     /// id), so the result depends on the graph alone.
     pub fn gradient(&mut self, expr: Id, wrt: &[Symbol]) -> Vec<Id> {
-        self.gradient_holding(expr, wrt, &[])
-    }
-
-    /// [`gradient`](Self::gradient) with the nodes `held` constant: no adjoint flows into them
-    /// (as [`Differentiator::holding`](super::Differentiator::holding)).
-    pub fn gradient_holding(&mut self, expr: Id, wrt: &[Symbol], held: &[Id]) -> Vec<Id> {
         let one = self.one();
-        self.gradient_seeded(&[(expr, one)], wrt, held)
+        self.gradient_seeded(&[(expr, one)], wrt)
     }
 
     /// The gradient of Σ_i wᵢ·exprᵢ for `seeds` (exprᵢ, wᵢ), the weights wᵢ taken as constants
-    /// (a vector–Jacobian product), the nodes `held` constant: one backward sweep whose
+    /// (a vector–Jacobian product): one backward sweep whose
     /// adjoints start at wᵢ on each exprᵢ. With a lane seed eₗ on each of several
     /// expressions, lane l of each partial is that of the expression seeded with eₗ
     /// ([`crate::dynamics::LanePartials`]).
-    pub fn gradient_seeded(&mut self, seeds: &[(Id, Id)], wrt: &[Symbol], held: &[Id]) -> Vec<Id> {
+    pub fn gradient_seeded(&mut self, seeds: &[(Id, Id)], wrt: &[Symbol]) -> Vec<Id> {
         let exprs: Vec<Id> = seeds.iter().map(|&(expr, _)| expr).collect();
-        let nodes = self.reachable_stopping_at(&exprs, held);
+        let nodes = self.reachable(&exprs);
         // Tables by position in `nodes`, which is much shorter than the graph below the
         // expressions when other kernels' nodes sit in between.
         let top = exprs.iter().map(|e| e.index()).max().unwrap_or(0);
@@ -47,19 +41,12 @@ impl ExprGraph {
             position[id.index()] = k as u32;
         }
         let at = |id: Id| position[id.index()] as usize;
-        let mut is_held = vec![false; nodes.len()];
-        for &h in held {
-            if h.index() < position.len() && position[h.index()] != u32::MAX {
-                is_held[at(h)] = true;
-            }
-        }
         let mut depends = vec![false; nodes.len()];
         for (k, &id) in nodes.iter().enumerate() {
-            depends[k] = !is_held[k]
-                && match self.node(id) {
-                    Node::Symbol(s) => wrt.contains(&s),
-                    node => node.children().any(|c| depends[at(c)]),
-                };
+            depends[k] = match self.node(id) {
+                Node::Symbol(s) => wrt.contains(&s),
+                node => node.children().any(|c| depends[at(c)]),
+            };
         }
         let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); nodes.len()];
         for &(expr, weight) in seeds {
@@ -177,7 +164,7 @@ mod tests {
         let w1 = g.parse_sexpr("(+ x 2)").unwrap();
         let w2 = g.constant(-3.0);
         let wrt = [Symbol::Position(0), Symbol::Position(1)];
-        let seeded = g.gradient_seeded(&[(e1, w1), (e2, w2)], &wrt, &[]);
+        let seeded = g.gradient_seeded(&[(e1, w1), (e2, w2)], &wrt);
         let (g1, g2) = (g.gradient(e1, &wrt), g.gradient(e2, &wrt));
         let value = |s: Symbol| match s {
             Symbol::Position(0) => 0.9,
@@ -213,27 +200,6 @@ mod tests {
         assert_eq!(
             g.node(only_x[0]),
             Node::Mul(cos_y.min(cos_x), cos_y.max(cos_x))
-        );
-    }
-
-    /// A held node is an input of its own: ∂/∂x of `x·h + y` with h = sin(x·y) held is h,
-    /// in both modes, where the full derivative also has x·cos(x·y)·y.
-    #[test]
-    fn held_nodes_are_differentiated_as_constants_in_both_modes() {
-        let mut g = ExprGraph::new(SymbolTable::with_joints(["x", "y"]));
-        let held = g.parse_sexpr("(sin (* x y))").unwrap();
-        let expr = g.parse_sexpr("(+ (* x (sin (* x y))) y)").unwrap();
-        let (x, y) = (Symbol::Position(0), Symbol::Position(1));
-        let reverse = g.gradient_holding(expr, &[x, y], &[held]);
-        let forward =
-            [x, y].map(|s| Differentiator::holding(s, &[held], &mut g).derivative(&mut g, expr));
-        assert_eq!(reverse[0], held, "∂/∂x = h");
-        assert_eq!(forward[0], held, "∂/∂x = h");
-        assert!(g.is_one(reverse[1]) && g.is_one(forward[1]), "∂/∂y = 1");
-        let full = Differentiator::new(x).derivative(&mut g, expr);
-        assert_ne!(
-            full, held,
-            "without holding, h's own dependence on x counts"
         );
     }
 }

@@ -28,25 +28,11 @@ impl Differentiator {
         }
     }
 
-    /// A differentiator with respect to `wrt` that holds the nodes `held` constant: their
-    /// derivative is zero and nothing below them is visited. It is the partial derivative of
-    /// an expression that reads `held` as inputs of its own, as ∂τ/∂q at q̈ = FD(q, q̇, u) reads
-    /// q̈; sound when no other path of the expression passes through a held node.
-    pub fn holding(wrt: Symbol, held: &[Id], graph: &mut ExprGraph) -> Differentiator {
-        let zero = graph.zero();
-        Differentiator {
-            wrt: Some(wrt),
-            memo: held.iter().map(|&h| (h, zero)).collect(),
-        }
-    }
-
     /// A differentiator along a direction: the derivative of each symbol of `seeds` is the
     /// node given with it, of every other symbol zero (a Jacobian–vector product, the
-    /// direction's components being the seeds), with the nodes `held` constant as in
-    /// [`Differentiator::holding`].
-    pub fn along(seeds: &[(Symbol, Id)], held: &[Id], graph: &mut ExprGraph) -> Differentiator {
-        let zero = graph.zero();
-        let mut memo: FxHashMap<Id, Id> = held.iter().map(|&h| (h, zero)).collect();
+    /// direction's components being the seeds).
+    pub fn along(seeds: &[(Symbol, Id)], graph: &mut ExprGraph) -> Differentiator {
+        let mut memo: FxHashMap<Id, Id> = FxHashMap::default();
         for &(symbol, seed) in seeds {
             memo.insert(graph.symbol(symbol), seed);
         }

@@ -7,12 +7,6 @@ use crate::Real;
 impl ExprGraph {
     /// The nodes needed to compute `outputs`, in increasing id order (children first).
     pub fn reachable(&self, outputs: &[Id]) -> Vec<Id> {
-        self.reachable_stopping_at(outputs, &[])
-    }
-
-    /// The nodes reachable from `outputs` without passing through one of `stops`: the stops
-    /// reached are included, their children only when reached another way.
-    pub fn reachable_stopping_at(&self, outputs: &[Id], stops: &[Id]) -> Vec<Id> {
         let Some(max) = outputs.iter().max() else {
             return Vec::new();
         };
@@ -20,12 +14,8 @@ impl ExprGraph {
         for o in outputs {
             needed[o.index()] = true;
         }
-        let mut stop = vec![false; needed.len()];
-        for s in stops.iter().filter(|s| s.index() < needed.len()) {
-            stop[s.index()] = true;
-        }
         for i in (0..needed.len()).rev() {
-            if needed[i] && !stop[i] {
+            if needed[i] {
                 for c in self.node(Id::from_index(i)).children() {
                     needed[c.index()] = true;
                 }

@@ -9,6 +9,7 @@ mod graph;
 mod linalg;
 mod node;
 mod sexpr;
+mod substitute;
 mod symbols;
 
 pub use count::OpCount;
