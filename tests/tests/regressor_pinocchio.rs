@@ -10,7 +10,7 @@
 //! ```
 //!
 //! Both order the columns per moving body as m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz
-//! about the body frame's origin (DESIGN.md §4), bodies depth-first, fixed links merged into
+//! about the body frame's origin (docs/design.md §4.4), bodies depth-first, fixed links merged into
 //! their moving parent.
 
 use nalgebra::DMatrix;

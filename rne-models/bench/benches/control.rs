@@ -1,4 +1,4 @@
-//! The control and identification kernels (DESIGN.md §4) of UR5 and the Panda arm, timed by
+//! The control and identification kernels (docs/design.md §4) of UR5 and the Panda arm, timed by
 //! criterion: the derivatives of inverse and forward dynamics, M⁻¹, the Jacobians of every
 //! frame, J̇q̇ and the regressor (rne-models' `control` variants, the modules `rne bench
 //! --pinocchio` times), beside inverse dynamics (the default modules) for scale.

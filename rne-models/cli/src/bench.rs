@@ -1,5 +1,6 @@
 //! `rne bench [--quick] [--out DIR] [--pinocchio RUN_SH [--no-codegen] [--pinocchio-extra SH]]`:
-//! run time against error for the kernels and the integrators (DESIGN.md §5), written as markdown with SVG and PNG figures.
+//! run time against error for the kernels and the integrators (docs/design.md §5), written as
+//! markdown with SVG and PNG figures.
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -1,4 +1,4 @@
-//! The `rne` command line (DESIGN.md §5): one file per subcommand, each turning its arguments
+//! The `rne` command line (docs/design.md §5): one file per subcommand, each turning its arguments
 //! into calls of the library crates (`rne-models`, `rne-interpreted`, `rne-scenarios`,
 //! `rne-bench`, `rne-stress`) and their errors into one [`CliError`] that keeps every cause.
 #![deny(missing_docs)]
