@@ -1,6 +1,6 @@
 //! Real robots against Pinocchio (docs/design.md §6: "every URDF of the `example-robot-data`
 //! package that Pinocchio loads, rne loads and agrees with Pinocchio's values"): Pinocchio's values
-//! at seeded states, read from the JSON of `tools/corpus/pinocchio_values.py`, against rne's
+//! at seeded states, read from the JSON of `tools/peers/pinocchio_values.py`, against rne's
 //! interpreted symbolic kernels and its numeric reference, fixed base with mimic semantics and
 //! floating base.
 //!
