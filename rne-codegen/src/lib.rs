@@ -26,7 +26,7 @@
 //! assert_eq!(elbow::Model::JOINTS, ["q1", "q2"]);
 //! ```
 //!
-//! to get flat, allocation-free functions (DESIGN.md §4): `inverse_dynamics`, `mass_matrix`,
+//! to get flat, allocation-free functions (docs/design.md §4): `inverse_dynamics`, `mass_matrix`,
 //! `coriolis_matrix` (Christoffel), `gravity_torques`, `bias_torques`, `forward_dynamics`,
 //! `kinetic_energy`, `potential_energy`, the constants `NDOF`, `NQ`, `NV` and `JOINTS`, and
 //! a `Model` type implementing [`Dynamics`]. The module is regenerated when the robot file

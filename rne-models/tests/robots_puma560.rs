@@ -1,5 +1,5 @@
-//! The PUMA 560's published check torques (ROBOTS.md: Corke & Armstrong-Hélouvry's parameters,
-//! no motor inertia or friction, gravity [0, 0, −9.81]; computed with SymPyBotics) through the
+//! The PUMA 560's published check torques (Corke & Armstrong-Hélouvry's parameters, no motor
+//! inertia or friction, gravity [0, 0, −9.81]; computed with SymPyBotics) through the
 //! generated kernels, the symbolic dynamics and the numeric reference.
 
 mod robots_common;

@@ -10,7 +10,7 @@
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
 use crate::model::{axis_angle_rotation, JointKind, Link};
 
-/// The motion of a free-flyer root (Pinocchio's conventions, DESIGN.md §4).
+/// The motion of a free-flyer root (Pinocchio's conventions, docs/design.md §4.5).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct BaseMotion {
     /// Orientation of the base frame in the world.

@@ -127,7 +127,7 @@ impl OmegaProducts {
 
 /// Runs the recursion of section 3.4 on `model` for the given joint motion and gravity g_0
 /// (base frame): forward (3.26), (3.30), (3.35), (3.34) from the base outwards, backward
-/// (3.21), (3.24) from the leaves inwards, with the errata of DESIGN.md §7 applied and
+/// (3.21), (3.24) from the leaves inwards, with the errata of docs/design.md §7 applied and
 /// prismatic joints handled (no angular velocity; `u q̈ + 2 ω × u q̇` added to the linear
 /// acceleration). A floating base's free-flyer moves with the motion's base velocity and
 /// acceleration (its generalised force is its joint reaction); a mimic follower moves with its

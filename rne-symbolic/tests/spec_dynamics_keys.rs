@@ -1,4 +1,4 @@
-//! The TOML keys for what real robots need (DESIGN §2): `base`, and per link `mimic`,
+//! The TOML keys for what real robots need (docs/design.md §2.1): `base`, and per link `mimic`,
 //! `friction` and `armature` — read into the model as expressions over the parameters, checked
 //! finite, friction coefficients and armature non-negative, mimic leaders existing and free of
 //! loops.

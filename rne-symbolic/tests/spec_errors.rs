@@ -1,5 +1,5 @@
-//! Every malformed-spec case of DESIGN §2, and the reader's own, with the exact message: the
-//! file, the line, the link and the field, then what is wrong.
+//! Every malformed-spec case of docs/design.md §2.3, and the reader's own, with the exact message:
+//! the file, the line, the link and the field, then what is wrong.
 
 use std::path::Path;
 

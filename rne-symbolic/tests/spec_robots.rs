@@ -337,7 +337,8 @@ fn irb140_keeps_the_thesis_symbols() {
     assert!((parameter(&model, "I1xx") - 23.0 * 0.18 / 12.0).abs() < 1e-15);
 }
 
-/// The PUMA 560 table of ROBOTS.md: (d, a, alpha, mass, com, diagonal inertia).
+/// The PUMA 560 table of Corke & Armstrong-Hélouvry (ICRA 1994): (d, a, alpha, mass, com,
+/// diagonal inertia).
 const PUMA: [(f64, f64, f64, f64, V3, V3); 6] = [
     (0.0, 0.0, FRAC_PI_2, 0.0, [0.0, 0.0, 0.0], [0.0, 0.35, 0.0]),
     (

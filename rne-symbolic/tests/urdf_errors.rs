@@ -1,6 +1,6 @@
 //! Every URDF the reader refuses, one test each, with the exact message: the file, the line of
-//! the element, the joint or link, the field, then what is wrong (DESIGN §2: "a clear error
-//! naming the joint, never a silent approximation").
+//! the element, the joint or link, the field, then what is wrong (docs/design.md §2.3: "What
+//! rne cannot model exactly is an error, never a silent approximation").
 
 use std::path::Path;
 

@@ -1,8 +1,8 @@
-//! Graded validation (DESIGN §2), for both readers: what published data often gets slightly
-//! wrong is a warning with the location of an error — a broken triangle inequality, a negative
-//! principal moment negligible against the robot's inertia scale, a moving joint that carries
-//! no mass — and strict validation makes each of them an error; a clearly negative principal
-//! moment stays an error.
+//! Graded validation (docs/design.md §2.4), for both readers: what published data often gets
+//! slightly wrong is a warning with the location of an error — a broken triangle inequality, a
+//! negative principal moment negligible against the robot's inertia scale, a moving joint that
+//! carries no mass — and strict validation makes each of them an error; a clearly negative
+//! principal moment stays an error.
 
 use rne_symbolic::input::NEGLIGIBLE_INERTIA;
 use rne_symbolic::spec::{self, LoadOptions, RobotFormat, SpecErrorKind, SpecWarningKind};

@@ -1,4 +1,4 @@
-//! Compiled modules with the control and identification kernels (DESIGN.md §4): the emitted
+//! Compiled modules with the control and identification kernels (docs/design.md §4): the emitted
 //! functions compute bit for bit what their programs do (so `derivatives_vs_reference.rs`,
 //! which evaluates the programs, speaks for the generated code), the `Kinematics` and
 //! `Identification` handles, a floating base (tangent-space derivatives), and friction with

@@ -1,4 +1,4 @@
-//! The control and identification kernels (DESIGN.md §4) of every built-in robot against the
+//! The control and identification kernels (docs/design.md §4) of every built-in robot against the
 //! independent numeric reference, over 1000 seeded states each: ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q,
 //! ∂q̈/∂q̇, M⁻¹, frame placements, Jacobians, J̇q̇, the regressor and the base regressor.
 //!

@@ -1,16 +1,16 @@
 //! The joint-torque regressor against Pinocchio's `computeJointTorqueRegressor` on the built-in
 //! UR5 and Panda (9 joints: the fingers as two prismatic joints): Pinocchio 4.1's values at
 //! seeded states are committed in `tests/fixtures/pinocchio/regressor-*.json`, written by
-//! `tools/pinocchio/regressor.py` (CI has no Python):
+//! `tools/peers/regressor.py` (CI has no Python):
 //!
 //! ```sh
-//! PY=~/.cache/rne-pinocchio/venv/bin/python
-//! $PY tools/pinocchio/regressor.py rne-models/robots/ur5.urdf > tests/fixtures/pinocchio/regressor-ur5.json
-//! $PY tools/pinocchio/regressor.py rne-models/robots/panda.urdf > tests/fixtures/pinocchio/regressor-panda.json
+//! PY=~/.cache/rne-peers/venv/bin/python      # bash tools/peers/setup.sh
+//! $PY tools/peers/regressor.py rne-models/robots/ur5.urdf > tests/fixtures/pinocchio/regressor-ur5.json
+//! $PY tools/peers/regressor.py rne-models/robots/panda.urdf > tests/fixtures/pinocchio/regressor-panda.json
 //! ```
 //!
 //! Both order the columns per moving body as m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz
-//! about the body frame's origin (DESIGN.md §4), bodies depth-first, fixed links merged into
+//! about the body frame's origin (docs/design.md §4.4), bodies depth-first, fixed links merged into
 //! their moving parent.
 
 use nalgebra::DMatrix;

@@ -2,13 +2,13 @@
 # Generation time and release compile time (first build of the crate, then after touching it)
 # of the biggest robots of example-robot-data on a floating base: issue 11's "all kernels
 # generate in under 1 s and the module compiles (release, incremental) in under 30 s on 2
-# cores". Needs the environment of ../shared/tools/pinocchio/setup.sh (it installs
+# cores". Needs the environment of tools/peers/setup.sh (it installs
 # example-robot-data) and a release build of rne (`cargo build --release -p rne-cli`).
 #
 #   bash tools/scale/measure.sh            # from the repository root
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-robots=${ROBOTS_DIR:-$HOME/.cache/rne-pinocchio/venv/lib/python3.11/site-packages/cmeel.prefix/share/example-robot-data/robots}
+robots=${ROBOTS_DIR:-$(bash "$root/tools/peers/robots.sh")}
 rne="$root/target/release/rne"
 crate="$root/tools/scale"
 export CARGO_TARGET_DIR="$root/target/scale"

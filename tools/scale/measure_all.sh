@@ -6,13 +6,13 @@
 # for Panda and a 30-joint humanoid (all kernels including derivatives)". The phases are
 # rustc's own (`-Z time-passes`, on the stable compiler through RUSTC_BOOTSTRAP=1, a
 # measurement only): `macro_expand_crate` is the macro's run (generation included), `total`
-# the crate's compilation. Needs the environment of ../shared/tools/pinocchio/setup.sh for
+# the crate's compilation. Needs the environment of tools/peers/setup.sh for
 # Talos (it installs example-robot-data).
 #
 #   bash tools/scale/measure_all.sh            # from the repository root
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-robots=${ROBOTS_DIR:-$HOME/.cache/rne-pinocchio/venv/lib/python3.11/site-packages/cmeel.prefix/share/example-robot-data/robots}
+robots=${ROBOTS_DIR:-$(bash "$root/tools/peers/robots.sh")}
 crate="$root/tools/scale"
 export CARGO_TARGET_DIR="$root/target/scale"
 export RUSTC_BOOTSTRAP=1

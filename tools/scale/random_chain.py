@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Write a random serial chain of N revolute joints as an rne TOML spec (seed = N): the
-scale test of generation time (`rne stats chainN.toml` generates every kernel of DESIGN.md §4).
+scale test of generation time (`rne stats chainN.toml` generates every kernel of docs/design.md §4).
 
 Random unit joint axes (URDF-style origin and axis), link offsets of 0.1-0.3 m, masses
 0.5-5 kg, COMs within 0.1 m of the joint, inertias of random boxes in random orientations

@@ -150,7 +150,7 @@ impl Builder {
     }
 
     /// Generates the module without writing it, with the warnings of reading the robot file
-    /// (DESIGN.md §2; none under strict validation, where they are errors).
+    /// (docs/design.md §2.4; none under strict validation, where they are errors).
     pub fn generate_with_warnings(
         &self,
     ) -> Result<(GeneratedModule, Vec<SpecWarning>), CodegenError> {

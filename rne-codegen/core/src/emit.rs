@@ -415,7 +415,7 @@ pub fn is_valid_parameter_name(name: &str) -> bool {
             && valid_ident(&format!("r#{name}")))
 }
 
-/// The return type of `kernel`'s function in scalar `t` (DESIGN.md §4), naming the module's
+/// The return type of `kernel`'s function in scalar `t` (docs/design.md §4), naming the module's
 /// sizes `NV`, `NF`, `NP`, `NB`.
 pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
     Layout::of(kernel, Dims::default()).type_tokens(t)

@@ -1,4 +1,4 @@
-//! The functions a generated module can contain (DESIGN.md §4): the runtime's [`Kernel`],
+//! The functions a generated module can contain (docs/design.md §4): the runtime's [`Kernel`],
 //! with their names, inputs and shapes, and here their symbolic construction.
 
 use rne_symbolic::dynamics::base_parameters::BaseParameters;

@@ -1,5 +1,5 @@
 //! The generated `Params` struct of the two runtime-parameter modes: the spec's parameters
-//! (`parameters: runtime`) or the base parameters (`parameters: base`, DESIGN.md §4).
+//! (`parameters: runtime`) or the base parameters (`parameters: base`, docs/design.md §4.6).
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;

@@ -38,7 +38,7 @@ pub enum ScalarType {
     Generic,
 }
 
-/// Everything that decides what is generated besides the robot itself (DESIGN.md §3).
+/// Everything that decides what is generated besides the robot itself (docs/design.md §3).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// The kernels to generate, in the order they are emitted.
@@ -72,7 +72,7 @@ pub struct Scene {
     /// How `forward_dynamics` solves for q̈ (the `forward_dynamics:` setting).
     pub forward_dynamics: ForwardDynamicsMethod,
     /// Strict validation (`validation: strict`): every warning about the robot file is an
-    /// error (DESIGN.md §2).
+    /// error (docs/design.md §2.4).
     pub strict: bool,
     /// Fused multiply-add (`fma: true`): a product used only by a sum is computed with the
     /// sum by the runtime's `Real::mul_add`, one rounding instead of two and one instruction

@@ -1,4 +1,4 @@
-//! The macro's input syntax (DESIGN.md §3):
+//! The macro's input syntax (docs/design.md §3):
 //!
 //! ```text
 //! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],

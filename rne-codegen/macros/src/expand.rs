@@ -1,6 +1,6 @@
 //! Expansion: read the robot, generate its module, list the warnings about the robot file in
-//! the module's documentation (DESIGN.md §2; under `validation: strict` they are errors), and
-//! make cargo rebuild when the robot file changes (an `include_bytes!` of it).
+//! the module's documentation (docs/design.md §2.4; under `validation: strict` they are errors),
+//! and make cargo rebuild when the robot file changes (an `include_bytes!` of it).
 
 use std::path::PathBuf;
 

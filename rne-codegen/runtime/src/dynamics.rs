@@ -4,7 +4,7 @@
 
 use crate::{Kernel, Real};
 
-/// A robot's generated dynamics (DESIGN.md §4), with `NQ` configuration and `NV` velocity
+/// A robot's generated dynamics (docs/design.md §4), with `NQ` configuration and `NV` velocity
 /// variables.
 ///
 /// Every generated module has a `pub struct Model` implementing this trait; the methods of

@@ -1,5 +1,5 @@
 //! The `Identification` trait: the regressor τ = Y(q, q̇, q̈) π of a generated module, its
-//! base parameters and base regressor (DESIGN.md §4).
+//! base parameters and base regressor (docs/design.md §4).
 
 use crate::Dynamics;
 

@@ -1,10 +1,10 @@
-//! The functions a generated module can contain (DESIGN.md §4), as data: names, the arrays
+//! The functions a generated module can contain (docs/design.md §4), as data: names, the arrays
 //! they take and what they return.
 
 use core::fmt;
 use core::str::FromStr;
 
-/// One generated function of a module (DESIGN.md §4).
+/// One generated function of a module (docs/design.md §4).
 ///
 /// Further kernels may join as variants, hence `#[non_exhaustive]`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -108,7 +108,7 @@ pub enum Shape {
 }
 
 impl Kernel {
-    /// Every kernel, in the order of DESIGN.md §4.
+    /// Every kernel, in the order of docs/design.md §4.
     pub const ALL: [Kernel; 18] = [
         Kernel::InverseDynamics,
         Kernel::MassMatrix,

@@ -4,7 +4,7 @@
 use crate::Dynamics;
 
 /// The kinematics of `NF` frames of a robot with `NQ` configuration and `NV` velocity
-/// variables (DESIGN.md §4). Implemented by a generated module's `Model` when the module has a
+/// variables (docs/design.md §4). Implemented by a generated module's `Model` when the module has a
 /// kinematics kernel; the methods of the kernels it did not generate return `None`.
 ///
 /// ```

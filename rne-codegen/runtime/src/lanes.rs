@@ -1,6 +1,6 @@
 //! Lanes: several values of one scalar evaluated by every operation at once, so that a
 //! `scalar: generic` kernel called with [`F64x4`] or [`F32x8`] computes 4 or 8 states per
-//! call (DESIGN.md §4).
+//! call (docs/design.md §4).
 //!
 //! [`Lanes`] is what the [`batch`](crate::batch) helper needs of a scalar: how many lanes it
 //! has and how to fill and read them. The plain scalars are one lane each, so the helper

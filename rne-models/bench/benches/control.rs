@@ -1,4 +1,4 @@
-//! The control and identification kernels (DESIGN.md §4) of UR5 and the Panda arm, timed by
+//! The control and identification kernels (docs/design.md §4) of UR5 and the Panda arm, timed by
 //! criterion: the derivatives of inverse and forward dynamics, M⁻¹, the Jacobians of every
 //! frame, J̇q̇ and the regressor (rne-models' `control` variants, the modules `rne bench
 //! --pinocchio` times), beside inverse dynamics (the default modules) for scale.
@@ -8,7 +8,7 @@
 //! ```
 //!
 //! For the comparison with Pinocchio's analytical derivatives and its CppADCodeGen code, run
-//! `../shared/tools/pinocchio/run_cg.sh rne-models/robots/<robot>.urdf` right before or after
+//! `tools/peers/run_cg.sh rne-models/robots/<robot>.urdf` right before or after
 //! (same machine, same URDF; docs/performance.md quotes both with the ratios). Inputs: 64 states
 //! per robot from ChaCha8 seeded with 0x5eed_c0de, |q| ≤ π, |q̇| ≤ 10, |q̈| ≤ 10, |τ| ≤ 20,
 //! cycled in order; inputs and outputs pass through `black_box`.

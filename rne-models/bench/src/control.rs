@@ -21,7 +21,7 @@ use crate::precision::exact;
 use crate::robots::{Candidate, Cases};
 use crate::timing::{Plan, Timed};
 
-/// The control and identification kernels of the `control` modules, in DESIGN.md §4 order.
+/// The control and identification kernels of the `control` modules, in docs/design.md §4 order.
 pub const CONTROL: [Kernel; 6] = [
     Kernel::InverseDynamicsDerivatives,
     Kernel::ForwardDynamicsDerivatives,

@@ -1,4 +1,5 @@
-//! `rne bench`: run time against error, for the kernels and for the integrators (DESIGN.md §5).
+//! `rne bench`: run time against error, for the kernels and for the integrators (docs/design.md
+//! §5).
 //!
 //! The studies, each written as markdown tables (and work-precision charts) by [`Report`]:
 //! - **Kernels** ([`kernels`]): for every built-in robot and for inverse dynamics, mass

@@ -3,15 +3,19 @@
 //! files as the built-in robots, within the same `rne bench` run as the generated kernels, and
 //! quoted as ratios.
 //!
-//! The scripts stay outside the generated code; `rne bench --pinocchio PATH/run.sh` calls
-//! - `run.sh ROBOT.urdf CALLS` (shared tools): `rnea_ns`, `crba_ns`, `aba_ns`, `nle_ns`;
-//! - `run_cg.sh ROBOT.urdf CALLS` beside it (shared tools, unless skipped): the plain
+//! The scripts are the repository's peer harness, `tools/peers/` (installed by its `setup.sh`;
+//! [`default_script`] finds it); `rne bench --pinocchio [PATH/run.sh]` calls
+//! - `run.sh ROBOT.urdf CALLS`: `rnea_ns`, `crba_ns`, `aba_ns`, `nle_ns`;
+//! - `run_cg.sh ROBOT.urdf CALLS` beside it (unless skipped): the plain
 //!   `minv_ns`, `rnea_derivs_ns`, `aba_derivs_ns` and, for X in [`CODEGEN`], the generated
 //!   code's `cg_X_ns` (through Pinocchio's `CodeGenX::evalFunction`), `cg_X_raw_ns` (the
 //!   generated function on a pre-packed input: the floor) and `cg_X_maxdiff` (its largest
 //!   difference from the plain algorithm);
-//! - `tools/pinocchio/run_extra.sh ROBOT.urdf CALLS` of this repository (when present):
+//! - `run_extra.sh ROBOT.urdf CALLS` beside it (when present, or as given):
 //!   `jacobians_ns`, `jacobians_all_ns`, `jdqd_ns`, `jdqd_fk_ns`, `regressor_ns`.
+//!
+//! Each script is run as `bash SCRIPT ROBOT.urdf CALLS` with `RNE_PIN_DUMP` set to the
+//! `dump.py` beside `run.sh`, which writes the model the timing programs read.
 //!
 //! Each prints lines `name value`. For each robot every script runs [`RUNS`] times (`run_cg.sh`
 //! in the first [`PinocchioScript::codegen_runs`] of them): before rne's kernels of that robot
@@ -212,10 +216,36 @@ pub fn codegen_key(x: &str, suffix: &str) -> String {
     format!("{}.cg_{x}{suffix}", Peer::CodeGen.prefix())
 }
 
+/// Where the peer harness's `run.sh` is, relative to the repository's root.
+pub const DEFAULT_SCRIPT: &str = "tools/peers/run.sh";
+
+/// The repository's `run.sh` ([`DEFAULT_SCRIPT`]), what `rne bench --pinocchio` runs when given
+/// no path: under the root of the repository this crate was built in (found from
+/// `CARGO_MANIFEST_DIR` at build time), else under the current directory (a binary copied
+/// elsewhere, run from a checkout's root). When neither exists, the first, so that the error
+/// of running it names where the script was expected.
+pub fn default_script() -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let built_in = root.join(DEFAULT_SCRIPT);
+    if let Ok(path) = built_in.canonicalize() {
+        return path;
+    }
+    let here = PathBuf::from(DEFAULT_SCRIPT);
+    if here.is_file() {
+        return here;
+    }
+    built_in
+}
+
+/// The `run_extra.sh` beside `run_sh`, if there is one.
+pub fn extra_beside(run_sh: &Path) -> Option<PathBuf> {
+    Some(run_sh.with_file_name("run_extra.sh")).filter(|extra| extra.is_file())
+}
+
 /// The timing scripts and how many calls each figure averages.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PinocchioScript {
-    /// `run.sh` of `../shared/tools/pinocchio/`.
+    /// `run.sh` of the peer harness (`tools/peers/run.sh` by default, [`default_script`]).
     pub path: PathBuf,
     /// Calls per figure of `run.sh` and `run_extra.sh`.
     pub calls: u64,
@@ -224,7 +254,7 @@ pub struct PinocchioScript {
     /// In how many of the runs on each robot `run_cg.sh` takes part (the first ones): it
     /// generates and compiles its code every time, minutes per robot.
     pub codegen_runs: usize,
-    /// `run_extra.sh` of this repository's `tools/pinocchio/`, if present.
+    /// `run_extra.sh` (by default the one beside `run.sh`, [`extra_beside`]), if present.
     pub extra: Option<PathBuf>,
 }
 
@@ -420,6 +450,39 @@ mod tests {
             run(&[("a", 3.0), ("b", 2.0)]),
         ]);
         assert_eq!(medians, run(&[("a", 2.0), ("b", 2.0), ("c", 7.0)]));
+    }
+
+    /// Without a path, `rne bench --pinocchio` runs the repository's own harness: the default
+    /// resolves to `tools/peers/run.sh` of this checkout, which exists, with `run_cg.sh`,
+    /// `run_extra.sh` and `dump.py` beside it.
+    #[test]
+    fn the_default_script_is_the_repositorys_peer_harness() {
+        let script = default_script();
+        assert!(script.is_file(), "{}", script.display());
+        assert!(script.ends_with(DEFAULT_SCRIPT), "{}", script.display());
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .canonicalize()
+            .unwrap();
+        assert_eq!(script, root.join(DEFAULT_SCRIPT));
+        for beside in ["run_cg.sh", "run_extra.sh", "dump.py", "setup.sh"] {
+            assert!(script.with_file_name(beside).is_file(), "{beside}");
+        }
+        assert_eq!(
+            extra_beside(&script),
+            Some(script.with_file_name("run_extra.sh"))
+        );
+        let script = PinocchioScript::new(script.clone(), 10, Some(5), extra_beside(&script));
+        assert_eq!(
+            script.codegen.as_ref().map(|(path, _)| path.clone()),
+            Some(script.path.with_file_name("run_cg.sh"))
+        );
+    }
+
+    /// No `run_extra.sh` beside a script elsewhere: the figures it would give are left out.
+    #[test]
+    fn no_extra_script_beside_a_script_without_one() {
+        assert_eq!(extra_beside(Path::new("/nonexistent/run.sh")), None);
     }
 
     /// Every comparison's plain figure and generated code are ones the scripts print.

@@ -19,7 +19,7 @@ use super::Effort;
 use rne_figures::work_precision::{Chart, Marker, Panel, Point, Series};
 use rne_figures::{render, sci, ulps, FigureError, Formats};
 
-/// Inverse-dynamics operation counts published for built-in robots (ROBOTS.md): robot,
+/// Inverse-dynamics operation counts published for built-in robots (SymPyBotics's): robot,
 /// multiplications, additions, source.
 pub const PUBLISHED: [(&str, usize, usize, &str); 2] = [
     ("puma560", 410, 343, "SymPyBotics"),
@@ -228,9 +228,9 @@ impl Report {
             md,
             "## Beside Pinocchio\n\nPinocchio 4.1.0 on the same URDF as each built-in robot, \
              timed {runs} times during this run (before, between and after rne's timings of \
-             that robot), median kept: `../shared/tools/pinocchio/run.sh ROBOT.urdf {calls}` \
+             that robot), median kept: `tools/peers/run.sh ROBOT.urdf {calls}` \
              times the plain algorithms (header-only C++, -O3 -march=native, seeded states, \
-             mean over {calls} calls){codegen}; `tools/pinocchio/run_extra.sh ROBOT.urdf \
+             mean over {calls} calls){codegen}; `tools/peers/run_extra.sh ROBOT.urdf \
              {calls}` times the Jacobians (`computeJointJacobians`, then each joint's 6 × nv \
              Jacobian in world axes), J̇q̇ and the regressor. Right after each run the \
              generated f64 kernels of this table are timed together again: rne's time is the \
@@ -380,7 +380,7 @@ impl Report {
         let _ = writeln!(
             md,
             "## Operation counts beside published ones\n\nInverse dynamics with numeric \
-             parameters (ROBOTS.md); rne's counts are those of `rne stats`.\n\n\
+             parameters (published with SymPyBotics); rne's counts are those of `rne stats`.\n\n\
              | robot | rne mul | rne add | published mul | published add | source |\n|---|---:|---:|---:|---:|---|"
         );
         for (robot, mul, add, source) in PUBLISHED {

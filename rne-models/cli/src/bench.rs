@@ -1,5 +1,6 @@
-//! `rne bench [--quick] [--out DIR] [--pinocchio RUN_SH [--no-codegen] [--pinocchio-extra SH]]`:
-//! run time against error for the kernels and the integrators (DESIGN.md §5), written as markdown with SVG and PNG figures.
+//! `rne bench [--quick] [--out DIR] [--pinocchio [RUN_SH] [--no-codegen] [--pinocchio-extra SH]]`:
+//! run time against error for the kernels and the integrators (docs/design.md §5), written as
+//! markdown with SVG and PNG figures.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -8,6 +9,7 @@ use clap::Args;
 
 use super::long_run::LongRun;
 use super::CliError;
+use rne_bench::pinocchio::{default_script, extra_beside};
 use rne_bench::{self as bench, Effort, PinocchioScript};
 
 /// Arguments of `rne bench`.
@@ -19,10 +21,11 @@ pub struct BenchArgs {
     /// Directory for bench-report.md and the figures (created if missing).
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
-    /// Pinocchio's timing script (`../shared/tools/pinocchio/run.sh`, after its `setup.sh`):
-    /// time Pinocchio on the URDF robots during the run and report the ratios.
+    /// Time Pinocchio on the URDF robots during the run and report the ratios, with the timing
+    /// script RUN_SH; without a path, the repository's `tools/peers/run.sh` (install Pinocchio
+    /// with `tools/peers/setup.sh` first).
     #[arg(long, value_name = "RUN_SH")]
-    pub pinocchio: Option<PathBuf>,
+    pub pinocchio: Option<Option<PathBuf>>,
     /// Calls per figure for Pinocchio's `run.sh` and `run_extra.sh`.
     #[arg(long, default_value_t = 200_000)]
     pub pinocchio_calls: u64,
@@ -37,14 +40,10 @@ pub struct BenchArgs {
     /// each generates and compiles Pinocchio's code anew, minutes per robot.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub codegen_runs: u8,
-    /// The Jacobian and regressor timer (`tools/pinocchio/run_extra.sh` of this repository),
-    /// run when the file exists.
-    #[arg(
-        long,
-        value_name = "RUN_EXTRA_SH",
-        default_value = "tools/pinocchio/run_extra.sh"
-    )]
-    pub pinocchio_extra: PathBuf,
+    /// The Jacobian and regressor timer; default: `run_extra.sh` beside RUN_SH, run when that
+    /// file exists.
+    #[arg(long, value_name = "RUN_EXTRA_SH")]
+    pub pinocchio_extra: Option<PathBuf>,
     /// No progress lines on stderr.
     #[arg(long)]
     pub quiet: bool,
@@ -57,22 +56,91 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         Effort::Full
     };
+    let script = match &args.pinocchio {
+        None => None,
+        Some(path) => {
+            let path = path.clone().unwrap_or_else(default_script);
+            let extra = match &args.pinocchio_extra {
+                Some(extra) if extra.is_file() => Some(extra.clone()),
+                Some(extra) => {
+                    return Err(CliError::Argument(format!(
+                        "--pinocchio-extra: no file {}",
+                        extra.display()
+                    )))
+                }
+                None => extra_beside(&path),
+            };
+            Some(PinocchioScript {
+                codegen_runs: usize::from(args.codegen_runs),
+                ..PinocchioScript::new(
+                    path,
+                    args.pinocchio_calls,
+                    (!args.no_codegen).then_some(args.codegen_calls),
+                    extra,
+                )
+            })
+        }
+    };
     let run = LongRun::start(args.quiet);
-    let script = args.pinocchio.as_ref().map(|path| PinocchioScript {
-        codegen_runs: usize::from(args.codegen_runs),
-        ..PinocchioScript::new(
-            path.clone(),
-            args.pinocchio_calls,
-            (!args.no_codegen).then_some(args.codegen_calls),
-            args.pinocchio_extra
-                .is_file()
-                .then(|| args.pinocchio_extra.clone()),
-        )
-    });
     let scratch = args.out.join("pinocchio-urdf");
     let pinocchio = script.as_ref().map(|s| (s, scratch.as_path()));
     let report = bench::run(effort, pinocchio, |step| run.progress(step))?;
     let written = report.write(&args.out)?;
     run.finish(out, &report.markdown(), &written, &args.out)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use clap::Parser;
+
+    use crate::{Cli, Command};
+
+    fn bench_args(args: &[&str]) -> super::BenchArgs {
+        let cli = Cli::try_parse_from(["rne", "bench"].iter().chain(args)).expect("parses");
+        match cli.command {
+            Command::Bench(args) => args,
+            other => panic!("not bench: {other:?}"),
+        }
+    }
+
+    /// `--pinocchio` alone asks for the repository's harness, which resolves to
+    /// `tools/peers/run.sh` of this checkout; an explicit path is kept as given, and without the
+    /// option Pinocchio is not timed.
+    #[test]
+    fn pinocchio_takes_an_optional_path_defaulting_to_the_peer_harness() {
+        let args = bench_args(&["--pinocchio", "--quick"]);
+        assert_eq!(args.pinocchio, Some(None));
+        assert!(args.quick);
+        let resolved = rne_bench::pinocchio::default_script();
+        assert!(resolved.is_file(), "{}", resolved.display());
+        assert!(resolved.ends_with(Path::new("tools/peers/run.sh")));
+        assert_eq!(
+            bench_args(&["--pinocchio", "/opt/peers/run.sh"]).pinocchio,
+            Some(Some(PathBuf::from("/opt/peers/run.sh")))
+        );
+        assert_eq!(
+            bench_args(&["--pinocchio=/opt/peers/run.sh"]).pinocchio,
+            Some(Some(PathBuf::from("/opt/peers/run.sh")))
+        );
+        assert_eq!(bench_args(&["--quick"]).pinocchio, None);
+        assert_eq!(bench_args(&[]).pinocchio_extra, None);
+    }
+
+    /// An explicit extra script that does not exist is an error before anything is timed.
+    #[test]
+    fn a_missing_extra_script_is_an_error() {
+        let args = bench_args(&[
+            "--pinocchio",
+            "--pinocchio-extra",
+            "/nonexistent/run_extra.sh",
+        ]);
+        let error = super::run(&args, &mut Vec::new()).unwrap_err();
+        assert!(
+            error.to_string().contains("/nonexistent/run_extra.sh"),
+            "{error}"
+        );
+    }
 }

@@ -1,5 +1,5 @@
 //! `rne corpus VALUES.json --robots DIR`: every URDF Pinocchio's values were computed for
-//! (`tools/corpus/pinocchio_values.py`), loaded by rne and compared with Pinocchio on a fixed
+//! (`tools/peers/pinocchio_values.py`), loaded by rne and compared with Pinocchio on a fixed
 //! and a floating base; prints one line per robot and writes the table of `docs/robots.md`.
 
 use std::io::Write;
@@ -15,7 +15,7 @@ use rne_corpus::{
 /// Arguments of `rne corpus`.
 #[derive(Debug, Args)]
 pub struct CorpusArgs {
-    /// The JSON written by `tools/corpus/pinocchio_values.py`.
+    /// The JSON written by `tools/peers/pinocchio_values.py`.
     pub values: PathBuf,
     /// The directory the script read (the files' paths are relative to it).
     #[arg(long)]

@@ -1,7 +1,7 @@
 //! `rne eval MODEL --q ..`: the dynamics at one state, from the generated kernels (built-in
 //! robots as their files describe them), the expression graph (other files, other bases or
 //! mimic modes) or the independent numeric reference. With a floating base `--q` has NQ
-//! entries and the others NV (DESIGN §4).
+//! entries and the others NV (docs/design.md §4.5).
 
 use std::io::Write;
 

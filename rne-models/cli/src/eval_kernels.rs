@@ -1,5 +1,5 @@
 //! The control and identification quantities of `rne eval` (`--what derivatives|kinematics|
-//! regressor`), under the JSON keys of DESIGN.md §5: from the generator's optimised programs
+//! regressor`), under the JSON keys of docs/design.md §5: from the generator's optimised programs
 //! (exactly what `derive_dynamics!` emits, evaluated operation by operation) or from the
 //! independent numeric reference.
 

@@ -1,4 +1,4 @@
-//! The `rne` command line (DESIGN.md §5): one file per subcommand, each turning its arguments
+//! The `rne` command line (docs/design.md §5): one file per subcommand, each turning its arguments
 //! into calls of the library crates (`rne-models`, `rne-interpreted`, `rne-scenarios`,
 //! `rne-bench`, `rne-stress`) and their errors into one [`CliError`] that keeps every cause.
 #![deny(missing_docs)]
@@ -60,7 +60,7 @@ pub enum Command {
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
     Simulate(simulate::SimulateArgs),
-    /// Every URDF of a directory against Pinocchio's values (tools/corpus/pinocchio_values.py):
+    /// Every URDF of a directory against Pinocchio's values (tools/peers/pinocchio_values.py):
     /// ID, M, g, bias and FD on a fixed and a floating base; the table of docs/robots.md.
     Corpus(corpus::CorpusArgs),
     /// Numerical stability report: extreme masses, lengths, angles, speeds, ill-conditioning,

@@ -1,4 +1,4 @@
-//! The `rne` command (DESIGN.md §5).
+//! The `rne` command (docs/design.md §5).
 
 use std::process::ExitCode;
 

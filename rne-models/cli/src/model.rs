@@ -1,6 +1,7 @@
-//! The robot a command names (DESIGN §5: "MODEL is a built-in name or a path to a `.toml` or
-//! `.urdf` file"), the model options every such command takes (`--floating-base`,
-//! `--mimic free`, `--strict`), and the warnings of reading it, printed to stderr.
+//! The robot a command names (docs/design.md §5: "MODEL is a built-in name (`rne models`
+//! lists them) or a path to a `.toml` or `.urdf` file"), the model options every such command
+//! takes (`--floating-base`, `--mimic free`, `--strict`), and the warnings of reading it,
+//! printed to stderr.
 
 use clap::{Args, ValueEnum};
 use rne_codegen::{MimicMode, Scene};

@@ -44,7 +44,7 @@ pub enum Parameters {
     Base,
 }
 
-/// Generates every kernel of DESIGN.md §4 and reports its cost.
+/// Generates every kernel of docs/design.md §4 and reports its cost.
 pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args

@@ -1,5 +1,5 @@
 //! `rne stress [--quick] [--out DIR]`: the numerical stability report of the generated `f64`
-//! kernels (DESIGN.md §5), written as markdown with SVG and PNG figures.
+//! kernels (docs/design.md §5), written as markdown with SVG and PNG figures.
 
 use std::io::Write;
 use std::path::PathBuf;

@@ -1,5 +1,5 @@
 //! `rne eval --what derivatives|kinematics|regressor` and `rne show --what dtau`: the JSON keys
-//! of DESIGN.md §5, the generator's programs against the independent reference, and the
+//! of docs/design.md §5, the generator's programs against the independent reference, and the
 //! planar elbow's torque derivatives in the thesis's notation.
 
 use clap::Parser;

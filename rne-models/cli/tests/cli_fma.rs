@@ -1,4 +1,4 @@
-//! `--fma` on `rne emit` and `rne stats` (the macro's `fma: true`, DESIGN §3): the emitted
+//! `--fma` on `rne emit` and `rne stats` (the macro's `fma: true`, docs/design.md §3): the emitted
 //! code sums products through `Real::mul_add`, the operation counts stay and the critical
 //! path shortens.
 

@@ -1,4 +1,4 @@
-//! The model options every command taking a MODEL has (DESIGN §5): `--mimic free` and
+//! The model options every command taking a MODEL has (docs/design.md §5): `--mimic free` and
 //! `--floating-base`, on `check`, `eval`, `emit` and `stats`, and a robot without moving joints.
 
 use clap::Parser;

@@ -1,7 +1,8 @@
-//! Real robots against Pinocchio (DESIGN §6, "every URDF of the `example-robot-data` package
-//! that Pinocchio loads, rne loads and agrees with"): Pinocchio's values at seeded states, read
-//! from the JSON of `tools/corpus/pinocchio_values.py`, against rne's interpreted symbolic
-//! kernels and its numeric reference, fixed base with mimic semantics and floating base.
+//! Real robots against Pinocchio (docs/design.md §6: "every URDF of the `example-robot-data`
+//! package that Pinocchio loads, rne loads and agrees with Pinocchio's values"): Pinocchio's values
+//! at seeded states, read from the JSON of `tools/peers/pinocchio_values.py`, against rne's
+//! interpreted symbolic kernels and its numeric reference, fixed base with mimic semantics and
+//! floating base.
 //!
 //! CI has no Python: small fixture URDFs with Pinocchio's values committed beside them
 //! (`rne-models/corpus/tests/fixtures/`), and rne-models' quadruped with its values there too,

@@ -1,4 +1,4 @@
-//! The JSON written by `tools/corpus/pinocchio_values.py`: per URDF, per base, Pinocchio's
+//! The JSON written by `tools/peers/pinocchio_values.py`: per URDF, per base, Pinocchio's
 //! joint order and its values at seeded states, in a layout that names joints rather than
 //! Pinocchio's configuration entries (a continuous joint is one angle, not (cos, sin)).
 

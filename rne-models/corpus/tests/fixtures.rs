@@ -2,11 +2,11 @@
 //! a fixed joint, a mimic of a joint the file does not have, continuous joints, odd names, stray
 //! elements, slightly wrong inertias, a body without joints) and rne-models' quadruped, against Pinocchio 4.1's values committed here:
 //! CI checks rne against Pinocchio without Python. Regenerate the values with
-//! `python tools/corpus/pinocchio_values.py rne-models/corpus/tests/fixtures --states 3 --out
-//! rne-models/corpus/tests/fixtures/pinocchio.json` and `python tools/corpus/pinocchio_values.py
+//! `python tools/peers/pinocchio_values.py rne-models/corpus/tests/fixtures --states 3 --out
+//! rne-models/corpus/tests/fixtures/pinocchio.json` and `python tools/peers/pinocchio_values.py
 //! rne-models/robots --only quadruped --states 3 --out
-//! rne-models/corpus/tests/fixtures/pinocchio-robots.json` (Pinocchio from
-//! `../shared/tools/pinocchio/setup.sh`).
+//! rne-models/corpus/tests/fixtures/pinocchio-robots.json` (`python`: the one of the environment
+//! `tools/peers/setup.sh` installs, `~/.cache/rne-peers/venv/bin/python`).
 
 use std::path::{Path, PathBuf};
 

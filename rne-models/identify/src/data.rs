@@ -2,7 +2,7 @@
 //!
 //! The first line names the columns: `q1 … qN`, `qd1 … qdN`, `qdd1 … qddN`, `tau1 … tauN`
 //! for the N joints in the model's joint order (`rne check MODEL` lists it), in any order, and
-//! on a floating base `q1 … q(NV+1)` and `qd1 … qdNV` (DESIGN.md §4's layout: the base's
+//! on a floating base `q1 … q(NV+1)` and `qd1 … qdNV` (docs/design.md §4.5's layout: the base's
 //! position and quaternion, its velocity, acceleration and wrench first), and
 //! optionally `t` (time, s), which identification ignores. Every other line is one sample of
 //! numbers separated by commas. Blank lines and lines starting with `#` are skipped. Errors

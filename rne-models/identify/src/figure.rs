@@ -26,8 +26,8 @@ pub fn torque_figure(
 }
 
 /// What generalised force `j` of `data` is: on a floating base (one more position than rates,
-/// the quaternion's) the first six are the wrench on the base in its own frame (DESIGN.md §4)
-/// and the joints are numbered after it.
+/// the quaternion's) the first six are the wrench on the base in its own frame (docs/design.md
+/// §4.5) and the joints are numbered after it.
 fn force_label(data: &Measurements, j: usize) -> String {
     const AXES: [&str; 3] = ["x", "y", "z"];
     if data.positions > data.joints {

@@ -1,5 +1,5 @@
 //! Trajectories of a floating base: six base coordinates moved like joints, turned into the
-//! free-flyer's configuration, velocity and acceleration (DESIGN.md §4, Pinocchio's layout).
+//! free-flyer's configuration, velocity and acceleration (docs/design.md §4.5, Pinocchio's layout).
 //!
 //! The base coordinates are its origin p = (x, y, z) in the world and three angles a₁, a₂,
 //! a₃ of the orientation `R = Rx(a₁) Ry(a₂) Rz(a₃)` (rotations about the body's x, then the

@@ -1,4 +1,4 @@
-//! Identification of robot dynamics (DESIGN.md §4–§5, `rne identify`).
+//! Identification of robot dynamics (docs/design.md §4–§5, `rne identify`).
 //!
 //! The joint torques are linear in the standard parameters, τ = Y(q, q̇, q̈) π (per moving
 //! body m, m·c, the inertia about the body origin; per joint friction and armature), and only

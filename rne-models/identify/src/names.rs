@@ -2,7 +2,7 @@
 //! printing of the coefficients that combine them into base parameters.
 //!
 //! Bodies are numbered 1, 2, … in the regressor's order (moving bodies in model order, fixed
-//! links merged into their parent, DESIGN.md §4), which for the thesis's robots is the link
+//! links merged into their parent, docs/design.md §4.4), which for the thesis's robots is the link
 //! number; a joint's parameters carry the number of the body it moves.
 
 use std::fmt::Write;

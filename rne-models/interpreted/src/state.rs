@@ -1,7 +1,7 @@
 //! The joint-space state a kernel is evaluated at, when the number of joints is known only at
 //! run time.
 
-/// The arrays of one state, borrowed: each kernel reads the ones it takes (DESIGN.md §4,
+/// The arrays of one state, borrowed: each kernel reads the ones it takes (docs/design.md §4,
 /// [`Kernel::inputs`](rne_codegen::Kernel::inputs)) and ignores the others, which may then be
 /// empty.
 #[derive(Clone, Copy, Debug, PartialEq)]

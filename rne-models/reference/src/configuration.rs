@@ -1,4 +1,5 @@
-//! Configuration and velocity vectors, with Pinocchio's free-flyer conventions (DESIGN.md §4).
+//! Configuration and velocity vectors, with Pinocchio's free-flyer conventions (docs/design.md
+//! §4.5).
 //!
 //! With a floating base, `q = [x, y, z, qx, qy, qz, qw, joints…]` (the base frame's origin in
 //! the world and the unit quaternion of its orientation, xyzw) and

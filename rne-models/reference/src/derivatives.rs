@@ -3,7 +3,7 @@
 //! each column is exact to rounding (no step size) and shares no formula with the symbolic
 //! derivatives it checks.
 //!
-//! Derivatives with respect to q are taken in the tangent space (NV columns, DESIGN.md §4):
+//! Derivatives with respect to q are taken in the tangent space (NV columns, docs/design.md §4.5):
 //! column j is `d/dε f(q ⊕ ε e_j)` at ε = 0, with a floating base moved by `δ_lin` and `δ_ω`
 //! in the base frame (Pinocchio's convention for `computeRNEADerivatives` and
 //! `computeABADerivatives`). Coulomb friction's `sign(q̇)` has derivative zero.

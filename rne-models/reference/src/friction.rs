@@ -1,4 +1,4 @@
-//! Joint friction `τ_f = f_v q̇ + f_c sign(q̇) + offset` (DESIGN.md §2), per revolute or
+//! Joint friction `τ_f = f_v q̇ + f_c sign(q̇) + offset` (docs/design.md §2.1), per revolute or
 //! prismatic body, on its own joint rate; a coupled (mimic) body's friction reaches the variable
 //! it follows times the multiplier, like every other generalized force of the body.
 //!

@@ -18,7 +18,7 @@
 //! The joint-space equation of motion is the thesis's (3.1):
 //! `τ = M(q) q̈ + C(q, q̇) q̇ + g(q)`.
 //!
-//! A floating base is a free-flyer root body with Pinocchio's conventions (DESIGN.md §4, see
+//! A floating base is a free-flyer root body with Pinocchio's conventions (docs/design.md §4.5, see
 //! [`Reference::nq`]); a coupled (mimic) link follows the variable it names through
 //! `q_link = m q_k + offset` and the chain rule; armature adds to M's diagonal; friction
 //! enters inverse and forward dynamics when asked for ([`Reference::with_friction`]). Every

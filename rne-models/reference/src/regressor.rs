@@ -1,4 +1,4 @@
-//! The joint-torque regressor `τ = Y(q, q̇, q̈) π` (DESIGN.md §4), from the per-body spatial
+//! The joint-torque regressor `τ = Y(q, q̇, q̈) π` (docs/design.md §4.4), from the per-body spatial
 //! regressor rather than from the RNEA's force recursion.
 //!
 //! The spatial force a rigid body needs, `f = I a + v ×* I v`, is linear in its ten standard

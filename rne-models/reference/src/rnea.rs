@@ -11,8 +11,8 @@
 //! with `v_0 = 0` and `a_0 = [0; −g]`: gravity enters as an upward acceleration of the world,
 //! which adds `−m_i g_i` to every body's force as the thesis's force balance (3.21) does. The
 //! forward pass is the thesis's (3.26), (3.30) and (3.34)/(3.35) written for the body origin
-//! (with the prismatic terms of DESIGN.md §7 included by `S_i = [0; u_i]`); the backward pass is
-//! (3.21) and (3.24) with the moment taken about the body origin instead of the COM. Fixed
+//! (with the prismatic terms of docs/design.md §7 included by `S_i = [0; u_i]`); the backward pass
+//! is (3.21) and (3.24) with the moment taken about the body origin instead of the COM. Fixed
 //! joints are bodies with `S_i = 0` and no torque.
 //!
 //! A free-flyer root has `S = 1` (RBDA section 4.5, floating bases): its velocity is the base

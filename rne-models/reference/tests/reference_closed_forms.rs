@@ -1,5 +1,5 @@
 //! The numeric reference against closed forms and published values: the thesis's planar elbow
-//! (4.45)–(4.47), the PUMA 560 check value of ROBOTS.md, and two hand-derived robots with
+//! (4.45)–(4.47), the PUMA 560 check value published with SymPyBotics, and two hand-derived robots with
 //! prismatic joints.
 
 use std::f64::consts::FRAC_PI_2;
@@ -55,7 +55,7 @@ fn scientific(values: &[f64]) -> String {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Planar elbow (thesis chapter 4, ROBOTS.md)
+// Planar elbow (thesis chapter 4, table 6.1)
 
 const ELBOW_MASS: f64 = 15.0;
 const ELBOW_LENGTH: f64 = 0.3;
@@ -161,7 +161,7 @@ fn planar_elbow_matches_the_thesis_closed_forms_4_45_to_4_47_and_its_potential_e
 }
 
 // ---------------------------------------------------------------------------------------------
-// PUMA 560 (Corke & Armstrong-Hélouvry 1994, standard DH; ROBOTS.md)
+// PUMA 560 (Corke & Armstrong-Hélouvry 1994, standard DH)
 
 fn rx(angle: f64) -> Matrix3<f64> {
     let (s, c) = angle.sin_cos();
@@ -176,7 +176,7 @@ fn rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
 /// and Ixx, Iyy, Izz about the COM in DH frame j's axes.
 type DhRow = (f64, f64, f64, f64, [f64; 3], [f64; 3]);
 
-/// The PUMA 560 of ROBOTS.md (Corke & Armstrong-Hélouvry 1994).
+/// The PUMA 560 of Corke & Armstrong-Hélouvry (ICRA 1994).
 #[rustfmt::skip]
 const PUMA_DH: [DhRow; 6] = [
     (0.0,     0.0,    FRAC_PI_2,  0.0,  [0.0, 0.0, 0.0],            [0.0, 0.35, 0.0]),

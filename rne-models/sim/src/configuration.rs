@@ -2,9 +2,9 @@
 //! `integrate`.
 //!
 //! On a fixed base q and v live in the same ℝⁿ (NQ = NV) and q ⊕ v = q + v. On a floating base
-//! (DESIGN §4) q = [p, quaternion xyzw, joints] has NQ = NV + 1 entries and v = [v_base, ω_base,
-//! joint rates] is a body twist of the base followed by joint rates: the joints add, and the
-//! base moves by the SE(3) exponential of its twist, (R, p) ↦ (R Exp(ω), p + R V(ω) v_base).
+//! (docs/design.md §4.5) q = [p, quaternion xyzw, joints] has NQ = NV + 1 entries and v = [v_base,
+//! ω_base, joint rates] is a body twist of the base followed by joint rates: the joints add, and
+//! the base moves by the SE(3) exponential of its twist, (R, p) ↦ (R Exp(ω), p + R V(ω) v_base).
 //!
 //! SE(3), not SO(3) × ℝ³: the base velocity is a body twist, the left-trivialised velocity of
 //! SE(3), so q ⊕ h v with the SE(3) exponential is the exact motion at constant twist (a screw)

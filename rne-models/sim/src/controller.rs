@@ -119,7 +119,8 @@ impl<const N: usize> Controller<N> for Damping<N> {
 }
 
 /// Set-point PD control u = −Kp (q − q_ref) − Kd q̇ with diagonal gains: the thesis's (6.32)
-/// with its sign fixed (DESIGN §7; the text writes −Kp (q_ref − q) but defines q̃ = q − q_ref).
+/// with its sign fixed (docs/design.md §7; the text writes −Kp (q_ref − q) but defines q̃ = q −
+/// q_ref).
 ///
 /// With gravity compensated and no saturation, the closed loop (6.33) has the Lyapunov function
 /// V = ½ q̇ᵀ M q̇ + ½ q̃ᵀ Kp q̃ of (6.57) with V̇ = q̇ᵀ (u + Kp q̃) = −q̇ᵀ Kd q̇ ≤ 0, (6.61)–(6.62),

@@ -18,9 +18,9 @@
 //!   function (6.57) at the output times), written as CSV and summarised by the metrics of
 //!   [`Record::summary`].
 //!
-//! Floating-base robots (`base: floating`, DESIGN §4: q = [p, quaternion xyzw, joints] with
-//! NQ = NV + 1, v = [base twist in the base frame, joint rates]) do not fit the first-order form
-//! over ℝ²ᴺ: their configuration lives on SE(3) × ℝⁿ. For them (and for fixed bases alike):
+//! Floating-base robots (`base: floating`, docs/design.md §4.5: q = [p, quaternion xyzw, joints]
+//! with NQ = NV + 1, v = [base twist in the base frame, joint rates]) do not fit the first-order
+//! form over ℝ²ᴺ: their configuration lives on SE(3) × ℝⁿ. For them (and for fixed bases alike):
 //!
 //! - [`integrate`] is q ⊕ v on the configuration manifold, with the SE(3) exponential for the
 //!   base (Pinocchio's `integrate`);

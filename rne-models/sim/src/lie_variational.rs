@@ -49,8 +49,8 @@ const QUATERNION_NORM_SLACK: f64 = 1e-4;
 /// P_{k+1} = [Ad_{exp(hξ_k)}ᵀ P_k⁺ (base);  P_k⁺ + h D_k (joints)] + h/2 (u − g(q_{k+1}))
 /// ```
 ///
-/// where D_k = ∂(½ vᵀ M v)/∂θ at (θ_{k+½}, v_k) is the joint part of C(q, v)ᵀ v (DESIGN §6:
-/// Ṁ = C + Cᵀ), dexp_Xᵀ = Σ (ad_Xᵀ)ⁱ/(i+1)! and Ad_gᵀ the coadjoint action (see
+/// where D_k = ∂(½ vᵀ M v)/∂θ at (θ_{k+½}, v_k) is the joint part of C(q, v)ᵀ v (docs/design.md
+/// §4.2: Ṁ = C + Cᵀ), dexp_Xᵀ = Σ (ad_Xᵀ)ⁱ/(i+1)! and Ad_gᵀ the coadjoint action (see
 /// `se3.rs`). The base momentum is carried from one end of the step to the other by the
 /// coadjoint action of the very displacement the base makes: with no external wrench on the
 /// base and no gravity, the world-frame momentum Ad_{g_k⁻¹}ᵀ P_k of

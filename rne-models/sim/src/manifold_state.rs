@@ -1,5 +1,5 @@
 //! The state (q, v) of a model whose configuration is not a vector: q on the configuration
-//! manifold, v in its tangent space (DESIGN §4).
+//! manifold, v in its tangent space (docs/design.md §4.5).
 
 /// The state of a [`Dynamics<NQ, NV>`](rne_runtime::Dynamics) model: the configuration q
 /// (NQ entries) and the velocity v (NV entries). On a floating base

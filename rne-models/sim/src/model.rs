@@ -1,13 +1,13 @@
 //! What the simulator needs of a model: M(q) q̈ + C(q, q̇) q̇ + g(q) = u as the runtime's
-//! [`Dynamics<N, N>`] in `f64` — a generated module's `Model` (DESIGN §4), a run-time model, or
-//! a hand-written one — with the kernels of [`SIMULATED`].
+//! [`Dynamics<N, N>`] in `f64` — a generated module's `Model` (docs/design.md §4), a run-time
+//! model, or a hand-written one — with the kernels of [`SIMULATED`].
 //!
 //! Contract relied on by the integrators:
 //! - `mass_matrix` is symmetric positive definite (thesis section 6.1.1, below (6.2));
 //! - `coriolis_matrix` is the Christoffel-symbol matrix, so that Ṁ = C + Cᵀ and Ṁ − 2C is skew
-//!   (DESIGN §6). The symplectic integrator uses Cᵀ q̇ = ½ q̇ᵀ (∂M/∂q) q̇ and the Lyapunov
-//!   argument of section 6.4, (6.58)–(6.62), uses the skew symmetry; the thesis's (4.46) gives
-//!   the right C q̇ but breaks both;
+//!   (docs/design.md §4.2). The symplectic integrator uses Cᵀ q̇ = ½ q̇ᵀ (∂M/∂q) q̇ and the
+//!   Lyapunov argument of section 6.4, (6.58)–(6.62), uses the skew symmetry; the thesis's (4.46)
+//!   gives the right C q̇ but breaks both;
 //! - `forward_dynamics` returns q̈ = M⁻¹ (u − C q̇ − g), the thesis's (6.2);
 //! - `gravity_torques` is ∂`potential_energy`/∂q;
 //! - every method is allocation-free for the runs to be: the integrators call them inside the

@@ -1,8 +1,8 @@
 //! The total momentum of a floating robot in the world frame, from the model's mass matrix.
 //!
-//! On a floating base (DESIGN §4) the first six rows of M(q) v are the robot's total spatial
-//! momentum, [f_b; n_b] = Σᵢ (mᵢ v_cᵢ; cᵢ × mᵢ v_cᵢ + I_cᵢ ωᵢ), in the base axes and about the
-//! base origin: row i of M v is Σⱼ Jᵢ,ⱼᵀ hⱼ, the pairing of the bodies' momenta hⱼ with the
+//! On a floating base (docs/design.md §4.5) the first six rows of M(q) v are the robot's total
+//! spatial momentum, [f_b; n_b] = Σᵢ (mᵢ v_cᵢ; cᵢ × mᵢ v_cᵢ + I_cᵢ ωᵢ), in the base axes and about
+//! the base origin: row i of M v is Σⱼ Jᵢ,ⱼᵀ hⱼ, the pairing of the bodies' momenta hⱼ with the
 //! motion the i-th base velocity gives them, and a unit base velocity moves every body rigidly
 //! with the base (Orin, Goswami and Lee, "Centroidal dynamics of a humanoid robot", Autonomous
 //! Robots 35, 2013: the base rows of the joint-space inertia matrix transformed to the centre

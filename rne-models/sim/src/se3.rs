@@ -2,8 +2,8 @@
 //! exponential of a body twist, the coadjoint actions on momenta, and the transposed
 //! differential of the exponential.
 //!
-//! Conventions are Pinocchio's (DESIGN §4): a twist ξ = [v; ω] (linear first, body frame), a
-//! momentum or wrench μ = [f; n] (force first, moment about the frame's origin, body axes), a
+//! Conventions are Pinocchio's (docs/design.md §8): a twist ξ = [v; ω] (linear first, body frame),
+//! a momentum or wrench μ = [f; n] (force first, moment about the frame's origin, body axes), a
 //! quaternion [x, y, z, w]. With ad_ξ η = [ω × η_v + v × η_ω; ω × η_ω] (the bracket of se(3)),
 //! the series and identities are those of Iserles, Munthe-Kaas, Nørsett and Zanna, "Lie-group
 //! methods", Acta Numerica 9 (2000), section 2.

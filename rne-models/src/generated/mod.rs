@@ -45,7 +45,7 @@ rne_codegen::derive_dynamics! {
 
 rne_codegen::derive_dynamics! {
     /// The PUMA 560 in standard DH form with Corke & Armstrong-Helouvry's parameters
-    /// (ROBOTS.md).
+    /// (ICRA 1994).
     pub mod puma560 {
         robot: "robots/puma560.toml",
     }
@@ -60,21 +60,23 @@ rne_codegen::derive_dynamics! {
 }
 
 beside_pinocchio! {
-    /// The Universal Robots UR5 of the ros-industrial description (ROBOTS.md).
+    /// The Universal Robots UR5 of the ros-industrial description (`universal_robot`).
     pub mod ur5 {
         robot: "robots/ur5.urdf",
     }
 }
 
 beside_pinocchio! {
-    /// The Franka Emika Panda with its hand and two fingers: 9 joints, a tree (ROBOTS.md).
+    /// The Franka Emika Panda with its hand and two fingers: 9 joints, a tree
+    /// (`franka_description`, inertials of Gaz et al., RA-L 2019).
     pub mod panda {
         robot: "robots/panda.urdf",
     }
 }
 
 beside_pinocchio! {
-    /// The Franka Emika Panda arm to its flange, without the hand: 7 joints (ROBOTS.md).
+    /// The Franka Emika Panda arm to its flange, without the hand: 7 joints
+    /// (`franka_description`, inertials of Gaz et al., RA-L 2019).
     pub mod panda_arm {
         robot: "robots/panda-arm.urdf",
     }

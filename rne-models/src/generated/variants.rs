@@ -1,6 +1,6 @@
 //! The generated variants `rne bench` compares with the built-in robots' default modules
 //! ([`crate::generated`]): each robot's spec file through `derive_dynamics!` again, with one
-//! scene setting changed (DESIGN.md §3), for the four benchmarked kernels only (inverse
+//! scene setting changed (docs/design.md §3), for the four benchmarked kernels only (inverse
 //! dynamics, mass matrix, bias torques, forward dynamics), and for the URDF robots the
 //! default scene with the kernels compared with Pinocchio's (`control`).
 //!
@@ -12,7 +12,7 @@
 //! - `runtime` (robots whose spec has named parameters, the TOML ones): `parameters: runtime`,
 //!   every function reading a `Params` struct;
 //! - `control` (the URDF robots, which `rne bench --pinocchio` sets beside Pinocchio): the
-//!   control and identification kernels of DESIGN.md §4 that Pinocchio also offers — the
+//!   control and identification kernels of docs/design.md §4 that Pinocchio also offers — the
 //!   inverse- and forward-dynamics derivatives, M⁻¹, the Jacobians and J̇q̇ of every link's
 //!   frame, and the joint-torque regressor — with the default scene (and `fma: true` with the
 //!   crate feature `fma`, as the URDF robots' default modules).

@@ -1,5 +1,6 @@
 //! Serial robots in standard Denavit–Hartenberg form, built in code and written as TOML specs
-//! (DESIGN.md §2): the stress robots whose masses, lengths and inertias are pushed to extremes.
+//! (docs/design.md §2.1): the stress robots whose masses, lengths and inertias are pushed to
+//! extremes.
 //!
 //! Going through the spec text, rather than building a model directly, means each stress robot
 //! passes the same reader and checks (positive mass, positive-definite inertia, triangle

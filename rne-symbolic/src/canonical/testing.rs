@@ -22,7 +22,7 @@ pub(super) struct ChainLink {
 }
 
 /// The joint torques u_i = b_iᵀ τ_i of a chain of revolute joints, by (3.27)–(3.38) with
-/// the errata of DESIGN.md §7.
+/// the errata of docs/design.md §7.
 pub(super) fn newton_euler(g: &mut ExprGraph, links: &[ChainLink], gravity: Vec3) -> Vec<Id> {
     let n = links.len();
     let (mut omega, mut alpha, mut a_e, mut g_i) =

@@ -1,5 +1,5 @@
 //! The dynamics as functions of given standard parameters, and of the base parameters alone
-//! (`parameters: base`, DESIGN.md §3–§4).
+//! (`parameters: base`, docs/design.md §3 and §4.6).
 //!
 //! τ = Y(q, q̇, q̈) π is linear in the standard parameters, and with W₂ = W₁ K (Gautier 1991,
 //! [`BaseParameters`]) τ = Y₁ (π₁ + K π₂) = Y₁ π_b. Every π with the same π_b gives the same

@@ -1,4 +1,4 @@
-//! Derivatives of the dynamics for control and optimisation (DESIGN.md §4): ∂τ/∂q, ∂τ/∂q̇,
+//! Derivatives of the dynamics for control and optimisation (docs/design.md §4): ∂τ/∂q, ∂τ/∂q̇,
 //! ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹, by symbolic differentiation of the expression graph (exact, with
 //! the subexpressions of τ and of its derivatives shared by hash-consing).
 //!

@@ -1,5 +1,5 @@
-//! Joint friction τ_f = f_v q̇ + f_c sign(q̇) + offset (DESIGN.md §2), per joint that has it, on
-//! its own rate: a constrained mimic follower moves at `multiplier · q̇_leader`, and its
+//! Joint friction τ_f = f_v q̇ + f_c sign(q̇) + offset (docs/design.md §2.1), per joint that has
+//! it, on its own rate: a constrained mimic follower moves at `multiplier · q̇_leader`, and its
 //! friction reaches the leader's variable times the multiplier, like every other generalised
 //! force of the follower.
 //!

@@ -1,6 +1,6 @@
 //! The dynamics written in the standard inertial parameters themselves: per body its mass m,
 //! first moment h = m c and inertia I about the body origin, each an expression of its own
-//! (DESIGN.md §4's π, Pinocchio's `computeJointTorqueRegressor` order).
+//! (docs/design.md §4.4's π, Pinocchio's `computeJointTorqueRegressor` order).
 //!
 //! The chapter 3 recursion works with the centre of mass c and the inertia about it, so a body
 //! whose parameters are free expressions would need c = h / m and a division by a parameter.

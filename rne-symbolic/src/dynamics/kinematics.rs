@@ -1,6 +1,6 @@
-//! Forward kinematics of frames for control (DESIGN.md §4): placements in the world, geometric
-//! Jacobians and J̇ q̇, with Pinocchio's LOCAL_WORLD_ALIGNED convention: rows [v; ω] of the
-//! frame origin, in world axes, so that the task acceleration is J q̈ + J̇ q̇.
+//! Forward kinematics of frames for control (docs/design.md §4.3): placements in the world,
+//! geometric Jacobians and J̇ q̇, with Pinocchio's LOCAL_WORLD_ALIGNED convention: rows [v; ω] of
+//! the frame origin, in world axes, so that the task acceleration is J q̈ + J̇ q̇.
 
 use crate::expr::{ExprGraph, Id, Mat3, Vec3};
 use crate::model::Frame;

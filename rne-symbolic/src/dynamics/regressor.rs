@@ -1,6 +1,6 @@
 //! The joint-torque regressor: τ = Y(q, q̇, q̈) π, linear in the standard inertial parameters
 //! (Atkeson, An & Hollerbach, "Estimation of inertial parameters of manipulator loads and
-//! links", IJRR 1986; Pinocchio's `computeJointTorqueRegressor` order, DESIGN.md §4).
+//! links", IJRR 1986; Pinocchio's `computeJointTorqueRegressor` order, docs/design.md §4.4).
 //!
 //! Per moving body, in model order: `m, m·cx, m·cy, m·cz, Ixx, Ixy, Iyy, Ixz, Iyz, Izz`, with
 //! c the centre of mass and I the inertia about the body frame's origin, in body axes; then

@@ -1,5 +1,5 @@
-//! Which reader a robot file goes to: the TOML spec of DESIGN §2 or a URDF, told apart by the
-//! file name's extension.
+//! Which reader a robot file goes to: the TOML spec of docs/design.md §2.1 or a URDF, told apart by
+//! the file name's extension.
 
 use std::path::Path;
 
@@ -10,7 +10,7 @@ use crate::RobotModel;
 /// The format of a robot description.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum RobotFormat {
-    /// The TOML spec of DESIGN §2 (`.toml`), read by [`crate::spec::parse_str`].
+    /// The TOML spec of docs/design.md §2.1 (`.toml`), read by [`crate::spec::parse_str`].
     Toml,
     /// A URDF file (`.urdf`), read by [`crate::urdf::parse_str`].
     Urdf,

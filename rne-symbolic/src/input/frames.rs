@@ -1,4 +1,4 @@
-//! The four frame conventions of DESIGN §2, each mapped onto one form: frame i of a link,
+//! The four frame conventions of docs/design.md §2.1, each mapped onto one form: frame i of a link,
 //! relative to its parent's frame (the base frame for a link on the base), is
 //!
 //! ```text

@@ -1,7 +1,7 @@
-//! Numeric validation of the input links at the parameters' values (DESIGN §2), graded:
-//! **errors** for what makes the model meaningless — a number that is not finite, a negative
-//! mass, a non-unit joint axis, a 3×3 inertia array that is not symmetric, negative box edges,
-//! a clearly negative principal moment of inertia — and **warnings** for what published data
+//! Numeric validation of the input links at the parameters' values (docs/design.md §2.3–§2.4),
+//! graded: **errors** for what makes the model meaningless — a number that is not finite, a
+//! negative mass, a non-unit joint axis, a 3×3 inertia array that is not symmetric, negative box
+//! edges, a clearly negative principal moment of inertia — and **warnings** for what published data
 //! often gets slightly wrong: principal moments that break the triangle inequality
 //! I1 + I2 ≥ I3 (for a link with mass, unless a TOML spec opts out), and a negative principal
 //! moment negligible against the robot's inertia scale ([`NEGLIGIBLE_INERTIA`]).

@@ -1,5 +1,5 @@
 //! The floating base: a free-flyer joint between the world and the model's root body, and the
-//! layout of the configuration and velocity vectors it implies (DESIGN.md §4, Pinocchio's
+//! layout of the configuration and velocity vectors it implies (docs/design.md §4.5, Pinocchio's
 //! free-flyer conventions).
 //!
 //! With a fixed base, q, q̇, q̈ and the generalised forces all have one entry per joint

@@ -1,6 +1,6 @@
-//! Mimic joints constrained to their leaders (URDF semantics, DESIGN.md §2): a follower's
-//! coordinate is `q_f = multiplier · q_leader + offset`, so it has no variable of its own; its
-//! motion enters every kernel through the chain rule.
+//! Mimic joints constrained to their leaders (URDF semantics, docs/design.md §2.1–§2.2): a
+//! follower's coordinate is `q_f = multiplier · q_leader + offset`, so it has no variable of its
+//! own; its motion enters every kernel through the chain rule.
 
 use super::{Coupling, RobotModel};
 use crate::expr::Id;

@@ -65,7 +65,7 @@ pub enum Base {
     #[default]
     Fixed,
     /// The root body moves freely: a free-flyer joint between the world and the root, in front
-    /// of the joint variables (DESIGN.md §4). Legged robots and humanoids.
+    /// of the joint variables (docs/design.md §4.5). Legged robots and humanoids.
     Floating,
 }
 
@@ -93,7 +93,7 @@ pub struct Coupling {
     pub offset: Id,
 }
 
-/// Joint friction `τ_f = viscous · q̇ + coulomb · sign(q̇) + offset` (DESIGN.md §2).
+/// Joint friction `τ_f = viscous · q̇ + coulomb · sign(q̇) + offset` (docs/design.md §2.1).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Friction {
     /// Viscous coefficient f_v (N·m·s/rad or N·s/m); URDF `damping`.
@@ -183,8 +183,8 @@ pub struct RobotModel {
     pub joints: Vec<JointVariable>,
     /// Fixed to the world, or floating (a free-flyer root link).
     pub base: Base,
-    /// What the reader found slightly wrong in the robot file but accepted (DESIGN §2), in the
-    /// order found; empty for a model built by hand.
+    /// What the reader found slightly wrong in the robot file but accepted (docs/design.md §2.4),
+    /// in the order found; empty for a model built by hand.
     pub warnings: Vec<SpecWarning>,
 }
 

@@ -36,8 +36,8 @@ pub enum SpecErrorKind {
     UnknownFormat,
 }
 
-/// An error found while reading a robot spec (DESIGN §2), naming the file, the joint or link and
-/// the field: `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`
+/// An error found while reading a robot spec (docs/design.md §2.3), naming the file, the joint or
+/// link and the field: `robots/arm.toml:12: link 'link2', field 'mass': mass must be >= 0, got -3`
 /// (see [`Diagnostic`] for its parts).
 pub type SpecError = Diagnostic<SpecErrorKind>;
 

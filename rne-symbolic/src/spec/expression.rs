@@ -1,5 +1,5 @@
-//! Expression strings of the spec format (DESIGN §2), parsed by recursive descent straight into
-//! an [`ExprGraph`] through its simplifying constructors.
+//! Expression strings of the spec format (docs/design.md §2.1), parsed by recursive descent
+//! straight into an [`ExprGraph`] through its simplifying constructors.
 //!
 //! ```text
 //! sum      := product (('+' | '-') product)*

@@ -1,4 +1,4 @@
-//! Robot specs: TOML files (format 1 of DESIGN.md §2) read into a [`RobotModel`].
+//! Robot specs: TOML files (docs/design.md §2.1) read into a [`RobotModel`].
 //!
 //! ```toml
 //! name = "planar-elbow"
@@ -17,8 +17,8 @@
 //! ```
 //!
 //! [`load_robot`] and [`parse_robot`] (of [`crate::input`], re-exported here) read either
-//! format of DESIGN §2, a TOML spec (this module) or a URDF ([`crate::urdf`]), as the file's
-//! extension says ([`RobotFormat`]); [`load_file`] and [`parse_str`] read TOML only. Both
+//! format of docs/design.md §2, a TOML spec (this module) or a URDF ([`crate::urdf`]), as the
+//! file's extension says ([`RobotFormat`]); [`load_file`] and [`parse_str`] read TOML only. Both
 //! readers build the shared input model of [`crate::input`], which validates it and assembles
 //! the [`RobotModel`]; the errors ([`SpecError`]) and warnings ([`SpecWarning`]) of both are
 //! defined here.
@@ -43,15 +43,15 @@
 //!    check runs on the symbolic form, both modes accept the same specs. Warnings get the line
 //!    of their field, and [`LoadOptions::strict`] turns the first into an error.
 //!
-//! # Decisions on points DESIGN §2 leaves open
+//! # The format's details (docs/design.md §2.1 states them for users)
 //!
-//! - `gravity` defaults to `[0, 0, -9.81]` (z up, the 9.81 m/s² of ROBOTS.md).
+//! - `gravity` defaults to `[0, 0, -9.81]` (z up, standard gravity rounded to 9.81 m/s²).
 //! - The `origin`/`axis` convention follows URDF: `axis` defaults to `[1, 0, 0]` and is
 //!   normalised; `origin.xyz` and `origin.rpy` default to zero. A zero axis is an error; so is an
 //!   `axis` on a fixed joint, and a `q` on a fixed joint.
 //! - `rotation` defaults to the identity and `position` to zero; a revolute joint's
-//!   `rotation` must then still contain its variable, so omitting it is the DESIGN error
-//!   "joint variable missing from rotation".
+//!   `rotation` must then still contain its variable, so omitting it is the error "joint
+//!   variable missing from rotation" (docs/design.md §2.3).
 //! - In `rotation`, `position`, `dh` and `mdh` the link's own joint variable may appear (in
 //!   `dh`/`mdh` only in `theta` for a revolute joint or `d` for a prismatic one, as ±q + c; when
 //!   it does not appear, q is added there). It may not appear in `origin`, `axis`, `mass`,
@@ -110,7 +110,7 @@ use crate::input::{self, InputLink, RobotInput};
 use crate::model::Transform;
 use crate::RobotModel;
 
-/// Reads the spec file at `path` (DESIGN §2); errors name the file as `path` displays.
+/// Reads the spec file at `path` (docs/design.md §2.1); errors name the file as `path` displays.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let origin = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| {

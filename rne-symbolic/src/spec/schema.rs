@@ -1,4 +1,4 @@
-//! The tables of the spec format (DESIGN §2) read from the TOML tree: every key checked
+//! The tables of the spec format (docs/design.md §2.1) read from the TOML tree: every key checked
 //! against the set its table allows, structural fields typed, frame convention and inertia
 //! form recognised. Numbers stay unread ([`Number`]) until the expression stage.
 
@@ -102,7 +102,7 @@ pub(crate) struct FrictionSpec<'a> {
     pub(crate) offset: Option<Number<'a>>,
 }
 
-/// The frame convention of a link (DESIGN §2 (a)–(d)); omitted entries are `None`.
+/// The frame convention of a link (docs/design.md §2.1 (a)–(d)); omitted entries are `None`.
 #[derive(Debug)]
 pub(crate) enum FrameSpec<'a> {
     /// (a) the thesis's `rotation` R_i^{i−1}(q) and `position` r_{i−1,i} in frame i.

@@ -1,5 +1,5 @@
 //! The warnings of spec reading: what published robot data often gets slightly wrong while the
-//! mathematics survives (DESIGN §2), located like errors.
+//! mathematics survives (docs/design.md §2.4), located like errors.
 
 use super::diagnostic::Diagnostic;
 use super::error::{SpecError, SpecErrorKind};

@@ -1,4 +1,4 @@
-//! URDF files read into a [`RobotModel`] (DESIGN §2: "URDF files (`.urdf`) are read as robots
+//! URDF files read into a [`RobotModel`] (docs/design.md §2.2: "URDF files are read as robots
 //! publish them").
 //!
 //! The XML is read with quick-xml (`document`), taking only what rigid-body dynamics needs;
@@ -31,7 +31,7 @@
 //! - **Tree.** Exactly one root link (a link that is no joint's child), every other link the
 //!   child of exactly one joint; several children per link are fine. Links are ordered
 //!   depth-first from the root, children in file order, and joints numbered in that order
-//!   (DESIGN §2).
+//!   (docs/design.md §2.2).
 //! - **Fixed links.** The root and every link behind a fixed joint are kept as
 //!   [`JointKind::Fixed`](crate::JointKind) links, so kinematics frames (a tool flange) and a
 //!   floating base's body have them;

@@ -1,6 +1,6 @@
 //! The link tree of a URDF: joints resolved to their links, checked to form one tree, and every
 //! link put in model order — the root first, then depth-first with children in file order
-//! (DESIGN §2, the invariants of [`RobotModel`](crate::RobotModel)).
+//! (docs/design.md §2.2, the invariants of [`RobotModel`](crate::RobotModel)).
 
 use std::collections::{HashMap, HashSet};
 

@@ -1,5 +1,5 @@
 // Times the Pinocchio algorithms that rne's kinematics and identification kernels are compared
-// with (issues 13, 14), which the shared timing programs do not cover:
+// with, which bench.cpp and bench_cg.cpp do not cover:
 //   jacobians_ns      computeJointJacobians (every joint's Jacobian, in data.J)
 //   jacobians_all_ns  the same, then getJointJacobian(LOCAL_WORLD_ALIGNED) of every joint: the
 //                     6 x nv Jacobian of each moving body's frame origin in world axes, what
@@ -12,9 +12,10 @@
 //   jdqd_maxdiff      max abs difference of the two J-dot q-dot ways over the states: not 0,
 //                     the time-variation product is not the classical acceleration of the
 //                     origin; jdqd_fk_ns is (what rne's frame_jacobian_dot_qd returns)
-// Input: the text model of dump.py (one line per joint: KIND [axis] parent R p mass com I).
-// States: std::mt19937(42), q = 3 U(-1, 1), v and a = U(-1, 1), 1024 of them cycled through;
-// each figure is the median over `reps` repetitions interleaved across the algorithms.
+// Input: the text model of dump.py; states: those of peer_model.hpp, cycled through. Each figure
+// is the median over `reps` repetitions interleaved across the algorithms.
+//
+// Usage: bench_extra MODEL.txt [calls] [reps]      (calls default 200000, reps 5)
 // Output: lines `name value`, ns per call unless the name says otherwise.
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/algorithm/jacobian.hpp>
@@ -23,70 +24,26 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <iostream>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "peer_model.hpp"
+
 namespace pin = pinocchio;
-
-static pin::JointModel joint_of(const std::string& kind, const Eigen::Vector3d& axis) {
-  if (kind == "RX") return pin::JointModelRX();
-  if (kind == "RY") return pin::JointModelRY();
-  if (kind == "RZ") return pin::JointModelRZ();
-  if (kind == "PX") return pin::JointModelPX();
-  if (kind == "PY") return pin::JointModelPY();
-  if (kind == "PZ") return pin::JointModelPZ();
-  if (kind == "RU") return pin::JointModelRevoluteUnaligned(axis);
-  if (kind == "PU") return pin::JointModelPrismaticUnaligned(axis);
-  std::cerr << "unknown joint kind " << kind << "\n";
-  std::exit(2);
-}
-
-static pin::Model read_model(const char* path) {
-  std::ifstream in(path);
-  if (!in) { std::cerr << "cannot read " << path << "\n"; std::exit(2); }
-  int joints = 0;
-  in >> joints;
-  pin::Model model;
-  for (int j = 0; j < joints; ++j) {
-    std::string kind;
-    Eigen::Vector3d axis = Eigen::Vector3d::Zero(), p, com;
-    Eigen::Matrix3d rotation, inertia;
-    double parent = 0, mass = 0;
-    in >> kind;
-    if (kind == "RU" || kind == "PU") in >> axis.x() >> axis.y() >> axis.z();
-    in >> parent;
-    for (int r = 0; r < 3; ++r) for (int c = 0; c < 3; ++c) in >> rotation(r, c);
-    in >> p.x() >> p.y() >> p.z() >> mass >> com.x() >> com.y() >> com.z();
-    for (int r = 0; r < 3; ++r) for (int c = 0; c < 3; ++c) in >> inertia(r, c);
-    if (!in) { std::cerr << "bad model line " << j + 1 << " in " << path << "\n"; std::exit(2); }
-    const auto id = model.addJoint(static_cast<pin::JointIndex>(parent), joint_of(kind, axis),
-                                   pin::SE3(rotation, p), "joint" + std::to_string(j + 1));
-    model.appendBodyToJoint(id, pin::Inertia(mass, com, inertia), pin::SE3::Identity());
-  }
-  return model;
-}
 
 int main(int argc, char** argv) {
   if (argc < 2) { std::cerr << "usage: bench_extra MODEL.txt [calls] [reps]\n"; return 2; }
-  const pin::Model model = read_model(argv[1]);
+  const pin::Model model = peers::read_model(argv[1]);
   pin::Data data(model);
   const long calls = argc > 2 ? std::atol(argv[2]) : 200000;
   const int reps = argc > 3 ? std::atoi(argv[3]) : 5;
-  const int states = 1024;
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<Eigen::VectorXd> q(states), v(states), a(states);
-  for (int k = 0; k < states; ++k) {
-    q[k].resize(model.nq);
-    v[k].resize(model.nv);
-    a[k].resize(model.nv);
-    for (int i = 0; i < model.nq; ++i) q[k][i] = 3.0 * uniform(rng);
-    for (int i = 0; i < model.nv; ++i) { v[k][i] = uniform(rng); a[k][i] = uniform(rng); }
-  }
+  const int states = peers::STATES;
+  const peers::States seeded = peers::seeded_states(model);
+  const std::vector<Eigen::VectorXd>& q = seeded.q;
+  const std::vector<Eigen::VectorXd>& v = seeded.v;
+  const std::vector<Eigen::VectorXd>& a = seeded.a;
   const auto bodies = static_cast<pin::JointIndex>(model.njoints);
   std::vector<pin::Data::Matrix6x> jacobians(bodies, pin::Data::Matrix6x::Zero(6, model.nv));
   pin::Data::Matrix6x dj = pin::Data::Matrix6x::Zero(6, model.nv);
