@@ -22,6 +22,20 @@ pub struct DynamicsModule {
     pub settings: Vec<Setting>,
 }
 
+impl DynamicsModule {
+    /// The span of the `robot:` path, or of the module's name when there is none: where an
+    /// error about the robot as a whole points.
+    pub fn robot_span(&self) -> proc_macro2::Span {
+        self.settings
+            .iter()
+            .find(|s| s.key == "robot")
+            .map_or(self.name.span(), |s| match &s.value {
+                Value::Str(path) => path.span(),
+                _ => s.key.span(),
+            })
+    }
+}
+
 /// One `key: value` entry.
 pub struct Setting {
     pub key: Ident,

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use quote::quote;
-use rne_codegen_core::{generate, read_robot, CodegenError, Kernel};
+use rne_codegen_core::{generate, read_robot, CodegenError};
 use rne_symbolic::spec::SpecWarning;
 
 use crate::check::CheckedModule;
@@ -42,14 +42,7 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
                     .scene
                     .outputs
                     .iter()
-                    .position(|k| {
-                        matches!(
-                            k,
-                            Kernel::ForwardDynamics
-                                | Kernel::ForwardDynamicsDerivatives
-                                | Kernel::MassMatrixInverse
-                        )
-                    })
+                    .position(|k| k.inverts_mass_matrix())
                     .and_then(|k| module.output_spans.get(k).copied())
                     .unwrap_or_else(|| module.robot.span());
                 syn::Error::new(span, e.to_string())

@@ -6,6 +6,7 @@
 mod ast;
 mod check;
 mod expand;
+mod internal;
 
 use proc_macro::TokenStream;
 
@@ -13,8 +14,8 @@ use proc_macro::TokenStream;
 #[proc_macro]
 pub fn derive_dynamics(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as ast::DynamicsModule);
-    check::check(input)
-        .and_then(expand::expand)
+    let span = input.robot_span();
+    internal::guarded(span, || check::check(input).and_then(expand::expand))
         .unwrap_or_else(syn::Error::into_compile_error)
         .into()
 }

@@ -11,6 +11,7 @@ mod emit;
 mod eval;
 mod eval_kernels;
 mod identify;
+mod internal;
 mod list;
 mod long_run;
 mod model;
@@ -25,6 +26,7 @@ use std::io::Write;
 
 use clap::{Parser, Subcommand};
 
+pub use internal::{guarded, quiet_panics};
 pub use model::{MimicOption, ModelOptions};
 pub use options::{parse_list, parse_locks, CliError};
 

@@ -6,7 +6,8 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let cli = rne_cli::Cli::parse();
-    match rne_cli::run(cli, &mut std::io::stdout().lock()) {
+    rne_cli::quiet_panics();
+    match rne_cli::guarded(|| rne_cli::run(cli, &mut std::io::stdout().lock())) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error}");

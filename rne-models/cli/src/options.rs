@@ -46,6 +46,18 @@ pub enum CliError {
     /// Writing the output failed.
     #[error("cannot write output: {0}")]
     Io(#[from] std::io::Error),
+    /// rne failed internally (a panic: a bug, whatever the input).
+    #[error(
+        "internal error in rne: {message}{}; this is a bug: please report it with the command \
+         and the robot file",
+        if location.is_empty() { String::new() } else { format!(" (at {location})") }
+    )]
+    Internal {
+        /// What failed.
+        message: String,
+        /// Where in rne's source, when known.
+        location: String,
+    },
 }
 
 /// Parses `1.5,-2,0` into numbers.
