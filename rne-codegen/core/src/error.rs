@@ -50,6 +50,19 @@ pub enum CodegenError {
         /// The joint that moves no mass.
         joint: rne_symbolic::model::MasslessJoint,
     },
+    /// A kernel's expression graph reached its node limit while being built.
+    #[error(
+        "`{kernel}` is too large to generate for this robot: its expression graph reached the \
+         limit of {limit} nodes (about {} MB); generate fewer kernels, lock joints or split the \
+         robot",
+        limit * 30 / 1_000_000
+    )]
+    TooLarge {
+        /// The kernel.
+        kernel: Kernel,
+        /// The limit ([`rne_symbolic::ExprGraph::node_limit`]).
+        limit: usize,
+    },
     /// An `outputs` entry is not a kernel.
     #[error("unknown output `{name}`; {source}")]
     UnknownKernel {

@@ -44,7 +44,9 @@
 //!   reports counts and cost per kernel.
 #![deny(missing_docs)]
 
+mod assemble;
 mod builder;
+mod built;
 mod dispatch;
 mod emit;
 mod error;
@@ -55,12 +57,15 @@ mod load;
 mod model_type;
 mod module;
 mod params;
+mod plan;
 mod program;
 mod scene;
+mod schedule;
 mod shape;
 mod split;
 
 pub use builder::{Builder, KEEP_GENERATED_ENV};
+pub use built::{build_kernel, build_kernel_with, kernel_program, BuiltKernel};
 pub use dispatch::DISPATCH_FROM;
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
 pub use error::CodegenError;
@@ -69,10 +74,7 @@ pub use kernel::{
 };
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
-pub use module::{
-    build_kernel, build_kernel_with, generate, kernel_program, BuiltKernel, ForwardDynamicsChoice,
-    GeneratedModule, KernelReport,
-};
+pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use scene::{
     ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH,

@@ -88,6 +88,10 @@ pub struct Scene {
     /// x86-64 build each vector is a pair of SSE2 registers and the kernels are slower than
     /// without (docs/performance.md, "Derivatives in lanes").
     pub derivative_lanes: bool,
+    /// The most nodes the expression graph of one kernel may reach while it is built
+    /// ([`rne_symbolic::ExprGraph::node_limit`]); a kernel that would need more is an error
+    /// naming it ([`CodegenError::TooLarge`]) instead of minutes of work and gigabytes.
+    pub node_limit: usize,
 }
 
 /// The algorithm of the `forward_dynamics` kernel.
@@ -134,6 +138,7 @@ impl Default for Scene {
             strict: false,
             fma: false,
             derivative_lanes: false,
+            node_limit: rne_symbolic::expr::NODE_LIMIT,
         }
     }
 }

@@ -17,7 +17,14 @@ use super::symbols::SymbolTable;
 /// operation count: `x·0 = 0`, `x·1 = x`, `x + 0 = x`, `x + (−x) = 0`, `−(−x) = x`,
 /// `sin(kπ/2)` and `cos(kπ/2)` exactly, and negations pulled outwards (`(−a)·b = −(a·b)`)
 /// so that `a·b` and `−a·b` share their product.
-#[derive(Clone, Debug, Default)]
+///
+/// The arena holds at most [`ExprGraph::node_limit`] nodes ([`NODE_LIMIT`] by default, about
+/// half a gigabyte): past it, a constructor that would create a node returns the constant 0
+/// instead and the graph remembers it ([`ExprGraph::limit_reached`]). What is built after
+/// that is meaningless, but it is built quickly (the zeros fold everything they touch), so a
+/// robot whose kernels would take minutes and gigabytes ends in an error instead — whoever
+/// builds asks the graph once at the end.
+#[derive(Clone, Debug)]
 pub struct ExprGraph {
     nodes: Vec<Node>,
     /// Every node's id with its [`hash`], found by the hash and compared through `nodes`:
@@ -25,6 +32,23 @@ pub struct ExprGraph {
     /// table grows without reading the arena.
     memo: HashTable<Memo>,
     symbols: SymbolTable,
+    /// The most nodes the arena takes.
+    limit: usize,
+    /// Whether a node was refused for the limit.
+    limit_reached: bool,
+}
+
+/// The constant 0, which a graph at its node limit gives for every new node.
+const ZERO: Node = Node::Const(Constant::ZERO);
+
+/// The default [`ExprGraph::node_limit`]: 2²⁴ nodes, about 30 bytes each with the memo. The
+/// largest kernels of the robots of example-robot-data stay well below it.
+pub const NODE_LIMIT: usize = 1 << 24;
+
+impl Default for ExprGraph {
+    fn default() -> ExprGraph {
+        ExprGraph::new(SymbolTable::default())
+    }
 }
 
 /// An entry of the memo: a node's id and [`hash`].
@@ -54,7 +78,25 @@ impl ExprGraph {
             nodes: Vec::new(),
             memo: HashTable::new(),
             symbols,
+            limit: NODE_LIMIT,
+            limit_reached: false,
         }
+    }
+
+    /// The most nodes this graph takes (type docs).
+    pub fn node_limit(&self) -> usize {
+        self.limit
+    }
+
+    /// Sets the most nodes this graph takes (type docs).
+    pub fn set_node_limit(&mut self, limit: usize) {
+        self.limit = limit;
+    }
+
+    /// Whether a node was refused because the graph had [`ExprGraph::node_limit`] nodes:
+    /// then whatever was built since is meaningless (type docs).
+    pub fn limit_reached(&self) -> bool {
+        self.limit_reached
     }
 
     /// Names of the joint and parameter symbols.
@@ -142,6 +184,10 @@ impl ExprGraph {
         );
         match entry {
             Entry::Occupied(existing) => existing.get().id,
+            Entry::Vacant(_) if nodes.len() >= self.limit && node != ZERO => {
+                self.limit_reached = true;
+                self.intern(ZERO)
+            }
             Entry::Vacant(vacant) => {
                 debug_assert!(node.children().all(|c| c.index() < nodes.len()));
                 let id = Id::from_index(nodes.len());

@@ -67,6 +67,9 @@ impl Symbol {
 pub struct Constant(u64);
 
 impl Constant {
+    /// The constant 0.
+    pub const ZERO: Constant = Constant(0);
+
     /// Wraps a value; `-0.0` becomes `0.0` so that both hash-cons to one node.
     pub fn new(value: f64) -> Constant {
         let value = if value == 0.0 { 0.0 } else { value };
