@@ -59,6 +59,7 @@ mod module;
 mod params;
 mod plan;
 mod program;
+mod programs;
 mod scene;
 mod schedule;
 mod shape;
@@ -76,7 +77,9 @@ pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
+pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
 pub use scene::{
     ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH,
 };
 pub use shape::{Layout, Size};
+pub use split::{PART_LEN, SPLIT_ABOVE};

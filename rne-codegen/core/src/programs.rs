@@ -1,0 +1,132 @@
+//! The generated programs themselves, for backends other than the Rust emitter (the JIT, the
+//! C emitter): the same stages as [`crate::generate`] — validate, plan, build on two threads —
+//! ending in each kernel's optimised [`Program`] instead of its Rust text, so every backend
+//! computes the operations the macro's kernels compute, in their order.
+
+use std::time::{Duration, Instant};
+
+use rne_symbolic::{RobotModel, Symbol};
+
+use crate::built::BuiltKernel;
+use crate::error::CodegenError;
+use crate::kernel::{Dims, Kernel};
+use crate::module::{ForwardDynamicsChoice, KernelReport};
+use crate::plan::Plan;
+use crate::program::Program;
+use crate::scene::Scene;
+use crate::schedule;
+
+/// One kernel's program and how it was made.
+#[derive(Clone, Debug)]
+pub struct KernelProgram {
+    /// The kernel.
+    pub kernel: Kernel,
+    /// Its program, with multiply-adds fused when the scene says `fma`
+    /// ([`Program::fuse_multiply_add`]); matrices' outputs row-major, tuples concatenated.
+    pub program: Program,
+    /// Its operation count, critical path and generation time.
+    pub report: KernelReport,
+}
+
+/// Every kernel a scene asks for, as programs, and what reading them needs.
+#[derive(Clone, Debug)]
+pub struct GeneratedPrograms {
+    /// The robot's name.
+    pub robot: String,
+    /// The kernels, in the scene's order ([`Scene::kernels`]).
+    pub kernels: Vec<KernelProgram>,
+    /// Joint variable names, in state order.
+    pub joints: Vec<String>,
+    /// Size of the configuration q.
+    pub nq: usize,
+    /// The sizes of the arrays: NV, NF frames, NP standard and NB base parameters.
+    pub dims: Dims,
+    /// Whether the robot has a free-flyer root.
+    pub floating_base: bool,
+    /// The frames of the kinematics kernels (link names), in output order.
+    pub frames: Vec<String>,
+    /// The standard parameters' names (the regressor's columns).
+    pub parameter_names: Vec<String>,
+    /// The base parameters' names, when a kernel reads them.
+    pub base_parameter_names: Vec<String>,
+    /// The value of each `Symbol::Parameter(i)` the programs read (runtime or base
+    /// parameters), at the robot file's values; empty for constant parameters.
+    /// `base_parameters` reads the standard parameters there instead.
+    pub parameter_values: Vec<f64>,
+    /// The names of those parameters.
+    pub parameter_symbols: Vec<String>,
+    /// Both ways forward dynamics could be built, when it was and both apply.
+    pub forward_dynamics_choice: Option<ForwardDynamicsChoice>,
+    /// The model as the scene sees it (base, mimic, gravity, locks applied).
+    pub model: RobotModel,
+    /// Time from the robot model to the last program.
+    pub generation_time: Duration,
+}
+
+/// The programs of every kernel `scene` asks for, for `model`; `source` names the robot file.
+/// The derivative kernels are built in scalars (lanes are the Rust emitter's).
+pub fn generate_programs(
+    model: &RobotModel,
+    scene: &Scene,
+    source: &str,
+) -> Result<GeneratedPrograms, CodegenError> {
+    let start = Instant::now();
+    let scalar_scene = Scene {
+        derivative_lanes: false,
+        ..scene.clone()
+    };
+    let plan = Plan::new(model, &scalar_scene, source)?;
+    let finish = |built: BuiltKernel, kernel: Kernel, _: Dims, start: Instant| {
+        let program = match scene.fma {
+            true => built.program.fuse_multiply_add(),
+            false => built.program,
+        };
+        let report = KernelReport {
+            kernel,
+            ops: program.op_count(),
+            critical_path: program.critical_path(),
+            generation_time: start.elapsed(),
+        };
+        Ok(KernelProgram {
+            kernel,
+            program,
+            report,
+        })
+    };
+    let built = schedule::build(&plan, &finish)?;
+    let symbols = plan.dynamics.model.graph.symbols();
+    let parameter_symbols: Vec<String> = symbols.parameters().to_vec();
+    let parameter_values = (0..parameter_symbols.len())
+        .map(|i| {
+            let symbol = Symbol::Parameter(i as u16);
+            plan.dynamics.model.parameter_value(symbol).unwrap_or(f64::NAN)
+        })
+        .collect();
+    let base_parameters = built.base_parameters.as_ref();
+    Ok(GeneratedPrograms {
+        robot: plan.model.name.clone(),
+        kernels: built.kernels,
+        joints: plan.dynamics.model.joint_names(),
+        nq: plan.dynamics.layout().nq(),
+        dims: Dims {
+            nb: base_parameters.map_or(0, |b| b.len()),
+            ..plan.dims
+        },
+        floating_base: plan.dynamics.layout().floating,
+        frames: plan
+            .setup
+            .frames
+            .iter()
+            .map(|&f| plan.dynamics.frames()[f].name.clone())
+            .collect(),
+        base_parameter_names: base_parameters
+            .map(|b| b.names(&plan.parameter_names))
+            .unwrap_or_default(),
+        parameter_names: plan.parameter_names.clone(),
+        parameter_values,
+        parameter_symbols,
+        forward_dynamics_choice: built.forward_dynamics_choice,
+        model: plan.model.clone(),
+        generation_time: start.elapsed(),
+    })
+}

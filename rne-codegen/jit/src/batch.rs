@@ -1,0 +1,115 @@
+//! Batches: one kernel at many states, the states' arrays laid end to end, on one thread or
+//! shared between several.
+
+use rne_codegen_core::{Input, Kernel};
+
+use crate::error::JitError;
+use crate::model::{JitModel, State};
+
+/// The arrays of N states, each laid end to end (state i's q is `q[i·NQ..(i+1)·NQ]`); the
+/// arrays a kernel does not take may be empty.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct Batch<'a> {
+    /// N configurations.
+    pub q: &'a [f64],
+    /// N velocities.
+    pub qd: &'a [f64],
+    /// N accelerations.
+    pub qdd: &'a [f64],
+    /// N generalised forces.
+    pub tau: &'a [f64],
+}
+
+impl JitModel {
+    /// `kernel` at every state of `batch`, results laid end to end in `out`: the number of
+    /// states is `out.len()` over the kernel's [`JitModel::output_len`], and every array the
+    /// kernel takes must hold that many states. Each state is checked as
+    /// [`JitModel::evaluate`] checks one.
+    pub fn evaluate_batch(&self, kernel: Kernel, batch: Batch<'_>, out: &mut [f64]) -> Result<(), JitError> {
+        let states = self.batch_states(kernel, &batch, out.len())?;
+        let per = self.compiled_kernel(kernel)?.outputs();
+        for (i, out) in out.chunks_mut(per.max(1)).enumerate().take(states) {
+            self.evaluate(kernel, self.state(&batch, i), out)?;
+        }
+        Ok(())
+    }
+
+    /// [`JitModel::evaluate_batch`] on `threads` threads (scoped: they end before it returns),
+    /// each taking a contiguous share of the states. The results are those of one thread, bit
+    /// for bit.
+    #[cfg(feature = "threads")]
+    pub fn evaluate_batch_threaded(
+        &self,
+        kernel: Kernel,
+        batch: Batch<'_>,
+        out: &mut [f64],
+        threads: usize,
+    ) -> Result<(), JitError> {
+        let states = self.batch_states(kernel, &batch, out.len())?;
+        let per = self.compiled_kernel(kernel)?.outputs().max(1);
+        let threads = threads.clamp(1, states.max(1));
+        let share = states.div_ceil(threads);
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = out
+                .chunks_mut(share * per)
+                .enumerate()
+                .map(|(t, out)| {
+                    scope.spawn(move || -> Result<(), JitError> {
+                        for (k, out) in out.chunks_mut(per).enumerate() {
+                            self.evaluate(kernel, self.state(&batch, t * share + k), out)?;
+                        }
+                        Ok(())
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+                .collect::<Result<(), JitError>>()
+        })
+    }
+
+    /// State `i` of `batch`.
+    fn state<'a>(&self, batch: &Batch<'a>, i: usize) -> State<'a> {
+        let slice = |values: &'a [f64], n: usize| values.get(i * n..(i + 1) * n).unwrap_or(&[]);
+        State {
+            q: slice(batch.q, self.nq()),
+            qd: slice(batch.qd, self.nv()),
+            qdd: slice(batch.qdd, self.nv()),
+            tau: slice(batch.tau, self.nv()),
+        }
+    }
+
+    /// The number of states of a batch whose results fill `out_len` values, once every array
+    /// the kernel takes is known to hold that many.
+    fn batch_states(&self, kernel: Kernel, batch: &Batch<'_>, out_len: usize) -> Result<usize, JitError> {
+        let per = self.compiled_kernel(kernel)?.outputs();
+        if per == 0 || out_len % per != 0 {
+            return Err(JitError::OutputLength {
+                kernel,
+                got: out_len,
+                expected: per,
+            });
+        }
+        let states = out_len / per;
+        for &input in kernel.inputs() {
+            let (values, n) = match input {
+                Input::Q => (batch.q, self.nq()),
+                Input::Qd => (batch.qd, self.nv()),
+                Input::Qdd => (batch.qdd, self.nv()),
+                Input::Tau => (batch.tau, self.nv()),
+                Input::Standard => return Err(JitError::MissingKernel { kernel }),
+            };
+            if values.len() != states * n {
+                return Err(JitError::BatchLength {
+                    kernel,
+                    input,
+                    got: values.len(),
+                    per_state: n,
+                    states,
+                });
+            }
+        }
+        Ok(states)
+    }
+}

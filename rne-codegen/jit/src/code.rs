@@ -1,0 +1,170 @@
+//! Compiled code: the one module of rne-jit with `unsafe`.
+//!
+//! [`Code`] owns the executable memory of one model's kernels (a Cranelift `JITModule`) and
+//! frees it when dropped. [`Entry`] is one compiled function; [`Entry::call`] is the only call
+//! into compiled code, and [`sin_cos_array`] the only function compiled code calls.
+//!
+//! # Safety argument
+//! Every compiled function has the signature [`KernelFn`]: six pointers, to q, q̇, q̈, τ, the
+//! parameters, the outputs and a scratch array. `lower.rs` generates code that reads
+//! `input[k]` only for the inputs `Symbol`s of its program name, writes `out[k]` only for its
+//! outputs and `scratch[k]` only for the slots it planned, and calls nothing but
+//! [`sin_cos_array`] with pointers into its own stack frame and counts it wrote itself. Those
+//! extents are recorded in [`Extents`] when the program is lowered; [`Entry::call`] takes
+//! slices and refuses any shorter than them, so every access of the compiled code is inside a
+//! live Rust slice. Scalars are `f64`; no pointer escapes the call. The code memory is
+//! written once (`finalize_definitions`) and then only executed, so calls from several
+//! threads at once share nothing mutable: `Code` is `Send` and `Sync`. An `Entry` is only
+//! reachable through the model that owns its `Code` (crate-private, `Copy` but never stored
+//! elsewhere), so it is never called after the memory is freed.
+
+use cranelift_jit::JITModule;
+
+/// The signature of every compiled function.
+pub(crate) type KernelFn = unsafe extern "C" fn(
+    q: *const f64,
+    qd: *const f64,
+    qdd: *const f64,
+    tau: *const f64,
+    parameters: *const f64,
+    out: *mut f64,
+    scratch: *mut f64,
+);
+
+/// The arrays a compiled function reads and writes, each at least as long as its extent.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Arrays<'a> {
+    pub q: &'a [f64],
+    pub qd: &'a [f64],
+    pub qdd: &'a [f64],
+    pub tau: &'a [f64],
+    pub parameters: &'a [f64],
+}
+
+/// How far into each array a compiled function reaches: one past the largest index.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Extents {
+    pub q: usize,
+    pub qd: usize,
+    pub qdd: usize,
+    pub tau: usize,
+    pub parameters: usize,
+    pub out: usize,
+    pub scratch: usize,
+}
+
+/// One compiled function.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct Entry {
+    function: KernelFn,
+    extents: Extents,
+}
+
+impl Entry {
+    /// Wraps the finalized function at `address`, lowered with `extents`.
+    ///
+    /// # Safety
+    /// `address` is a function of [`KernelFn`]'s signature finalized in a [`Code`] that
+    /// outlives every call, generated to stay within `extents` (module docs).
+    pub(crate) unsafe fn new(address: *const u8, extents: Extents) -> Entry {
+        // SAFETY: the caller's contract.
+        let function = unsafe { std::mem::transmute::<*const u8, KernelFn>(address) };
+        Entry { function, extents }
+    }
+
+    /// Runs the function, or `None` when an array is shorter than what it reaches.
+    pub(crate) fn call(&self, arrays: Arrays<'_>, out: &mut [f64], scratch: &mut [f64]) -> Option<()> {
+        let e = self.extents;
+        let fits = arrays.q.len() >= e.q
+            && arrays.qd.len() >= e.qd
+            && arrays.qdd.len() >= e.qdd
+            && arrays.tau.len() >= e.tau
+            && arrays.parameters.len() >= e.parameters
+            && out.len() >= e.out
+            && scratch.len() >= e.scratch;
+        if !fits {
+            return None;
+        }
+        // SAFETY: every array is at least as long as the code reaches into it (module docs);
+        // the code is alive while `self` is reachable.
+        unsafe {
+            (self.function)(
+                arrays.q.as_ptr(),
+                arrays.qd.as_ptr(),
+                arrays.qdd.as_ptr(),
+                arrays.tau.as_ptr(),
+                arrays.parameters.as_ptr(),
+                out.as_mut_ptr(),
+                scratch.as_mut_ptr(),
+            );
+        }
+        Some(())
+    }
+}
+
+/// The executable memory of one model's kernels, freed on drop.
+pub(crate) struct Code {
+    module: Option<JITModule>,
+}
+
+impl Code {
+    /// Takes ownership of a module whose functions are finalized.
+    pub(crate) fn new(module: JITModule) -> Code {
+        Code {
+            module: Some(module),
+        }
+    }
+}
+
+impl Drop for Code {
+    fn drop(&mut self) {
+        if let Some(module) = self.module.take() {
+            // SAFETY: the entries into this module are only reachable through the model
+            // being dropped, so none runs now or later.
+            unsafe { module.free_memory() };
+        }
+    }
+}
+
+// SAFETY: after `finalize_definitions` the module's memory is only executed and, at drop,
+// freed; nothing of it is mutated while the model is shared (module docs).
+unsafe impl Send for Code {}
+// SAFETY: as for `Send`: `&Code` gives no access to the module at all.
+unsafe impl Sync for Code {}
+
+/// `sines[i], cosines[i] = sin_cos(angles[i])` for i < n, bit for bit the runtime's `sin_cos`
+/// (computed four at a time by `sin_cos_array`, which gives the same bits): what compiled
+/// kernels call for their joints' sines and cosines.
+///
+/// # Safety
+/// `angles`, `sines` and `cosines` point to `n` valid `f64` each (the compiled kernels pass
+/// arrays of their own stack frame).
+pub(crate) unsafe extern "C" fn sin_cos_array(
+    angles: *const f64,
+    n: usize,
+    sines: *mut f64,
+    cosines: *mut f64,
+) {
+    // SAFETY: the caller's contract.
+    let (angles, sines, cosines) = unsafe {
+        (
+            std::slice::from_raw_parts(angles, n),
+            std::slice::from_raw_parts_mut(sines, n),
+            std::slice::from_raw_parts_mut(cosines, n),
+        )
+    };
+    let mut k = 0;
+    while k + 4 <= n {
+        let x: [f64; 4] = [angles[k], angles[k + 1], angles[k + 2], angles[k + 3]];
+        let (s, c) = rne_runtime::sin_cos_array(&x);
+        sines[k..k + 4].copy_from_slice(&s);
+        cosines[k..k + 4].copy_from_slice(&c);
+        k += 4;
+    }
+    while k < n {
+        let (s, c) = rne_runtime::sin_cos(angles[k]);
+        sines[k] = s;
+        cosines[k] = c;
+        k += 1;
+    }
+}

@@ -1,0 +1,46 @@
+//! Any robot at run time, at compiled speed: the optimised straight-line programs that
+//! `derive_dynamics!` emits as Rust, compiled in memory to machine code for the running
+//! processor by Cranelift (the Wasmtime project's code generator), with no Rust build.
+//!
+//! ```no_run
+//! use rne_codegen_core::{Kernel, Scene};
+//! use rne_jit::{JitModel, State};
+//!
+//! let scene = Scene { outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix], ..Scene::default() };
+//! let model = JitModel::load("robots/ur5.urdf".as_ref(), &scene)?;
+//! let (q, qd, qdd) = (vec![0.1; 6], vec![0.0; 6], vec![0.0; 6]);
+//! let tau = model.evaluate_vec(Kernel::InverseDynamics, State { q: &q, qd: &qd, qdd: &qdd, ..State::default() })?;
+//! # Ok::<(), rne_jit::JitError>(())
+//! ```
+//!
+//! Pipeline: the robot is read and its kernels generated as for the macro
+//! ([`rne_codegen_core::generate_programs`]: the same validation, plan, symbolic recursion and
+//! optimisations, the same two-thread build); each kernel's [`Program`] is lowered to
+//! Cranelift IR (`lower.rs`), compiled for the processor's features detected at run time
+//! (AVX2 and FMA on x86-64; AArch64), and called through one audited `unsafe` place
+//! (`code.rs`).
+//!
+//! # Bit for bit
+//! The compiled code performs the program's operations in the program's order, with the
+//! runtime's own sines and cosines: with `fma` off it returns the macro's portable kernel's
+//! bits. With `fma` on, products and sums are fused where this processor has FMA, as the
+//! macro's kernel compiled for it (`-C target-cpu=native`) fuses them; the sines and cosines
+//! are those of the runtime as this program was compiled (fused only in a build with FMA).
+//!
+//! # Limits
+//! - `f64` only, and the derivative kernels in scalars (lanes are the Rust emitter's).
+//! - Processors Cranelift has no backend for (other than x86-64, AArch64, RISC-V 64, s390x)
+//!   get [`JitError::UnsupportedHost`]; rne's interpreter is the fallback there.
+//!
+//! [`Program`]: rne_codegen_core::Program
+#![deny(missing_docs)]
+
+mod batch;
+mod code;
+mod error;
+mod lower;
+mod model;
+
+pub use batch::Batch;
+pub use error::JitError;
+pub use model::{JitModel, State, Timings};

@@ -1,0 +1,383 @@
+//! A robot's kernels compiled in memory: [`JitModel`].
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::default_libcall_names;
+use rne_codegen_core::{generate_programs, read_robot, GeneratedPrograms, Input, Kernel, Scene};
+use rne_symbolic::RobotModel;
+
+use crate::code::{self, Arrays, Code, Entry};
+use crate::error::JitError;
+use crate::lower::{Lowering, SIN_COS};
+
+/// The arrays of one state, borrowed. A kernel reads the ones it takes
+/// ([`Kernel::inputs`]): q has NQ entries, the others NV; the arrays it does not take may be
+/// empty.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub struct State<'a> {
+    /// Configuration q.
+    pub q: &'a [f64],
+    /// Velocity q̇.
+    pub qd: &'a [f64],
+    /// Acceleration q̈.
+    pub qdd: &'a [f64],
+    /// Generalised forces τ.
+    pub tau: &'a [f64],
+}
+
+/// One kernel's compiled parts, called in turn.
+pub(crate) struct Compiled {
+    kernel: Kernel,
+    parts: Vec<Entry>,
+    outputs: usize,
+    scratch: usize,
+}
+
+/// How long the kernels took to obtain.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Timings {
+    /// From the robot model to the optimised programs (every kernel's).
+    pub generation: Duration,
+    /// Cranelift: the programs to machine code in memory.
+    pub compilation: Duration,
+}
+
+/// A robot's kernels compiled in memory for this processor (crate docs).
+///
+/// Every kernel asked for is compiled from the same optimised program the macro emits, and
+/// computes its operations in its order: with `fma` off its results are those of the macro's
+/// kernel bit for bit. Calls check the lengths of their arrays and that the state is finite,
+/// so no input reaches the compiled code that it could read out of bounds. The model is
+/// `Send` and `Sync`: kernels may be called from any number of threads at once. Its code is
+/// freed when it is dropped.
+pub struct JitModel {
+    robot: String,
+    joints: Vec<String>,
+    nq: usize,
+    nv: usize,
+    frames: Vec<String>,
+    parameter_names: Vec<String>,
+    base_parameter_names: Vec<String>,
+    parameter_symbols: Vec<String>,
+    parameters: Vec<f64>,
+    fused: bool,
+    timings: Timings,
+    kernels: Vec<Compiled>,
+    programs: GeneratedPrograms,
+    /// The memory the entries above point into, freed when the model is dropped.
+    _code: Code,
+}
+
+impl JitModel {
+    /// Reads the robot file `path` (TOML spec or URDF) as `scene` says and compiles the
+    /// kernels the scene asks for.
+    pub fn load(path: &Path, scene: &Scene) -> Result<JitModel, JitError> {
+        let origin = path.display().to_string();
+        let model = read_robot(path, &origin, scene)?;
+        JitModel::compile(&model, scene, &origin)
+    }
+
+    /// Compiles the kernels `scene` asks for, for `model`; `source` names the robot file in
+    /// errors.
+    pub fn compile(model: &RobotModel, scene: &Scene, source: &str) -> Result<JitModel, JitError> {
+        let programs = generate_programs(model, scene, source)?;
+        let start = Instant::now();
+        let (mut module, fused) = host_module(scene.fma)?;
+        let mut lowering = Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
+            kernel: programs.kernels.first().map_or(Kernel::InverseDynamics, |k| k.kernel),
+            message,
+        })?;
+        let mut declared = Vec::with_capacity(programs.kernels.len());
+        for k in &programs.kernels {
+            let parts = lowering
+                .lower(&mut module, k.kernel.name(), &k.program)
+                .map_err(|message| JitError::Compile {
+                    kernel: k.kernel,
+                    message,
+                })?;
+            declared.push((k.kernel, k.program.outputs.len(), parts));
+        }
+        module
+            .finalize_definitions()
+            .map_err(|e| JitError::Compile {
+                kernel: Kernel::InverseDynamics,
+                message: e.to_string(),
+            })?;
+        let kernels = declared
+            .into_iter()
+            .map(|(kernel, outputs, parts)| {
+                let scratch = parts.iter().map(|(_, e)| e.scratch).max().unwrap_or(0);
+                let parts = parts
+                    .into_iter()
+                    .map(|(id, extents)| {
+                        let address = module.get_finalized_function(id);
+                        // SAFETY: `id` was defined with the kernels' signature by `Lowering`,
+                        // which recorded `extents`; `module` becomes the model's `Code`, which
+                        // outlives the entries (code.rs).
+                        unsafe { Entry::new(address, extents) }
+                    })
+                    .collect();
+                Compiled {
+                    kernel,
+                    parts,
+                    outputs,
+                    scratch,
+                }
+            })
+            .collect();
+        let timings = Timings {
+            generation: programs.generation_time,
+            compilation: start.elapsed(),
+        };
+        Ok(JitModel {
+            robot: programs.robot.clone(),
+            joints: programs.joints.clone(),
+            nq: programs.nq,
+            nv: programs.dims.nv,
+            frames: programs.frames.clone(),
+            parameter_names: programs.parameter_names.clone(),
+            base_parameter_names: programs.base_parameter_names.clone(),
+            parameter_symbols: programs.parameter_symbols.clone(),
+            parameters: programs.parameter_values.clone(),
+            fused,
+            timings,
+            kernels,
+            programs,
+            _code: Code::new(module),
+        })
+    }
+
+    /// The robot's name.
+    pub fn robot(&self) -> &str {
+        &self.robot
+    }
+
+    /// Joint variable names, in state order.
+    pub fn joints(&self) -> &[String] {
+        &self.joints
+    }
+
+    /// Size of the configuration q (NQ: NV + 1 on a floating base).
+    pub fn nq(&self) -> usize {
+        self.nq
+    }
+
+    /// Size of the velocity and of q̈ and τ (NV).
+    pub fn nv(&self) -> usize {
+        self.nv
+    }
+
+    /// The frames of the kinematics kernels (link names), in output order.
+    pub fn frames(&self) -> &[String] {
+        &self.frames
+    }
+
+    /// The standard parameters' names: the regressor's columns (Pinocchio's order per body).
+    pub fn parameter_names(&self) -> &[String] {
+        &self.parameter_names
+    }
+
+    /// The base parameters' names: the base regressor's columns.
+    pub fn base_parameter_names(&self) -> &[String] {
+        &self.base_parameter_names
+    }
+
+    /// The kernels compiled, in the scene's order.
+    pub fn kernels(&self) -> Vec<Kernel> {
+        self.kernels.iter().map(|k| k.kernel).collect()
+    }
+
+    /// Whether `kernel` was compiled.
+    pub fn has(&self, kernel: Kernel) -> bool {
+        self.compiled(kernel).is_some()
+    }
+
+    /// The number of values `kernel` returns (matrices row-major, tuples concatenated).
+    pub fn output_len(&self, kernel: Kernel) -> Option<usize> {
+        self.compiled(kernel).map(|k| k.outputs)
+    }
+
+    /// Whether multiply-adds are fused: the scene's `fma` on a processor with FMA.
+    pub fn fused(&self) -> bool {
+        self.fused
+    }
+
+    /// How long generation and compilation took.
+    pub fn timings(&self) -> Timings {
+        self.timings
+    }
+
+    /// The programs compiled: what the kernels compute, operation by operation.
+    pub fn programs(&self) -> &GeneratedPrograms {
+        &self.programs
+    }
+
+    /// The names of the run-time parameters the kernels read (`parameters: runtime`: the
+    /// spec's named parameters; `base`: the base parameters); empty for constant ones.
+    pub fn parameter_symbols(&self) -> &[String] {
+        &self.parameter_symbols
+    }
+
+    /// Their values, the robot file's until [`JitModel::set_parameters`].
+    pub fn parameters(&self) -> &[f64] {
+        &self.parameters
+    }
+
+    /// Sets the run-time parameters' values, in [`JitModel::parameter_symbols`]' order.
+    pub fn set_parameters(&mut self, values: &[f64]) -> Result<(), JitError> {
+        if values.len() != self.parameters.len() {
+            return Err(JitError::ParameterLength {
+                got: values.len(),
+                expected: self.parameters.len(),
+            });
+        }
+        self.parameters.copy_from_slice(values);
+        Ok(())
+    }
+
+    fn compiled(&self, kernel: Kernel) -> Option<&Compiled> {
+        self.kernels.iter().find(|k| k.kernel == kernel)
+    }
+
+    /// `kernel` at `state` into `out` (its [`JitModel::output_len`] values). The arrays the
+    /// kernel takes must have the robot's lengths and finite values (an error otherwise).
+    pub fn evaluate(&self, kernel: Kernel, state: State<'_>, out: &mut [f64]) -> Result<(), JitError> {
+        let compiled = self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })?;
+        self.check_state(kernel, &state)?;
+        if out.len() != compiled.outputs {
+            return Err(JitError::OutputLength {
+                kernel,
+                got: out.len(),
+                expected: compiled.outputs,
+            });
+        }
+        self.run(compiled, state, &self.parameters, out);
+        Ok(())
+    }
+
+    /// `kernel` at `state`, as a new vector.
+    pub fn evaluate_vec(&self, kernel: Kernel, state: State<'_>) -> Result<Vec<f64>, JitError> {
+        let len = self.output_len(kernel).ok_or(JitError::MissingKernel { kernel })?;
+        let mut out = vec![0.0; len];
+        self.evaluate(kernel, state, &mut out)?;
+        Ok(out)
+    }
+
+    /// The base parameters π_b of the standard parameters `standard` (the `base_parameters`
+    /// kernel; NP values in, NB out).
+    pub fn base_parameters(&self, standard: &[f64]) -> Result<Vec<f64>, JitError> {
+        let kernel = Kernel::BaseParameters;
+        let compiled = self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })?;
+        let expected = self.parameter_names.len();
+        if standard.len() != expected {
+            return Err(JitError::InputLength {
+                kernel,
+                input: Input::Standard,
+                got: standard.len(),
+                expected,
+            });
+        }
+        check_finite(kernel, Input::Standard, standard)?;
+        let mut out = vec![0.0; compiled.outputs];
+        self.run(compiled, State::default(), standard, &mut out);
+        Ok(out)
+    }
+
+    /// Runs every part of `compiled`; the arrays are checked.
+    pub(crate) fn run(&self, compiled: &Compiled, state: State<'_>, parameters: &[f64], out: &mut [f64]) {
+        let arrays = Arrays {
+            q: state.q,
+            qd: state.qd,
+            qdd: state.qdd,
+            tau: state.tau,
+            parameters,
+        };
+        let mut scratch = vec![0.0; compiled.scratch];
+        for part in &compiled.parts {
+            part.call(arrays, out, &mut scratch)
+                .expect("the arrays were checked against the kernel's inputs");
+        }
+    }
+
+    /// The lengths and finiteness of the arrays `kernel` takes.
+    pub(crate) fn check_state(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
+        for &input in kernel.inputs() {
+            let (values, expected) = match input {
+                Input::Q => (state.q, self.nq),
+                Input::Qd => (state.qd, self.nv),
+                Input::Qdd => (state.qdd, self.nv),
+                Input::Tau => (state.tau, self.nv),
+                Input::Standard => {
+                    return Err(JitError::MissingKernel { kernel });
+                }
+            };
+            if values.len() != expected {
+                return Err(JitError::InputLength {
+                    kernel,
+                    input,
+                    got: values.len(),
+                    expected,
+                });
+            }
+            check_finite(kernel, input, values)?;
+        }
+        Ok(())
+    }
+
+    /// The compiled kernel, for the batch functions.
+    pub(crate) fn compiled_kernel(&self, kernel: Kernel) -> Result<&Compiled, JitError> {
+        self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })
+    }
+}
+
+impl Compiled {
+    /// Values per call.
+    pub(crate) fn outputs(&self) -> usize {
+        self.outputs
+    }
+}
+
+/// An error naming the first non-finite entry of `values`.
+fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitError> {
+    match values.iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(JitError::NonFinite {
+            kernel,
+            input,
+            index,
+            value: values[index],
+        }),
+    }
+}
+
+/// A JIT module for this processor, its features detected at run time, with the runtime's
+/// sines and cosines linked in; and whether multiply-adds are fused there (`fma` asked for and
+/// the processor has FMA).
+fn host_module(fma: bool) -> Result<(JITModule, bool), JitError> {
+    let mut flags = settings::builder();
+    let set = |flags: &mut settings::Builder, name: &str, value: &str| {
+        flags
+            .set(name, value)
+            .map_err(|e| JitError::UnsupportedHost(format!("setting {name}: {e}")))
+    };
+    set(&mut flags, "opt_level", "speed")?;
+    set(&mut flags, "use_colocated_libcalls", "false")?;
+    set(&mut flags, "is_pic", "false")?;
+    set(&mut flags, "enable_verifier", if cfg!(debug_assertions) { "true" } else { "false" })?;
+    let isa = cranelift_native::builder()
+        .map_err(|e| JitError::UnsupportedHost(e.to_owned()))?
+        .finish(settings::Flags::new(flags))
+        .map_err(|e| JitError::UnsupportedHost(e.to_string()))?;
+    // AArch64 always has fused multiply-add; x86-64 when the processor reports FMA.
+    let processor_fuses = cfg!(target_arch = "aarch64")
+        || isa
+            .isa_flags()
+            .iter()
+            .any(|flag| flag.name == "has_fma" && flag.as_bool() == Some(true));
+    let mut builder = JITBuilder::with_isa(isa, default_libcall_names());
+    builder.symbol(SIN_COS, code::sin_cos_array as *const u8);
+    Ok((JITModule::new(builder), fma && processor_fuses))
+}
