@@ -99,7 +99,10 @@ pub fn generate_programs(
     let parameter_values = (0..parameter_symbols.len())
         .map(|i| {
             let symbol = Symbol::Parameter(i as u16);
-            plan.dynamics.model.parameter_value(symbol).unwrap_or(f64::NAN)
+            plan.dynamics
+                .model
+                .parameter_value(symbol)
+                .unwrap_or(f64::NAN)
         })
         .collect();
     let base_parameters = built.base_parameters.as_ref();

@@ -17,6 +17,9 @@ pub enum CliError {
     /// kernel the engine does not have).
     #[error(transparent)]
     Evaluation(#[from] rne_interpreted::Error),
+    /// The JIT could not compile the model or call a kernel.
+    #[error(transparent)]
+    Jit(#[from] rne_jit::JitError),
     /// The numeric reference rejected the model or the state.
     #[error("numeric reference: {0}")]
     Reference(#[from] rne_reference::ReferenceError),
