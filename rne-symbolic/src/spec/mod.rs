@@ -95,7 +95,7 @@ mod warning;
 use std::path::Path;
 
 /// The readers' common entry points, re-exported where callers have always found them.
-pub use crate::input::{load_robot, parse_robot, LoadOptions, RobotFormat};
+pub use crate::input::{decode, load_robot, parse_robot, LoadOptions, RobotFormat};
 pub use diagnostic::Diagnostic;
 pub use error::{SpecError, SpecErrorKind};
 pub use warning::{SpecWarning, SpecWarningKind};
@@ -113,9 +113,7 @@ use crate::RobotModel;
 /// Reads the spec file at `path` (docs/design.md §2.1); errors name the file as `path` displays.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        SpecError::new(SpecErrorKind::Io, format!("cannot read the spec: {e}")).locate(&origin, "")
-    })?;
+    let text = input::read_text(path, &origin, "spec")?;
     parse_str(&text, &origin, options)
 }
 
