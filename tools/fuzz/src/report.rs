@@ -26,6 +26,8 @@ pub enum FailureClass {
     BadModel,
     /// The generator wrote a module that does not lex as Rust.
     BadModule,
+    /// The harness's own mutation panicked (a bug of `rne-fuzz`, not of rne).
+    Mutator,
 }
 
 /// One failing input.

@@ -1,6 +1,7 @@
 //! The targets: how an input is drawn for (target, seed, iteration), how it is run, and how
 //! its outcome is counted.
 
+use std::panic::{self, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -64,6 +65,22 @@ impl Input {
             .map(|a| a.description.as_str())
             .collect();
         format!("{}: {}", self.seed_file, mutations.join("; "))
+    }
+
+    /// The input of a mutation that panicked: its place only (`--replay` shows the panic).
+    fn unmade(target: Target, seed: u64, iteration: u64) -> Input {
+        Input {
+            target,
+            seed,
+            iteration,
+            seed_file: "(the mutation panicked: replay it)".to_owned(),
+            file: String::new(),
+            format: RobotFormat::Toml,
+            bytes: Vec::new(),
+            options: LoadOptions::default(),
+            applied: Vec::new(),
+            scene: None,
+        }
     }
 
     fn focus(&self) -> Vec<Focus> {
@@ -197,7 +214,7 @@ fn generate_input(rng: &mut ChaCha8Rng, corpus: &Corpus) -> Input {
 fn scene(rng: &mut ChaCha8Rng) -> Scene {
     Scene {
         outputs: Kernel::ALL.to_vec(),
-        gravity: rng.gen_bool(0.1).then(|| [0.0, 0.0, 0.0]),
+        gravity: rng.gen_bool(0.1).then_some([0.0, 0.0, 0.0]),
         zero_velocities: rng.gen_bool(0.1),
         parameters: *pick(
             rng,
@@ -286,7 +303,7 @@ fn model_fault(model: &RobotModel) -> Option<String> {
             .chain(link.axis)
             .chain(link.com)
             .chain(link.inertia.concat());
-        if !values.into_iter().all(f64::is_finite) || !(link.mass >= 0.0) {
+        if !values.into_iter().all(f64::is_finite) || !link.mass.is_finite() || link.mass < 0.0 {
             return Some(format!(
                 "link '{}' has non-finite or negative numbers",
                 link.name
@@ -405,8 +422,22 @@ pub fn run(
         if out_of_time || out_of_inputs {
             break;
         }
-        let input = input(target, &corpus, config.seed, iteration);
-        run_one(&mut report, input, config);
+        // A mutation that panics is the harness's bug, reported as such (on this thread, the
+        // panic hook records it instead of printing it).
+        match panic::catch_unwind(AssertUnwindSafe(|| {
+            input(target, &corpus, config.seed, iteration)
+        })) {
+            Ok(input) => run_one(&mut report, input, config),
+            Err(_) => {
+                let unmade = Input::unmade(target, config.seed, iteration);
+                report.inputs += 1;
+                report.fail(
+                    FailureClass::Mutator,
+                    "the mutation panicked".to_owned(),
+                    &unmade,
+                );
+            }
+        }
         report.elapsed = start.elapsed();
         progress(&report);
         iteration += 1;

@@ -258,8 +258,8 @@ fn relink(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
     let (table, name) = pick_link(rng, spec)?;
     let names = spec.names();
     let target = match rng.gen_range(0..4) {
-        0 => pick(rng, &names).clone(),
-        1 => name.clone(),
+        0 if !names.is_empty() => pick(rng, &names).clone(),
+        0 | 1 => name.clone(),
         2 => pick(rng, odd::NAMES).to_string(),
         _ => format!("{name}-orphan"),
     };
@@ -518,7 +518,7 @@ fn long_chain(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
 fn rename_link(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
     let (table, name) = pick_link(rng, spec)?;
     let names = spec.names();
-    let new = if rng.gen_bool(0.5) {
+    let new = if rng.gen_bool(0.5) && !names.is_empty() {
         pick(rng, &names).clone()
     } else {
         pick(rng, odd::NAMES).escape_default().to_string()
