@@ -82,6 +82,9 @@ pub struct Config {
     pub budget: Duration,
     /// The repository whose fixture robot files seed the mutations.
     pub root: PathBuf,
+    /// The longest chain of copied joints or links a mutation builds (of
+    /// [`mutate::CHAIN_LENGTHS`]): 3000 by default; CI's debug build takes 100.
+    pub longest_chain: usize,
 }
 
 impl Config {
@@ -95,9 +98,13 @@ impl Config {
             first: 0,
             budget: DEFAULT_BUDGET,
             root,
+            longest_chain: DEFAULT_LONGEST_CHAIN,
         }
     }
 }
+
+/// The longest chain a mutation builds unless told otherwise.
+pub const DEFAULT_LONGEST_CHAIN: usize = 3000;
 
 /// The time an input may take before it counts as a hang.
 pub const DEFAULT_BUDGET: Duration = Duration::from_secs(10);

@@ -11,7 +11,9 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use clap::Parser;
-use rne_fuzz::{input, repository_root, run, Config, Corpus, Target, DEFAULT_BUDGET};
+use rne_fuzz::{
+    input, repository_root, run, Config, Corpus, Target, DEFAULT_BUDGET, DEFAULT_LONGEST_CHAIN,
+};
 
 /// Fuzzes rne's robot readers (urdf, toml) and its generator (generate).
 #[derive(Parser, Debug)]
@@ -35,6 +37,9 @@ struct Args {
     /// Seconds an input may take before it is a hang.
     #[arg(long, default_value_t = DEFAULT_BUDGET.as_secs_f64())]
     budget: f64,
+    /// The longest chain of copied joints or links a mutation builds (100, 1000 or 3000).
+    #[arg(long, default_value_t = DEFAULT_LONGEST_CHAIN)]
+    longest_chain: usize,
     /// The repository whose fixtures seed the mutations (default: the one this was built in).
     #[arg(long)]
     root: Option<PathBuf>,
@@ -64,6 +69,7 @@ fn main() -> ExitCode {
         first: args.first,
         budget: Duration::from_secs_f64(args.budget),
         root: args.root.clone().unwrap_or_else(repository_root),
+        longest_chain: args.longest_chain,
     };
     if let Some(iteration) = args.replay {
         return replay(&targets, &config, iteration);
@@ -125,7 +131,7 @@ fn replay(targets: &[Target], config: &Config, iteration: u64) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let input = input(*target, &corpus, config.seed, iteration);
+    let input = input(*target, &corpus, config, iteration);
     eprintln!(
         "{}\nfile {}, {:?}, {:?}",
         input.describe(),

@@ -122,8 +122,11 @@ fn generator(target: Target, seed: u64, iteration: u64) -> ChaCha8Rng {
     rng
 }
 
-/// Input `iteration` of `target` in the run seeded `seed`, over the fixtures of `corpus`.
-pub fn input(target: Target, corpus: &Corpus, seed: u64, iteration: u64) -> Input {
+/// Input `iteration` of `target` in the run `config` says (its seed and longest chains), over
+/// the fixtures of `corpus`.
+pub fn input(target: Target, corpus: &Corpus, config: &Config, iteration: u64) -> Input {
+    let seed = config.seed;
+    let longest = config.longest_chain;
     let mut rng = generator(target, seed, iteration);
     let options = LoadOptions {
         symbolic_parameters: rng.gen_bool(0.3),
@@ -131,9 +134,9 @@ pub fn input(target: Target, corpus: &Corpus, seed: u64, iteration: u64) -> Inpu
         free_mimic: rng.gen_bool(0.2),
     };
     let mut input = match target {
-        Target::Urdf => mutant(&mut rng, corpus, RobotFormat::Urdf, true),
-        Target::Toml => mutant(&mut rng, corpus, RobotFormat::Toml, true),
-        Target::Generate => generate_input(&mut rng, corpus),
+        Target::Urdf => mutant(&mut rng, corpus, RobotFormat::Urdf, true, longest),
+        Target::Toml => mutant(&mut rng, corpus, RobotFormat::Toml, true, longest),
+        Target::Generate => generate_input(&mut rng, corpus, longest),
     };
     input.target = target;
     input.seed = seed;
@@ -145,15 +148,21 @@ pub fn input(target: Target, corpus: &Corpus, seed: u64, iteration: u64) -> Inpu
 
 /// A fixture of `format` with one to four mutations: structure-aware ones, then (when
 /// `bytes`) sometimes byte-level ones.
-fn mutant(rng: &mut ChaCha8Rng, corpus: &Corpus, format: RobotFormat, bytes: bool) -> Input {
+fn mutant(
+    rng: &mut ChaCha8Rng,
+    corpus: &Corpus,
+    format: RobotFormat,
+    bytes: bool,
+    longest: usize,
+) -> Input {
     let seed = pick(rng, corpus.of(format));
     let mut text = seed.text.clone();
     let mut applied = Vec::new();
     let structural = rng.gen_range(usize::from(!bytes)..=3);
     for _ in 0..structural {
         applied.push(match format {
-            RobotFormat::Urdf => mutate::urdf::mutate(rng, &mut text),
-            RobotFormat::Toml => mutate::toml::mutate(rng, &mut text),
+            RobotFormat::Urdf => mutate::urdf::mutate(rng, &mut text, longest),
+            RobotFormat::Toml => mutate::toml::mutate(rng, &mut text, longest),
         });
     }
     let mut raw = text.into_bytes();
@@ -185,7 +194,7 @@ fn mutant(rng: &mut ChaCha8Rng, corpus: &Corpus, format: RobotFormat, bytes: boo
 }
 
 /// A random robot (three inputs in five) or a mutated fixture, and a random scene.
-fn generate_input(rng: &mut ChaCha8Rng, corpus: &Corpus) -> Input {
+fn generate_input(rng: &mut ChaCha8Rng, corpus: &Corpus, longest: usize) -> Input {
     let format = if rng.gen_bool(0.5) {
         RobotFormat::Toml
     } else {
@@ -201,10 +210,10 @@ fn generate_input(rng: &mut ChaCha8Rng, corpus: &Corpus) -> Input {
             seed_file: "random".to_owned(),
             file: format!("random.{extension}"),
             bytes: text.into_bytes(),
-            ..mutant(rng, corpus, format, false)
+            ..mutant(rng, corpus, format, false, longest)
         }
     } else {
-        mutant(rng, corpus, format, false)
+        mutant(rng, corpus, format, false, longest)
     };
     input.scene = Some(scene(rng));
     input
@@ -425,7 +434,7 @@ pub fn run(
         // A mutation that panics is the harness's bug, reported as such (on this thread, the
         // panic hook records it instead of printing it).
         match panic::catch_unwind(AssertUnwindSafe(|| {
-            input(target, &corpus, config.seed, iteration)
+            input(target, &corpus, config, iteration)
         })) {
             Ok(input) => run_one(&mut report, input, config),
             Err(_) => {

@@ -48,6 +48,22 @@ impl Applied {
     }
 }
 
+/// The lengths of the long chains the mutations build (copies of a joint or a link).
+pub const CHAIN_LENGTHS: [usize; 3] = [100, 1000, 3000];
+
+/// A chain length of [`CHAIN_LENGTHS`], at most `longest` (and at least the shortest).
+pub fn chain_length(rng: &mut ChaCha8Rng, longest: usize) -> usize {
+    let allowed: Vec<usize> = CHAIN_LENGTHS
+        .into_iter()
+        .filter(|&n| n <= longest)
+        .collect();
+    if allowed.is_empty() {
+        CHAIN_LENGTHS[0]
+    } else {
+        *pick(rng, &allowed)
+    }
+}
+
 /// A uniformly chosen element of `items` (which must not be empty).
 pub fn pick<'a, T>(rng: &mut ChaCha8Rng, items: &'a [T]) -> &'a T {
     &items[rng.gen_range(0..items.len())]

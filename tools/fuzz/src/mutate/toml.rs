@@ -172,8 +172,8 @@ fn tokens(value: &str) -> Vec<Range<usize>> {
     found
 }
 
-/// Applies one random TOML-spec mutation to `text`.
-pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String) -> Applied {
+/// Applies one random TOML-spec mutation to `text`; chains are at most `longest` links long.
+pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String, longest: usize) -> Applied {
     let mut spec = Spec::parse(text);
     let applied = match rng.gen_range(0..16) {
         0 => remove_link(rng, &mut spec),
@@ -188,7 +188,7 @@ pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String) -> Applied {
         11 => parameters(rng, &mut spec),
         12 => nest(rng, &mut spec),
         13 => rename_link(rng, &mut spec),
-        14 => long_chain(rng, &mut spec),
+        14 => long_chain(rng, &mut spec, longest),
         _ => top_level(rng, &mut spec),
     };
     *text = spec.text();
@@ -481,7 +481,7 @@ fn nest(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
 
 /// A link copied many times, each copy the child of the previous one (the default parent) and
 /// with its own joint variable: a long chain for the reader's scaling.
-fn long_chain(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
+fn long_chain(rng: &mut ChaCha8Rng, spec: &mut Spec, longest: usize) -> Option<Applied> {
     let (table, name) = pick_link(rng, spec)?;
     let block: Vec<String> = spec.lines[table.lines.clone()]
         .iter()
@@ -492,7 +492,7 @@ fn long_chain(rng: &mut ChaCha8Rng, spec: &mut Spec) -> Option<Applied> {
         .cloned()
         .collect();
     let fixed = block.iter().any(|l| l.contains("\"fixed\""));
-    let copies = *pick(rng, &[100, 1000, 3000]);
+    let copies = super::chain_length(rng, longest);
     let mut chain = Vec::new();
     for k in 0..copies {
         chain.extend(block.iter().cloned());
@@ -593,7 +593,7 @@ mod tests {
         for seed in 0..400 {
             let run = || {
                 let mut text = SPEC.to_owned();
-                let applied = mutate(&mut ChaCha8Rng::seed_from_u64(seed), &mut text);
+                let applied = mutate(&mut ChaCha8Rng::seed_from_u64(seed), &mut text, 3000);
                 (text, applied)
             };
             assert_eq!(run(), run());

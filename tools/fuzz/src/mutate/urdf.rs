@@ -138,8 +138,8 @@ fn tag_before(text: &str, at: usize) -> String {
         .collect()
 }
 
-/// Applies one random URDF mutation to `text`.
-pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String) -> Applied {
+/// Applies one random URDF mutation to `text`; chains are at most `longest` joints long.
+pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String, longest: usize) -> Applied {
     let applied = match rng.gen_range(0..15) {
         0 => remove_element(rng, text),
         1 => duplicate_element(rng, text),
@@ -152,7 +152,7 @@ pub fn mutate(rng: &mut ChaCha8Rng, text: &mut String) -> Applied {
         10 => rename(rng, text),
         11 => entity(rng, text),
         12 => nest(rng, text),
-        13 => long_chain(rng, text),
+        13 => long_chain(rng, text, longest),
         _ => break_root(rng, text),
     };
     applied.unwrap_or_else(|| Applied::anywhere("nothing to mutate"))
@@ -446,7 +446,7 @@ fn nest(rng: &mut ChaCha8Rng, text: &mut String) -> Option<Applied> {
 
 /// A joint and its child link copied many times, each copy hanging from the previous one and
 /// (sometimes) mimicking it: a long chain for the reader's and the tree's scaling.
-fn long_chain(rng: &mut ChaCha8Rng, text: &mut String) -> Option<Applied> {
+fn long_chain(rng: &mut ChaCha8Rng, text: &mut String, longest: usize) -> Option<Applied> {
     let joints = elements(text, "joint");
     let joint = pick_some(rng, &joints)?.clone();
     let name = joint.name(text);
@@ -458,7 +458,7 @@ fn long_chain(rng: &mut ChaCha8Rng, text: &mut String) -> Option<Applied> {
                 .find(|a| a.key == "link")
         })
         .map(|a| text[a.value].to_owned())?;
-    let copies = *pick(rng, &[100, 1000, 3000]);
+    let copies = super::chain_length(rng, longest);
     let mimic = rng.gen_bool(0.3);
     let mut chain = String::new();
     for k in 0..copies {
@@ -558,7 +558,7 @@ mod tests {
         for seed in 0..400 {
             let run = || {
                 let mut text = URDF.to_owned();
-                let applied = mutate(&mut ChaCha8Rng::seed_from_u64(seed), &mut text);
+                let applied = mutate(&mut ChaCha8Rng::seed_from_u64(seed), &mut text, 3000);
                 (text, applied)
             };
             let (text, applied) = run();
