@@ -47,6 +47,7 @@
 mod builder;
 mod dispatch;
 mod emit;
+mod emit_c;
 mod error;
 mod kernel;
 mod latency;
@@ -56,6 +57,7 @@ mod model_type;
 mod module;
 mod params;
 mod program;
+mod programs;
 mod scene;
 mod shape;
 mod split;
@@ -63,6 +65,7 @@ mod split;
 pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use dispatch::DISPATCH_FROM;
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
+pub use emit_c::{c_identifier, emit_c, generate_c, CModule};
 pub use error::CodegenError;
 pub use kernel::{
     articulated_applies, build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel,
@@ -74,6 +77,7 @@ pub use module::{
     GeneratedModule, KernelReport,
 };
 pub use program::{Instr, Operand, Program};
+pub use programs::{module_programs, ModulePrograms};
 pub use scene::{
     ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH,
 };

@@ -511,7 +511,7 @@ pub fn generate(
 }
 
 /// Whether `kernel` is built from the base parameters.
-fn reads_base(kernel: Kernel) -> bool {
+pub(crate) fn reads_base(kernel: Kernel) -> bool {
     matches!(kernel, Kernel::BaseRegressor | Kernel::BaseParameters)
 }
 
@@ -589,7 +589,7 @@ fn started(time: Duration) -> Instant {
 /// Builds `forward_dynamics` both ways and keeps the one `method` asks for, or with `Auto` the
 /// one of lower cost ([`OpCount::cost`]): the choice, and the kernel built the chosen way (so
 /// that the module does not build it a third time).
-fn choose_forward_dynamics(
+pub(crate) fn choose_forward_dynamics(
     dynamics: &SymbolicDynamics,
     setup: &KernelSetup,
     method: ForwardDynamicsMethod,
