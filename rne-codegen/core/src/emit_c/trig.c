@@ -219,8 +219,9 @@ static void rne_sin_cos_large(double x, double *sin_x, double *cos_x) {
     double hi, lo, p, p_error, tail, r_hi, r_lo, s, c;
     int i;
     if (!(x - x == 0.0)) {
-        *sin_x = x - x;
-        *cos_x = x - x;
+        /* Rust's f64::NAN. */
+        *sin_x = rne_from_bits(UINT64_C(0x7FF8000000000000));
+        *cos_x = *sin_x;
         return;
     }
     for (i = 0; i < 3; i++) {
