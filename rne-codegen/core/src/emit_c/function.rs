@@ -240,7 +240,16 @@ impl Signature {
         module: &ModulePrograms,
         outs: &[OutArray],
     ) -> String {
-        let mut doc = format!("{}\n\n", kernel.summary());
+        // The Rust module's names of the sizes and name arrays, as the header names them.
+        let summary = kernel
+            .summary()
+            .replace("`PARAMETERS`", &format!("{prefix}_parameter_names"))
+            .replace(
+                "`BASE_PARAMETERS`",
+                &format!("{prefix}_base_parameter_names"),
+            )
+            .replace("`FRAMES`", &format!("{prefix}_frame_names"));
+        let mut doc = format!("{summary}\n\n");
         if self.takes_params {
             writeln!(
                 doc,
