@@ -3,8 +3,9 @@
 # bit for bit: UR5 and the Panda with its hand (9 joints), inverse dynamics, M, forward
 # dynamics and both derivatives. The C (`bench.c`) is built with `gcc -O2` and with
 # `gcc -O3 -march=native`; the Rust (`src/main.rs`, the same states and loop) in a release
-# build for baseline x86-64 and with `-C target-cpu=native`. Each figure is the best of 7 runs
-# of at least 0.1 s over 1024 states, in nanoseconds per call.
+# build for baseline x86-64 and with `-C target-cpu=native`. Each figure is the fastest run's
+# time per call (runs of 128 calls on consecutive states of 1024, repeated for a second), in
+# nanoseconds.
 #
 #   bash tools/cbench/run.sh          # from anywhere; CC overrides gcc, RNE the rne binary
 #                                     # (default: a release build, made first)
