@@ -16,7 +16,6 @@ use crate::kernel::{Input, Kernel, Shape};
 use crate::program::{Instr, Operand, Program};
 use crate::programs::ModulePrograms;
 use crate::scene::ParameterMode;
-use crate::shape::Layout;
 use crate::split::plan_parts;
 
 /// Programs with more instructions than this are written as a chain of functions of
@@ -24,8 +23,10 @@ use crate::split::plan_parts;
 /// function's length (`-ftime-report`: mostly "LRA hard reg assignment"): at `-O2`, the
 /// Panda's `forward_dynamics_derivatives` (11 906 instructions) took 11.2 s of CPU as one
 /// function, 9.0 s in parts of 4 000 instructions, 6.7 s of 2 000, 4.2 s of 1 000, 3.5 s of
-/// 500 and 4.1 s of 250; its time per call did not change measurably (within the noise of a
-/// shared machine).
+/// 500 and 4.1 s of 250; its time per call, and that of `inverse_dynamics_derivatives`
+/// (7 186), did not change measurably, split or not (within the ±15 % noise of a shared
+/// machine). In parts of 500, GCC compiles the eight dynamics kernels of Talos (NV 38) in
+/// 36 s and of G1 with hands (NV 49) in 47 s of CPU at `-O2`.
 pub(super) const SPLIT_ABOVE: usize = 3000;
 
 /// Instructions per part of a split kernel.
@@ -56,16 +57,16 @@ pub(super) fn emit(
     fields: &[String],
 ) -> Result<Function, CodegenError> {
     let error = |reason: String| CodegenError::CKernel { kernel, reason };
-    let expected = Layout::of(kernel, module.dims).len();
+    let outs = out_arrays(prefix, kernel, module).map_err(error)?;
+    if let Some(empty) = outs.iter().find(|a| a.len == 0) {
+        return Err(error(format!("its result `{}` would be empty", empty.name)));
+    }
+    let expected = outs.iter().map(|a| a.len).sum::<usize>().max(1);
     if program.outputs.len() != expected {
         return Err(error(format!(
             "its program has {} outputs for a result of {expected} numbers",
             program.outputs.len()
         )));
-    }
-    let outs = out_arrays(prefix, kernel, module);
-    if let Some(empty) = outs.iter().find(|a| a.len == 0) {
-        return Err(error(format!("its result `{}` would be empty", empty.name)));
     }
     let reads = symbols_read(program).map_err(error)?;
     let signature = Signature::new(prefix, kernel, module, &outs);
@@ -78,22 +79,7 @@ pub(super) fn emit(
     let places = places(&outs);
     let mut definition = String::with_capacity(40 * program.instrs.len() + 1024);
     if program.instrs.len() > SPLIT_ABOVE {
-        let prologue = body.prologue_flags();
-        let named: Vec<bool> = prologue.iter().map(|&p| !p).collect();
-        let plan = plan_parts(program, &named, &prologue, PART_LEN);
-        let head = parts::Head {
-            name: format!("{prefix}_{}", kernel.name()),
-            parameters: signature.inputs.clone(),
-            arguments: signature.arguments.clone(),
-        };
-        parts::write(
-            &body,
-            &plan,
-            &head,
-            &places,
-            &signature.prototype,
-            &mut definition,
-        );
+        write_parts(prefix, kernel, &body, &signature, &places, &mut definition);
     } else {
         definition.push_str(&signature.prototype);
         definition.push_str(" {\n");
@@ -104,6 +90,26 @@ pub(super) fn emit(
         declaration,
         definition,
     })
+}
+
+/// The kernel as parts of [`PART_LEN`] instructions and the function calling them.
+fn write_parts(
+    prefix: &str,
+    kernel: Kernel,
+    body: &Body,
+    signature: &Signature,
+    places: &[(&str, usize)],
+    out: &mut String,
+) {
+    let prologue = body.prologue_flags();
+    let named: Vec<bool> = prologue.iter().map(|&p| !p).collect();
+    let plan = plan_parts(body.program, &named, &prologue, PART_LEN);
+    let head = parts::Head {
+        name: format!("{prefix}_{}", kernel.name()),
+        parameters: signature.inputs.clone(),
+        arguments: signature.arguments.clone(),
+    };
+    parts::write(body, &plan, &head, places, &signature.prototype, out);
 }
 
 /// Every input symbol the program reads, ordered; an error for a vector lane.
@@ -128,8 +134,13 @@ fn symbols_read(program: &Program) -> Result<BTreeSet<Symbol>, String> {
     Ok(reads)
 }
 
-/// The arrays `kernel` writes (none for a scalar, which it returns), in output order.
-fn out_arrays(prefix: &str, kernel: Kernel, module: &ModulePrograms) -> Vec<OutArray> {
+/// The arrays `kernel` writes (none for a scalar, which it returns), in output order; an error
+/// for a shape C has no layout for.
+fn out_arrays(
+    prefix: &str,
+    kernel: Kernel,
+    module: &ModulePrograms,
+) -> Result<Vec<OutArray>, String> {
     let (nv, nf, np, nb) = (
         module.dims.nv,
         module.dims.nf,
@@ -148,7 +159,7 @@ fn out_arrays(prefix: &str, kernel: Kernel, module: &ModulePrograms) -> Vec<OutA
         len: nv * nv,
         doc: format!("{what}, row-major: {name}[{nv}*i + j] is row i, column j."),
     };
-    match kernel.shape() {
+    Ok(match kernel.shape() {
         Shape::Scalar => Vec::new(),
         Shape::Vector => out(nv, format!("the {nv} values, in the order of qd.")),
         Shape::Matrix => out(nv * nv, format!("row-major: out[{nv}*i + j] is row i, column j.")),
@@ -182,8 +193,8 @@ fn out_arrays(prefix: &str, kernel: Kernel, module: &ModulePrograms) -> Vec<OutA
             format!("row-major {nv} x {nb}: out[{nb}*i + j] is row i, column j the parameter {prefix}_base_parameter_names[j]."),
         ),
         Shape::BaseVector => out(nb, format!("the {nb} base parameters, in the order of {prefix}_base_parameter_names.")),
-        other => unreachable!("no C layout for the shape {other:?}"),
-    }
+        other => return Err(format!("C has no layout for its shape {other:?}")),
+    })
 }
 
 /// A function's parameters and prototype.
