@@ -50,6 +50,17 @@ rne_codegen::derive_dynamics! {
 }
 
 rne_codegen::derive_dynamics! {
+    /// Friction (the sign of the velocities) and a revolute joint following another (the
+    /// sine and cosine of something other than a joint angle).
+    mod geared {
+        robot: "fixtures/robots/geared-arm.toml",
+        outputs: [inverse_dynamics, mass_matrix, forward_dynamics, friction_torques,
+                  inverse_dynamics_derivatives, frame_placements],
+        friction: include,
+    }
+}
+
+rne_codegen::derive_dynamics! {
     /// The base parameters read at run time.
     mod elbow_base {
         robot: "fixtures/robots/planar-elbow.toml",
@@ -759,7 +770,8 @@ fn runtime_parameters_give_the_rust_kernels_values() {
 }
 
 /// Modules generated here: UR5 with every kernel (a compiled Rust kernel for each), a
-/// floating base, and base parameters; and UR5's derivatives built in lanes, which C builds in
+/// floating base, friction and a mimic joint, and base parameters; and UR5's derivatives
+/// built in lanes, which C builds in
 /// scalars: within 1e-15 of them (relative to the largest entry) at random states, 2e-14 at
 /// the zero state.
 #[test]
@@ -788,6 +800,25 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
             2,
         ),
         Case::new(
+            "geared",
+            &fixture("geared-arm.toml", false),
+            &Scene {
+                friction: true,
+                ..scene(
+                    &[
+                        Kernel::InverseDynamics,
+                        Kernel::MassMatrix,
+                        Kernel::ForwardDynamics,
+                        Kernel::FrictionTorques,
+                        Kernel::InverseDynamicsDerivatives,
+                        Kernel::FramePlacements,
+                    ],
+                    ParameterMode::Constant,
+                )
+            },
+            7,
+        ),
+        Case::new(
             "elbow_base",
             &fixture("planar-elbow.toml", false),
             &scene(
@@ -813,8 +844,12 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
             4,
         ),
     ];
-    let from_standard = format!("void {}_params_from_standard(", cases[2].c.name);
-    assert!(cases[2].c.header.contains(&from_standard));
+    let geared_c = &cases[2].c.source;
+    for helper in ["rne_sign(", "rne_sin(", "rne_cos("] {
+        assert!(geared_c.contains(helper), "the geared arm calls {helper}");
+    }
+    let from_standard = format!("void {}_params_from_standard(", cases[3].c.name);
+    assert!(cases[3].c.header.contains(&from_standard));
     each_in_parallel(&cases, |case| {
         type Compiled = Box<dyn Fn(Kernel, &State) -> Option<Vec<f64>>>;
         let (compiled, tolerance): (Compiled, fn(usize) -> f64) = match case.label.as_str() {
@@ -832,6 +867,13 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
                 Box::new(
                     compiled!(hopper, (); inverse_dynamics, mass_matrix, forward_dynamics,
                     inverse_dynamics_derivatives, frame_placements),
+                ),
+                |_| 0.0,
+            ),
+            "geared" => (
+                Box::new(
+                    compiled!(geared, (); inverse_dynamics, mass_matrix, forward_dynamics,
+                    friction_torques, inverse_dynamics_derivatives, frame_placements),
                 ),
                 |_| 0.0,
             ),
