@@ -107,19 +107,26 @@ fn compilers() -> Option<Compilers> {
     Some(Compilers { cc, cxx })
 }
 
-/// The flags the C is compiled with: warnings as errors, and `-mfma` exactly when the Rust
-/// build fuses its multiply-adds (the header's rule for bit-for-bit results).
-fn c_flags() -> Vec<&'static str> {
-    let mut flags = vec![
+/// The flags the C is compiled with: warnings as errors, `-mfma` exactly when the Rust build
+/// fuses its multiply-adds (the header's rule for bit-for-bit results), then those of
+/// `RNE_C_TEST_FLAGS`, e.g. `-O3 -march=native -std=gnu99` beside a Rust build for the
+/// machine (GNU C contracts products and sums unless the source forbids it).
+fn c_flags() -> Vec<String> {
+    let mut flags: Vec<String> = [
         "-std=c99",
         "-O1",
         "-Wall",
         "-Wextra",
         "-pedantic",
         "-Werror",
-    ];
+    ]
+    .map(str::to_owned)
+    .to_vec();
     if cfg!(all(target_arch = "x86_64", target_feature = "fma")) {
-        flags.push("-mfma");
+        flags.push("-mfma".to_owned());
+    }
+    if let Ok(extra) = std::env::var("RNE_C_TEST_FLAGS") {
+        flags.extend(extra.split_whitespace().map(str::to_owned));
     }
     flags
 }
@@ -306,16 +313,15 @@ impl Case {
 
     /// Compiles the kernels and the driver (and checks the source and the header compile as
     /// C++), runs the driver and returns each kernel's results, state by state.
-    fn run_c(&self, compilers: &Compilers) -> Vec<Vec<Vec<f64>>> {
-        let dir = scratch(&self.label);
+    fn run_c(&self, compilers: &Compilers, flags: &[String], tag: &str) -> Vec<Vec<Vec<f64>>> {
+        let dir = scratch(&format!("{}{tag}", self.label));
         let name = &self.c.name;
         std::fs::write(dir.join(format!("{name}.h")), &self.c.header).unwrap();
         std::fs::write(dir.join(format!("{name}.c")), &self.c.source).unwrap();
         std::fs::write(dir.join("driver.c"), driver(name, &self.module)).unwrap();
-        let flags = c_flags();
         let object = dir.join(format!("{name}.o"));
         run(Command::new(&compilers.cc)
-            .args(&flags)
+            .args(flags)
             .arg("-c")
             .arg(dir.join(format!("{name}.c")))
             .arg("-o")
@@ -336,7 +342,7 @@ impl Case {
         }
         let exe = dir.join("driver");
         run(Command::new(&compilers.cc)
-            .args(&flags)
+            .args(flags)
             .arg(dir.join("driver.c"))
             .arg(&object)
             .arg("-lm")
@@ -406,7 +412,7 @@ impl Case {
         compiled: &dyn Fn(Kernel, &State) -> Option<Vec<f64>>,
         tolerance: &dyn Fn(usize) -> f64,
     ) -> usize {
-        let results = self.run_c(compilers);
+        let results = self.run_c(compilers, &c_flags(), "");
         let mut compared = 0;
         for (((kernel, program), states), results) in
             self.module.kernels.iter().zip(&self.states).zip(results)
@@ -744,7 +750,9 @@ fn runtime_parameters_give_the_rust_kernels_values() {
         .enumerate()
         .map(|(k, name)| {
             let scene = scene(&outputs, ParameterMode::Runtime);
-            Case::new(name, &builtin(name, true), &scene, 0xBA5E + k as u64)
+            // A label of its own: the cases' scratch directories are named after them.
+            let label = format!("{name}-runtime");
+            Case::new(&label, &builtin(name, true), &scene, 0xBA5E + k as u64)
         })
         .collect();
     for case in &cases {
@@ -755,14 +763,17 @@ fn runtime_parameters_give_the_rust_kernels_values() {
     }
     each_in_parallel(&cases, |case| {
         let compiled = match case.label.as_str() {
-            "planar-elbow" => {
+            "planar-elbow-runtime" => {
                 compiled!(rne_models::generated::variants::planar_elbow::runtime, (p);
                 inverse_dynamics, mass_matrix, bias_torques, forward_dynamics)
             }
-            "irb140-3dof" => compiled!(rne_models::generated::variants::irb140_3dof::runtime, (p);
+            "irb140-3dof-runtime" => {
+                compiled!(rne_models::generated::variants::irb140_3dof::runtime, (p);
+                inverse_dynamics, mass_matrix, bias_torques, forward_dynamics)
+            }
+            "irb140-runtime" => compiled!(rne_models::generated::variants::irb140::runtime, (p);
                 inverse_dynamics, mass_matrix, bias_torques, forward_dynamics),
-            _ => compiled!(rne_models::generated::variants::irb140::runtime, (p);
-                inverse_dynamics, mass_matrix, bias_torques, forward_dynamics),
+            other => panic!("no runtime variant for {other}"),
         };
         let compared = case.check(&compilers, &compiled, &|_| 0.0);
         assert_eq!(compared, outputs.len() * STATES, "{}", case.label);
@@ -1053,6 +1064,57 @@ fn the_c_sine_and_cosine_are_the_runtimes_bit_for_bit() {
             &[s, c],
             &format!("sin_cos({x:e})"),
         );
+    }
+}
+
+/// Optimisation and GNU C, which contracts products and sums by default, change no result:
+/// the C compiled with `-std=c99 -O1` and with `-std=gnu99 -O3 -march=native` (both with
+/// FMA, so that a compiler could fuse) computes the same bits, split kernels included — the
+/// source's pragmas keep GCC from contracting, its vectorizer too. On x86-64 processors with
+/// FMA (skipped elsewhere, with a message).
+#[test]
+fn optimisation_and_gnu_c_change_no_result() {
+    let Some(compilers) = compilers() else { return };
+    #[cfg(target_arch = "x86_64")]
+    let fma = std::is_x86_feature_detected!("fma");
+    #[cfg(not(target_arch = "x86_64"))]
+    let fma = false;
+    if !fma {
+        eprintln!("skipped: this processor has no FMA, which a compiler would contract with");
+        return;
+    }
+    let outputs = [
+        Kernel::InverseDynamics,
+        Kernel::MassMatrix,
+        Kernel::ForwardDynamics,
+        Kernel::InverseDynamicsDerivatives,
+    ];
+    let case = Case::new(
+        "panda",
+        &builtin("panda", false),
+        &scene(&outputs, ParameterMode::Constant),
+        8,
+    );
+    assert!(
+        case.c.source.contains("RNE_NOINLINE"),
+        "∂ID is split into parts"
+    );
+    let strict: Vec<String> = ["-std=c99", "-O1", "-mfma"].map(str::to_owned).to_vec();
+    let gnu: Vec<String> = ["-std=gnu99", "-O3", "-march=native", "-mfma"]
+        .map(str::to_owned)
+        .to_vec();
+    let (a, b) = (
+        case.run_c(&compilers, &strict, "-strict"),
+        case.run_c(&compilers, &gnu, "-gnu"),
+    );
+    for ((kernel, _), (a, b)) in case.module.kernels.iter().zip(a.iter().zip(&b)) {
+        for (s, (a, b)) in a.iter().zip(b).enumerate() {
+            assert_bits(
+                a,
+                b,
+                &format!("panda {kernel} state {s}, -O1 and -O3 -march=native"),
+            );
+        }
     }
 }
 

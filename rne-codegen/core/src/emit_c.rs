@@ -9,7 +9,9 @@
 //! multiply-adds of `fma: true` and of the sine and cosine go through `fma()` exactly where
 //! the runtime's `mul_add` is fused (x86-64 with FMA). So, compiled as documented in the
 //! header (IEEE double arithmetic without excess precision, as on x86-64; no contraction of
-//! products and sums, which the source asks GCC and Clang for itself; `-mfma` exactly when
+//! products and sums, which the source asks GCC and Clang for itself, with GCC's vectorizer
+//! off, since GCC 12's fuses a product and a sum into `vfmaddsub` even with
+//! `-ffp-contract=off`; `-mfma` exactly when
 //! the Rust build has the `fma` target feature; no `-ffast-math`), the C kernels return the
 //! Rust kernels' results bit for bit. The derivative kernels are built in scalars: C has no
 //! lanes (`derivatives: lanes` is ignored).
@@ -95,8 +97,9 @@ compilers, or for a kernel with a square root without -fno-math-errno, link with
 Bit for bit the Rust kernels of the same robot and scene: on a target with IEEE double
 arithmetic and no excess precision (FLT_EVAL_METHOD 0: x86-64, AArch64), without
 -ffast-math, with products and sums never contracted into fused multiply-adds (the source
-turns contraction off for GCC and Clang itself; elsewhere compile with -ffp-contract=off or
-its equivalent), and with -mfma (or a -march= with FMA) exactly when the Rust build has the
+turns contraction, and GCC's vectorizer, which contracts even so, off for GCC and Clang
+itself; elsewhere compile with -ffp-contract=off -fno-tree-vectorize or their equivalent),
+and with -mfma (or a -march= with FMA) exactly when the Rust build has the
 `fma` target feature (-C target-feature=+fma, or -C target-cpu=native on such a processor):
 the runtime's fused multiply-adds, and this file's rne_mul_add, are fused exactly there.
 For example: cc -std=c99 -O2 -c robot.c (Rust built for baseline x86-64), or
@@ -157,9 +160,12 @@ pub fn emit_c(module: &ModulePrograms, source: &str) -> Result<CModule, CodegenE
         c,
         "\n#include \"{name}.h\"\n\n#include <math.h>\n#include <stdint.h>\n#include <string.h>\n\n\
          /* No contraction of products and sums into fused multiply-adds: the kernels compute\n \
-         * exactly the operations written. */\n\
+         * exactly the operations written. GCC's vectorizer fuses them even so (GCC 12 with FMA\n \
+         * makes vfmaddsub of a product and a sum or difference beside it, with\n \
+         * -ffp-contract=off too), so it is turned off as well; the kernels have no loops, and\n \
+         * were no slower without it. */\n\
          #if defined(__clang__)\n#pragma STDC FP_CONTRACT OFF\n\
-         #elif defined(__GNUC__)\n#pragma GCC optimize(\"fp-contract=off\")\n#endif\n"
+         #elif defined(__GNUC__)\n#pragma GCC optimize(\"fp-contract=off\", \"no-tree-vectorize\")\n#endif\n"
     )
     .expect(TEXT);
     c.push_str(&name_definitions(&name, module));
