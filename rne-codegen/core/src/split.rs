@@ -62,13 +62,24 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
     if program.instrs.len() <= SPLIT_ABOVE {
         return None;
     }
+    Some(plan_parts(program, named, prologue, PART_LEN))
+}
+
+/// [`plan`] with parts of `part_len` instructions, whatever the program's length (the C
+/// emitter's, `emit_c`, whose compilers call for other lengths than rustc).
+pub fn plan_parts(
+    program: &Program,
+    named: &[bool],
+    prologue: &[bool],
+    part_len: usize,
+) -> SplitPlan {
     let mut outputs_at: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
     for (k, output) in program.outputs.iter().enumerate() {
         if let Operand::Temp(t) = *output {
             outputs_at[t as usize].push(k);
         }
     }
-    let part_of = |i: usize| i / PART_LEN;
+    let part_of = |i: usize| i / part_len;
     let mut parts: BTreeMap<usize, Vec<Statement>> = BTreeMap::new();
     for i in 0..program.instrs.len() {
         if named[i] {
@@ -150,12 +161,12 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
         busy.push(Reverse((last, slot)));
         slots.insert(value, slot);
     }
-    Some(SplitPlan {
+    SplitPlan {
         parts,
         imports,
         slots,
         len,
-    })
+    }
 }
 
 /// The named and prologue values `operand` reads, through the unnamed instructions written
