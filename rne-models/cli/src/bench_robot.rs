@@ -93,7 +93,7 @@ fn kernels(names: &[String]) -> Result<Vec<Kernel>, CliError> {
             .iter()
             .map(|name| {
                 name.parse::<Kernel>()
-                    .map_err(|e| CliError::Argument(format!("--kernels: {e}")))
+                    .map_err(|e| CliError::Argument(format!("--kernels: `{name}`: {e}")))
             })
             .collect(),
     }
