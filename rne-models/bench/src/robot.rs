@@ -158,8 +158,13 @@ pub fn bench_robot(
         .then(|| Interpreted::with_kernels(&jit.programs().model, &settings.kernels));
     let reference_model = &jit.programs().model;
     let error = |engine: &dyn Agreement, kernel: Kernel| {
-        let agreement =
-            check_kernels(reference_model, settings.scene.friction, engine, &[kernel], &states)?;
+        let agreement = check_kernels(
+            reference_model,
+            settings.scene.friction,
+            engine,
+            &[kernel],
+            &states,
+        )?;
         Ok(agreement.first().map_or(f64::NAN, |a| a.max_error))
     };
     let evaluation = |source_: rne_interpreted::Error| BenchError::Evaluation {
@@ -203,8 +208,10 @@ pub fn bench_robot(
                 times
             }
             _ => {
-                let mut timed: Vec<&mut dyn Timed> =
-                    subjects.iter_mut().map(|c| &mut **c as &mut dyn Timed).collect();
+                let mut timed: Vec<&mut dyn Timed> = subjects
+                    .iter_mut()
+                    .map(|c| &mut **c as &mut dyn Timed)
+                    .collect();
                 time_interleaved(&mut timed, &settings.plan)
             }
         };

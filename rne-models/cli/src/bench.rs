@@ -8,10 +8,10 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+pub use super::bench_robot::BenchEngine;
 use super::long_run::LongRun;
 use super::model::ModelOptions;
 use super::CliError;
-pub use super::bench_robot::BenchEngine;
 use rne_bench::pinocchio::{default_script, extra_beside};
 use rne_bench::{self as bench, Effort, PinocchioScript};
 
@@ -26,7 +26,11 @@ pub struct BenchArgs {
     pub options: ModelOptions,
     /// With MODEL: the engines to time, comma-separated (`compiled` only for a built-in
     /// robot on its own base).
-    #[arg(long, value_delimiter = ',', default_value = "jit,compiled,interpreted")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "jit,compiled,interpreted"
+    )]
     pub engines: Vec<BenchEngine>,
     /// With MODEL: the kernels to time, comma-separated, or `all`; default the dynamics and
     /// their derivatives.

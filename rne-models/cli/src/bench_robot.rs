@@ -52,10 +52,17 @@ pub fn run(model: &str, args: &BenchArgs, out: &mut dyn Write) -> Result<(), Cli
         ..args.options.scene()
     };
     if let Err(e) = robot.check_mass_matrix_invertible() {
-        eprintln!("warning: {}: {e}; the kernels that solve with M are left out", source.display_name());
+        eprintln!(
+            "warning: {}: {e}; the kernels that solve with M are left out",
+            source.display_name()
+        );
         scene.outputs.retain(|k| !k.inverts_mass_matrix());
     }
-    let effort = if args.quick { Effort::Quick } else { Effort::Full };
+    let effort = if args.quick {
+        Effort::Quick
+    } else {
+        Effort::Full
+    };
     let settings = RobotBenchSettings {
         engines: args.engines.iter().map(|e| e.engine()).collect(),
         kernels: kernels(&args.kernels)?,
@@ -77,7 +84,11 @@ pub fn run(model: &str, args: &BenchArgs, out: &mut dyn Write) -> Result<(), Cli
     };
     let report = bench_robot(&robot, &name, &settings, &mut progress)?;
     if args.json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&to_json(&report)).expect("JSON"))?;
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&to_json(&report)).expect("JSON")
+        )?;
     } else {
         write!(out, "{}", table(&report))?;
     }
@@ -138,7 +149,8 @@ fn peers(source: &RobotSource, args: &BenchArgs) -> Result<Option<PeerScripts>, 
 }
 
 fn is_urdf(path: &Path) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
 }
 
 /// The report as JSON: `{"robot", "time_to_kernels_s": {..}, "kernels": [..]}`.
@@ -198,9 +210,13 @@ fn table(report: &RobotBench) -> String {
             .iter()
             .find(|j| j.kernel == k.kernel && j.engine == Engine::Jit)
             .map(|j| j.ns);
-        let iqr = k.quartiles.map_or(String::new(), |(a, b)| format!("{a:.1}–{b:.1}"));
+        let iqr = k
+            .quartiles
+            .map_or(String::new(), |(a, b)| format!("{a:.1}–{b:.1}"));
         let ratio = jit.map_or(String::new(), |j| format!("{:.2}", k.ns / j));
-        let error = k.max_rel_error.map_or(String::new(), |e| format!("{e:.1e}"));
+        let error = k
+            .max_rel_error
+            .map_or(String::new(), |e| format!("{e:.1e}"));
         s += &format!(
             "{:<30} {:<24} {:>10.1} {:>21} {:>8} {:>14}\n",
             k.kernel.to_string(),

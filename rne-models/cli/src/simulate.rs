@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 use clap::{Args, ValueEnum};
 
 use super::CliError;
-use rne_scenarios::{Format, Outcome, RunOptions, ScenarioError, UserScenario, SCENARIOS};
+use rne_scenarios::{
+    FileEngine, Format, Outcome, RunOptions, ScenarioError, UserScenario, SCENARIOS,
+};
 
 /// A kind of output file.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -52,6 +54,21 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// What computes a scenario file's robot when it is read from a file (built-in robots run
+    /// their compiled modules).
+    #[arg(long, value_enum, default_value = "jit")]
+    pub engine: SimulateEngine,
+}
+
+/// The engines of `rne simulate` for a robot read from a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SimulateEngine {
+    /// The kernels compiled in memory (the interpreter, with a warning, where the processor
+    /// is not supported).
+    Jit,
+    /// The programs evaluated operation by operation.
+    #[value(alias = "symbolic")]
+    Interpreted,
 }
 
 /// Runs the scenario(s) and reports what was written and measured.
@@ -70,6 +87,10 @@ pub fn run(args: &SimulateArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     let options = RunOptions {
         progress: !args.quiet,
+        engine: match args.engine {
+            SimulateEngine::Jit => FileEngine::Jit,
+            SimulateEngine::Interpreted => FileEngine::Interpreted,
+        },
     };
     let outcomes: Vec<Outcome> = if name == "all" {
         SCENARIOS

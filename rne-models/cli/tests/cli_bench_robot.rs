@@ -77,7 +77,12 @@ fn a_robot_file_on_a_floating_base_times_the_kernels_asked_for() {
         .collect();
     assert_eq!(
         kernels,
-        ["mass_matrix", "mass_matrix", "frame_jacobians", "frame_jacobians"]
+        [
+            "mass_matrix",
+            "mass_matrix",
+            "frame_jacobians",
+            "frame_jacobians"
+        ]
     );
     assert_eq!(engines_of(&report, "mass_matrix"), ["jit", "interpreted"]);
 }
@@ -86,7 +91,16 @@ fn a_robot_file_on_a_floating_base_times_the_kernels_asked_for() {
 #[test]
 fn bad_requests_are_errors() {
     let error = rne(&["bench", "planar-elbow", "--kernels", "mass_matrx"]).unwrap_err();
-    assert!(error.contains("--kernels") && error.contains("mass_matrx"), "{error}");
-    let error = rne(&["bench", "planar-elbow", "--pinocchio", "/nonexistent/run.sh"]).unwrap_err();
+    assert!(
+        error.contains("--kernels") && error.contains("mass_matrx"),
+        "{error}"
+    );
+    let error = rne(&[
+        "bench",
+        "planar-elbow",
+        "--pinocchio",
+        "/nonexistent/run.sh",
+    ])
+    .unwrap_err();
     assert!(error.contains("needs a URDF robot"), "{error}");
 }

@@ -21,5 +21,5 @@ mod state;
 pub use error::Error;
 pub use evaluate::evaluate;
 pub use interpreted::Interpreted;
-pub use runtime::{RuntimeModel, MAX_DOF};
+pub use runtime::{visit_jit, RuntimeModel, MAX_DOF};
 pub use state::{JointState, StateRef};

@@ -159,6 +159,20 @@ impl Interpreted {
     }
 }
 
+/// Runs `visitor` on the compiled kernels of `jit` as a [`RuntimeModel<N>`] of its number of
+/// joints N (a fixed base, 1 ≤ N ≤ [`MAX_DOF`]).
+pub fn visit_jit<V: Visitor>(jit: &JitModel, visitor: V) -> Result<V::Output, Error> {
+    macro_rules! dispatch {
+        ($($n:literal)*) => {
+            match jit.nv() {
+                $($n => Ok(visitor.visit(RuntimeModel::<$n>::jit(jit)?)),)*
+                dof => Err(Error::TooManyJoints { dof, max: MAX_DOF }),
+            }
+        };
+    }
+    dispatch!(1 2 3 4 5 6 7 8)
+}
+
 /// A model of `dof` joints can be a `RuntimeModel<N>`.
 fn check<const N: usize>(dof: usize) -> Result<(), Error> {
     if dof == N {

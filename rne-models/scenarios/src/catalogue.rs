@@ -19,6 +19,20 @@ use super::friction_run::damped_by_friction_scenario;
 pub struct RunOptions {
     /// Show a progress bar per run on standard error (only when it is a terminal).
     pub progress: bool,
+    /// What computes the dynamics of a scenario file's robot read from a file.
+    pub engine: FileEngine,
+}
+
+/// What computes the dynamics of a robot read from a file (built-in robots run their compiled
+/// modules).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FileEngine {
+    /// The kernels compiled in memory (rne-jit); the interpreter, with a warning, on a
+    /// processor the JIT does not support.
+    #[default]
+    Jit,
+    /// The programs evaluated operation by operation.
+    Interpreted,
 }
 
 /// Which experiment a scenario runs.

@@ -41,7 +41,7 @@ mod progress;
 mod timing;
 mod user;
 
-pub use catalogue::{find, RunOptions, Scenario, SCENARIOS};
+pub use catalogue::{find, FileEngine, RunOptions, Scenario, SCENARIOS};
 pub use error::ScenarioError;
 pub use outcome::{Finding, Format, Outcome, Table};
 pub use progress::WithProgress;

@@ -31,14 +31,16 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::catalogue::RunOptions;
+use super::catalogue::{FileEngine, RunOptions};
 use super::control::pd_findings;
 use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
 use super::outcome::{Finding, Outcome, Table};
 use super::progress::WithProgress;
+use rne_codegen::Scene;
 use rne_figures::time_series::Figure;
-use rne_interpreted::Interpreted;
+use rne_interpreted::{visit_jit, Interpreted};
+use rne_jit::{JitError, JitModel};
 use rne_models::{RobotSource, Visitor};
 use rne_runtime::Dynamics;
 use rne_sim::{
@@ -46,6 +48,7 @@ use rne_sim::{
     Record, Rk4, SimError, State, WithoutGravity,
 };
 use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::RobotModel;
 
 /// The largest number of output samples a scenario file may ask for.
 const MAX_SAMPLES: f64 = 1e7;
@@ -188,8 +191,7 @@ impl UserScenario {
                 model
                     .check_mass_matrix_invertible()
                     .map_err(|e| self.error(format!("model `{}`: {e}", self.file.model)))?;
-                Interpreted::new(&model)
-                    .visit(run)
+                self.on_file_model(&model, run, options.engine)
                     .map_err(|error| match error {
                         rne_interpreted::Error::TooManyJoints { dof, max } => self.error(format!(
                             "model `{}` has {dof} joints; scenario files support 1 to {max}",
@@ -202,6 +204,25 @@ impl UserScenario {
                     })?
             }
         }
+    }
+
+    /// Runs `run` on `model`'s kernels compiled in memory, or on its programs interpreted.
+    fn on_file_model(
+        &self,
+        model: &RobotModel,
+        run: Run<'_>,
+        engine: FileEngine,
+    ) -> Result<Result<Outcome, ScenarioError>, rne_interpreted::Error> {
+        if engine == FileEngine::Jit {
+            match JitModel::compile(model, &Scene::default(), &self.file.model) {
+                Ok(jit) => return visit_jit(&jit, run),
+                Err(JitError::UnsupportedHost(why)) => {
+                    eprintln!("warning: {why}; the interpreter computes instead");
+                }
+                Err(e) => return Err(e.into()),
+            }
+        }
+        Interpreted::new(model).visit(run)
     }
 
     fn error(&self, message: String) -> ScenarioError {

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rne_scenarios::{find, Format, RunOptions, UserScenario, SCENARIOS};
+use rne_scenarios::{find, FileEngine, Format, RunOptions, UserScenario, SCENARIOS};
 
 /// A fresh directory under the system's temporary directory.
 fn temp_dir(name: &str) -> PathBuf {
@@ -136,5 +136,39 @@ fn user_scenarios_run_on_generated_kernels_and_on_the_expression_graph() {
     }
     assert!((a[0] - 0.3).abs() < 1e-2, "{a:?}");
     assert!(dir.join("builtin.svg").exists() && !dir.join("builtin.png").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A scenario file's robot read from a file runs on its kernels compiled in memory by default
+/// and on its programs interpreted on request: the same operations in the same order (fma
+/// off), so the two runs' tables are the same text, digit for digit.
+#[test]
+fn a_file_robot_runs_on_the_jit_exactly_as_on_the_interpreter() {
+    let dir = temp_dir("engines");
+    let spec = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/planar-elbow.toml"
+    );
+    let text = format!(
+        "model = \"{spec}\"\nduration = 1.0\nsample = 0.05\nq0 = [0.4, -0.1]\n\n\
+         [controller]\nkp = [22, 45]\nkd = [15, 8]\nq_ref = [0.3, -0.2]\ngravity = \"compensate\"\n\n\
+         [integrator]\nmethod = \"dopri5\"\nrtol = 1e-10\natol = 1e-12\n"
+    );
+    let scenario = scenario_file(&dir, "file-robot.toml", &text);
+    let tables = |engine: FileEngine| {
+        let options = RunOptions {
+            engine,
+            ..RunOptions::default()
+        };
+        let outcome = scenario.run(&options).unwrap();
+        outcome
+            .tables
+            .iter()
+            .map(|t| t.csv.clone())
+            .collect::<Vec<_>>()
+    };
+    let (jit, interpreted) = (tables(FileEngine::Jit), tables(FileEngine::Interpreted));
+    assert!(!jit.is_empty() && jit[0].lines().count() > 10);
+    assert_eq!(jit, interpreted);
     std::fs::remove_dir_all(&dir).unwrap();
 }

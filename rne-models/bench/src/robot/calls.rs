@@ -111,8 +111,11 @@ impl Visitor for WithCompiled<'_, '_> {
     type Output = CompiledRun;
 
     fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, model: D) -> CompiledRun {
-        let mut subjects: Vec<&mut dyn Timed> =
-            self.others.iter_mut().map(|c| &mut **c as &mut dyn Timed).collect();
+        let mut subjects: Vec<&mut dyn Timed> = self
+            .others
+            .iter_mut()
+            .map(|c| &mut **c as &mut dyn Timed)
+            .collect();
         let n_others = subjects.len();
         if !D::KERNELS.contains(&self.kernel) || D::FLOATING_BASE {
             return CompiledRun {

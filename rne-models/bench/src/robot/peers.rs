@@ -40,9 +40,24 @@ const NAMES: [(Kernel, Peer, &str, Option<&str>); 8] = [
     (Kernel::BiasTorques, Peer::Plain, "nle", None),
     (Kernel::GravityTorques, Peer::Plain, "gravity", None),
     (Kernel::ForwardDynamics, Peer::Plain, "aba", Some("aba")),
-    (Kernel::MassMatrixInverse, Peer::CodeGen, "minv", Some("minv")),
-    (Kernel::InverseDynamicsDerivatives, Peer::CodeGen, "rnea_derivs", Some("rnea_derivs")),
-    (Kernel::ForwardDynamicsDerivatives, Peer::CodeGen, "aba_derivs", Some("aba_derivs")),
+    (
+        Kernel::MassMatrixInverse,
+        Peer::CodeGen,
+        "minv",
+        Some("minv"),
+    ),
+    (
+        Kernel::InverseDynamicsDerivatives,
+        Peer::CodeGen,
+        "rnea_derivs",
+        Some("rnea_derivs"),
+    ),
+    (
+        Kernel::ForwardDynamicsDerivatives,
+        Peer::CodeGen,
+        "aba_derivs",
+        Some("aba_derivs"),
+    ),
 ];
 
 impl PeerScripts {
@@ -53,7 +68,10 @@ impl PeerScripts {
             problem,
         };
         let mut figures = BTreeMap::new();
-        let scripts = [(Peer::Plain, Some(&self.run_sh)), (Peer::CodeGen, self.run_cg_sh.as_ref())];
+        let scripts = [
+            (Peer::Plain, Some(&self.run_sh)),
+            (Peer::CodeGen, self.run_cg_sh.as_ref()),
+        ];
         for (peer, script) in scripts {
             let Some(script) = script else { continue };
             let output = Command::new("bash")
@@ -72,7 +90,11 @@ impl PeerScripts {
             }
             let parsed = parse(&String::from_utf8_lossy(&output.stdout), peer)
                 .map_err(|problem| failure(format!("{}: {problem}", script.display())))?;
-            figures.extend(parsed.into_iter().map(|(k, v)| (format!("{}.{k}", peer.prefix()), v)));
+            figures.extend(
+                parsed
+                    .into_iter()
+                    .map(|(k, v)| (format!("{}.{k}", peer.prefix()), v)),
+            );
         }
         Ok(PeerFigures { figures })
     }
@@ -98,7 +120,10 @@ impl PeerFigures {
             }
             let plain = self.figures.get(&format!("{}.{name}_ns", peer.prefix()));
             let generated = generated.and_then(|x| self.figures.get(&format!("cg.cg_{x}_ns")));
-            let engines = [(Engine::Pinocchio, plain), (Engine::CppAdCodeGen, generated)];
+            let engines = [
+                (Engine::Pinocchio, plain),
+                (Engine::CppAdCodeGen, generated),
+            ];
             for (engine, ns) in engines {
                 if let Some(&ns) = ns {
                     timings.push(KernelTiming {
