@@ -50,7 +50,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args
         .options
         .load(&source, args.parameters == Parameters::Runtime)?;
-    let scene = Scene {
+    let mut scene = Scene {
         outputs: Kernel::ALL.to_vec(),
         parameters: match args.parameters {
             Parameters::Constant => ParameterMode::Constant,
@@ -60,6 +60,17 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         fma: args.fma,
         derivative_lanes: args.lanes,
         ..args.options.scene()
+    };
+    // Forward dynamics, its derivatives and M⁻¹ are undefined when a joint moves no mass: the
+    // other kernels are still generated, and each undefined one is named with the joint.
+    let undefined: Vec<(Kernel, String)> = match model.check_mass_matrix_invertible() {
+        Ok(()) => Vec::new(),
+        Err(e) => {
+            let undefined = scene.outputs.iter().filter(|k| k.inverts_mass_matrix());
+            let undefined = undefined.map(|&k| (k, e.to_string())).collect();
+            scene.outputs.retain(|k| !k.inverts_mass_matrix());
+            undefined
+        }
     };
     let module = generate(&model, &scene, &source.display_name())?;
     if args.json {
@@ -81,6 +92,9 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             "dof": module.ndof,
             "kernels": kernels,
             "generation_ms": module.generation_time.as_secs_f64() * 1e3,
+            "undefined": undefined.iter().map(|(k, why)| serde_json::json!({
+                "kernel": k.name(), "reason": why,
+            })).collect::<Vec<_>>(),
             "forward_dynamics_choice": module.forward_dynamics_choice.as_ref().map(|c| serde_json::json!({
                 "aba": {"mul": c.aba.mul, "add": c.aba.add, "cost": c.aba.cost()},
                 "ldlt": {"mul": c.ldlt.mul, "add": c.ldlt.add, "cost": c.ldlt.cost()},
@@ -125,6 +139,9 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             k.critical_path,
             k.generation_time.as_secs_f64() * 1e3
         )?;
+    }
+    for (kernel, why) in &undefined {
+        writeln!(out, "{:<28} undefined: {why}", kernel.name())?;
     }
     if let Some(choice) = &module.forward_dynamics_choice {
         writeln!(

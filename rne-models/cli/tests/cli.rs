@@ -237,6 +237,18 @@ fn forward_dynamics_of_a_joint_that_moves_no_mass_is_refused_by_name() {
     );
     assert!(all.contains("M:") && !all.contains("qdd:"), "{all}");
 
+    // `rne stats` generates every other kernel and names each undefined one with the joint.
+    let stats = rne(&["stats", spec]).unwrap();
+    for kernel in [
+        "forward_dynamics",
+        "forward_dynamics_derivatives",
+        "mass_matrix_inverse",
+    ] {
+        let line = format!("{kernel:<28} undefined: {expected}");
+        assert!(stats.contains(&line), "{line} missing in\n{stats}");
+    }
+    assert!(stats.contains("inverse_dynamics_derivatives") && stats.contains("base_regressor"));
+
     let scenario = dir.join("run.toml");
     std::fs::write(
         &scenario,
