@@ -241,3 +241,51 @@ fn forward_dynamics_of_three_coaxial_joints_with_a_dense_mass_matrix() {
         ) < 1e-13
     );
 }
+
+proptest! {
+    // Eight robots in a CI run (each generates and compiles all 18 kernels of up to 8 joints);
+    // PROPTEST_CASES=200 for a longer local run.
+    #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
+
+    /// The JIT computes every kernel of a random robot (all 18, fma off) with the bits of its
+    /// program (the one `derive_dynamics!` emits) evaluated operation by operation, at random
+    /// states.
+    #[test]
+    fn the_jit_is_the_programs_bit_for_bit_on_random_robots(
+        (links, gravity) in robot(),
+        states in prop::collection::vec(state(8), 3),
+    ) {
+        let text = spec(&links, gravity);
+        let model = parse_str(&text, "random.toml", &LoadOptions::default())
+            .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        let n = model.dof();
+        let scene = rne_codegen::Scene {
+            outputs: Kernel::ALL.to_vec(),
+            ..rne_codegen::Scene::default()
+        };
+        let jit = rne_jit::JitModel::compile(&model, &scene, "random.toml")
+            .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        for (q, qd, qdd) in &states {
+            let tau: Vec<f64> = qdd.iter().map(|x| 3.0 * x).collect();
+            let state = rne_jit::State { q: &q[..n], qd: &qd[..n], qdd: &qdd[..n], tau: &tau[..n] };
+            let input = |symbol: rne_symbolic::Symbol| match symbol {
+                rne_symbolic::Symbol::Position(k) => q[k as usize],
+                rne_symbolic::Symbol::Velocity(k) => qd[k as usize],
+                rne_symbolic::Symbol::Acceleration(k) => qdd[k as usize],
+                rne_symbolic::Symbol::Force(k) => tau[k as usize],
+                _ => f64::NAN,
+            };
+            for kp in &jit.programs().kernels {
+                let kernel = kp.kernel;
+                if kernel == Kernel::BaseParameters {
+                    continue;
+                }
+                let got = jit.evaluate_vec(kernel, state).unwrap();
+                let expected = kp.program.eval_f64(&input);
+                let same = got.len() == expected.len()
+                    && got.iter().zip(&expected).all(|(a, b)| a.to_bits() == b.to_bits());
+                prop_assert!(same, "{kernel}: {got:?} != {expected:?}\n{text}");
+            }
+        }
+    }
+}
