@@ -243,8 +243,7 @@ fn forward_dynamics_of_three_coaxial_joints_with_a_dense_mass_matrix() {
 }
 
 proptest! {
-    // Eight robots in a CI run (each generates and compiles all 18 kernels of up to 8 joints);
-    // PROPTEST_CASES=200 for a longer local run.
+    // Eight robots a run: each generates and compiles all 18 kernels of up to 8 joints.
     #![proptest_config(ProptestConfig { cases: 8, ..ProptestConfig::default() })]
 
     /// The JIT computes every kernel of a random robot (all 18, fma off) with the bits of its
