@@ -371,9 +371,9 @@ impl Case {
             .module
             .kernels
             .iter()
-            .map(|(_, program)| {
+            .map(|kp| {
                 (0..STATES)
-                    .map(|_| values.by_ref().take(program.outputs.len()).collect())
+                    .map(|_| values.by_ref().take(kp.program.outputs.len()).collect())
                     .collect()
             })
             .collect();
