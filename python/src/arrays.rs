@@ -25,9 +25,11 @@ impl<'py> Array<'py> {
         let readonly = array.try_readonly().map_err(|e| {
             PyValueError::new_err(format!("`{name}` cannot be read: {e}"))
         })?;
-        let copy = match readonly.as_slice() {
-            Ok(_) => None,
-            Err(_) => Some(readonly.as_array().iter().copied().collect()),
+        // `as_slice` also accepts Fortran order, whose memory is not the states' row order:
+        // only a C-contiguous array is read in place.
+        let copy = match array.is_c_contiguous() {
+            true => None,
+            false => Some(readonly.as_array().iter().copied().collect()),
         };
         let read = Array {
             readonly,
@@ -42,7 +44,7 @@ impl<'py> Array<'py> {
     pub fn values(&self) -> &[f64] {
         match &self.copy {
             Some(copy) => copy,
-            None => self.readonly.as_slice().unwrap_or(&[]),
+            None => self.readonly.as_slice().unwrap_or_default(),
         }
     }
 

@@ -7,7 +7,7 @@
 //! torques an identified model predicts on fresh data. The model is the one `rne.load` made
 //! (base, mimic joints, gravity, locks), with the numeric reference's regressor.
 
-use numpy::PyArray2;
+use numpy::{PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

@@ -38,6 +38,7 @@ impl Part {
     }
 
     /// The number of values per state.
+    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.segments.iter().map(|&(_, n)| n).sum()
     }

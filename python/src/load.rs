@@ -1,4 +1,4 @@
-//! `rne.load`: the robot read (a built-in name or a file), the options turned into the
+//! What `rne.load` does: the robot read (a built-in name or a file), the options turned into the
 //! generator's scene, and every kernel the model supports compiled by the JIT.
 
 use std::path::{Path, PathBuf};
@@ -48,8 +48,10 @@ pub(crate) struct Loaded {
 }
 
 /// Reads `robot` and compiles the kernels named in `kernels` (rne's names; `None` for every
-/// kernel the robot has) as `scene` says. Needs no GIL.
-pub(crate) fn load(robot: &Path, mut scene: Scene, kernels: Option<&[String]>) -> PyResult<Loaded> {
+/// kernel the robot has) as `scene` says (`rne.load`). Needs no GIL.
+pub(crate) fn read_and_compile(
+    robot: &Path,
+    mut scene: Scene, kernels: Option<&[String]>) -> PyResult<Loaded> {
     let (text, origin) = source(robot)?;
     let read = |symbolic_parameters: bool| -> PyResult<RobotModel> {
         let load_options = LoadOptions {

@@ -1,7 +1,7 @@
 //! `rne.Model`: a robot's kernels compiled in memory, called under Pinocchio's names (and
 //! snake_case aliases) on numpy arrays, one state or a batch.
 
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -12,7 +12,7 @@ use rne_symbolic::RobotModel;
 use crate::arrays::Array;
 use crate::call::call;
 use crate::errors;
-use crate::load::{self, Options};
+use crate::load::{read_and_compile, robot_path, scene, Options};
 
 /// A robot's kernels compiled in memory for this processor (rne's JIT, Cranelift).
 ///
@@ -84,7 +84,7 @@ pub fn load<'py>(
     fma: bool,
     strict: bool,
 ) -> PyResult<Model> {
-    let path = load::robot_path(robot)?;
+    let path = robot_path(robot)?;
     let options = Options {
         floating_base,
         mimic,
@@ -96,8 +96,8 @@ pub fn load<'py>(
         fma,
         strict,
     };
-    let scene = load::scene(&options)?;
-    let loaded = py.detach(|| load::load(&path, scene, kernels.as_deref()))?;
+    let scene = scene(&options)?;
+    let loaded = py.detach(|| read_and_compile(&path, scene, kernels.as_deref()))?;
     Ok(Model {
         jit: loaded.jit,
         numeric: loaded.numeric,
