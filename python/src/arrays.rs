@@ -3,7 +3,10 @@
 //! float32 converted exactly; every other type, shape or length, and every NaN or infinity, a
 //! Python exception that names the argument.
 
-use numpy::{PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray, PyUntypedArrayMethods};
+use numpy::{
+    PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -22,9 +25,9 @@ impl<'py> Array<'py> {
     pub fn read(object: &Bound<'py, PyAny>, name: &str, width: usize) -> PyResult<Array<'py>> {
         let array = float64(object, name)?;
         let states = states(array.shape(), name, width)?;
-        let readonly = array.try_readonly().map_err(|e| {
-            PyValueError::new_err(format!("`{name}` cannot be read: {e}"))
-        })?;
+        let readonly = array
+            .try_readonly()
+            .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?;
         // `as_slice` also accepts Fortran order, whose memory is not the states' row order:
         // only a C-contiguous array is read in place.
         let copy = match array.is_c_contiguous() {

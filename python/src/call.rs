@@ -214,13 +214,17 @@ fn single<'py>(
     };
     if parts.len() == 1 && parts[0].shape.is_empty() {
         let mut value = [0.0];
-        model.evaluate(kernel, state, &mut value).map_err(errors::jit)?;
+        model
+            .evaluate(kernel, state, &mut value)
+            .map_err(errors::jit)?;
         return result(py, Vec::new(), Some(value[0]));
     }
     let arrays = new_arrays(py, parts, None);
     let mut outs = slices(&arrays)?;
     if layout::is_whole(parts, per) {
-        model.evaluate(kernel, state, outs[0]).map_err(errors::jit)?;
+        model
+            .evaluate(kernel, state, outs[0])
+            .map_err(errors::jit)?;
     } else {
         let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
         layout::gather(&values, per, parts, &mut outs);

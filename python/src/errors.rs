@@ -24,7 +24,9 @@ pub(crate) fn jit(error: JitError) -> PyErr {
 /// the options (`ValueError`).
 pub(crate) fn codegen(error: CodegenError) -> PyErr {
     match error {
-        e @ (CodegenError::Read { .. } | CodegenError::Io { .. }) => PyOSError::new_err(e.to_string()),
+        e @ (CodegenError::Read { .. } | CodegenError::Io { .. }) => {
+            PyOSError::new_err(e.to_string())
+        }
         e => PyValueError::new_err(e.to_string()),
     }
 }

@@ -70,9 +70,9 @@ fn measurements(
     let v = Array::read(v, "v", nv)?;
     let a = Array::read(a, "a", nv)?;
     let tau = tau.map(|t| Array::read(t, "tau", nv)).transpose()?;
-    let n = q.states.ok_or_else(|| {
-        PyValueError::new_err(format!("`q` must be 2-D (N, {nq}): N samples"))
-    })?;
+    let n = q
+        .states
+        .ok_or_else(|| PyValueError::new_err(format!("`q` must be 2-D (N, {nq}): N samples")))?;
     for (name, states) in [("v", v.states), ("a", a.states)]
         .into_iter()
         .chain(tau.as_ref().map(|t| ("tau", t.states)))
@@ -90,7 +90,9 @@ fn measurements(
             q: row(q.values(), k, nq),
             qd: row(v.values(), k, nv),
             qdd: row(a.values(), k, nv),
-            tau: tau.as_ref().map_or_else(|| vec![0.0; nv], |t| row(t.values(), k, nv)),
+            tau: tau
+                .as_ref()
+                .map_or_else(|| vec![0.0; nv], |t| row(t.values(), k, nv)),
         })
         .collect();
     Ok(Measurements {
@@ -101,7 +103,11 @@ fn measurements(
 }
 
 /// Rows of `rows` (all `width` long) as an (N, width) array.
-fn matrix<'py>(py: Python<'py>, rows: &[Vec<f64>], width: usize) -> PyResult<Bound<'py, PyArray2<f64>>> {
+fn matrix<'py>(
+    py: Python<'py>,
+    rows: &[Vec<f64>],
+    width: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let flat: Vec<f64> = rows.iter().flatten().copied().collect();
     numpy::PyArray1::from_vec(py, flat).reshape([rows.len(), width])
 }
@@ -214,13 +220,22 @@ pub fn identify<'py>(
         Ok((base, fitted))
     })?;
     let out = PyDict::new(py);
-    out.set_item("values", numpy::PyArray1::from_vec(py, fitted.values.clone()))?;
-    out.set_item("std", numpy::PyArray1::from_vec(py, fitted.deviations.clone()))?;
+    out.set_item(
+        "values",
+        numpy::PyArray1::from_vec(py, fitted.values.clone()),
+    )?;
+    out.set_item(
+        "std",
+        numpy::PyArray1::from_vec(py, fitted.deviations.clone()),
+    )?;
     let names: Vec<String> = (0..base.len()).map(|b| base.combination(b)).collect();
     out.set_item("names", names)?;
     out.set_item("model", numpy::PyArray1::from_vec(py, base.model_values()))?;
     out.set_item("condition_number", fitted.condition)?;
-    out.set_item("joint_std", numpy::PyArray1::from_vec(py, fitted.joint_deviations.clone()))?;
+    out.set_item(
+        "joint_std",
+        numpy::PyArray1::from_vec(py, fitted.joint_deviations.clone()),
+    )?;
     out.set_item("weighted", fitted.weighted)?;
     out.set_item("standard_parameters", base.standard_len())?;
     out.set_item("bodies", base.bodies.clone())?;

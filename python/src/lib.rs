@@ -31,7 +31,10 @@ fn builtin_robots() -> Vec<&'static str> {
 /// The kernels rne can compile (rne's names, in the order of rne's design document §4).
 #[pyfunction]
 fn kernel_names() -> Vec<&'static str> {
-    rne_codegen_core::Kernel::ALL.iter().map(|k| k.name()).collect()
+    rne_codegen_core::Kernel::ALL
+        .iter()
+        .map(|k| k.name())
+        .collect()
 }
 
 /// The extension module.

@@ -51,7 +51,9 @@ pub(crate) struct Loaded {
 /// kernel the robot has) as `scene` says (`rne.load`). Needs no GIL.
 pub(crate) fn read_and_compile(
     robot: &Path,
-    mut scene: Scene, kernels: Option<&[String]>) -> PyResult<Loaded> {
+    mut scene: Scene,
+    kernels: Option<&[String]>,
+) -> PyResult<Loaded> {
     let (text, origin) = source(robot)?;
     let read = |symbolic_parameters: bool| -> PyResult<RobotModel> {
         let load_options = LoadOptions {
@@ -170,9 +172,8 @@ fn kernel_list(kernels: Option<&[String]>, model: &RobotModel) -> PyResult<Vec<K
         return names
             .iter()
             .map(|name| {
-                name.parse::<Kernel>().map_err(|e| {
-                    PyValueError::new_err(format!("unknown kernel `{name}`; {e}"))
-                })
+                name.parse::<Kernel>()
+                    .map_err(|e| PyValueError::new_err(format!("unknown kernel `{name}`; {e}")))
             })
             .collect();
     }

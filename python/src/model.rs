@@ -232,83 +232,159 @@ impl Model {
 
     /// Joint torques τ = M(q) a + C(q, v) v + g(q): Pinocchio's `rnea(model, data, q, v, a)`.
     #[pyo3(signature = (q, v, a, threads=None))]
-    fn rnea<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn rnea<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::InverseDynamics, &[q, v, a], threads)
     }
 
     /// Alias of `rnea`.
     #[pyo3(signature = (q, v, a, threads=None))]
-    fn inverse_dynamics<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn inverse_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.rnea(py, q, v, a, threads)
     }
 
     /// The mass matrix M(q), full and symmetric: Pinocchio's `crba` with both triangles.
     #[pyo3(signature = (q, threads=None))]
-    fn crba<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn crba<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::MassMatrix, &[q], threads)
     }
 
     /// Alias of `crba`.
     #[pyo3(signature = (q, threads=None))]
-    fn mass_matrix<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.crba(py, q, threads)
     }
 
     /// Bias torques C(q, v) v + g(q): Pinocchio's `nonLinearEffects(model, data, q, v)`.
     #[pyo3(signature = (q, v, threads=None))]
     #[allow(non_snake_case)]
-    fn nonLinearEffects<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn nonLinearEffects<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::BiasTorques, &[q, v], threads)
     }
 
     /// Alias of `nonLinearEffects`.
     #[pyo3(signature = (q, v, threads=None))]
-    fn bias_torques<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn bias_torques<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.nonLinearEffects(py, q, v, threads)
     }
 
     /// Gravity torques g(q): Pinocchio's `computeGeneralizedGravity(model, data, q)`.
     #[pyo3(signature = (q, threads=None))]
     #[allow(non_snake_case)]
-    fn computeGeneralizedGravity<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computeGeneralizedGravity<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::GravityTorques, &[q], threads)
     }
 
     /// Alias of `computeGeneralizedGravity`.
     #[pyo3(signature = (q, threads=None))]
-    fn gravity_torques<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn gravity_torques<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeGeneralizedGravity(py, q, threads)
     }
 
     /// The Christoffel Coriolis matrix C(q, v) (Ṁ − 2C skew-symmetric; Pinocchio's
     /// `computeCoriolisMatrix` is another factorisation with the same C v).
     #[pyo3(signature = (q, v, threads=None))]
-    fn coriolis_matrix<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn coriolis_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::CoriolisMatrix, &[q, v], threads)
     }
 
     /// Forward dynamics a = M(q)⁻¹ (τ − C(q, v) v − g(q)): Pinocchio's `aba(model, data, q, v, tau)`.
     #[pyo3(signature = (q, v, tau, threads=None))]
-    fn aba<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, tau: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn aba<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::ForwardDynamics, &[q, v, tau], threads)
     }
 
     /// Alias of `aba`.
     #[pyo3(signature = (q, v, tau, threads=None))]
-    fn forward_dynamics<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, tau: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn forward_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.aba(py, q, v, tau, threads)
     }
 
     /// M(q)⁻¹, full and symmetric: Pinocchio's `computeMinverse` with both triangles.
     #[pyo3(signature = (q, threads=None))]
     #[allow(non_snake_case)]
-    fn computeMinverse<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computeMinverse<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::MassMatrixInverse, &[q], threads)
     }
 
     /// Alias of `computeMinverse`.
     #[pyo3(signature = (q, threads=None))]
-    fn mass_matrix_inverse<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn mass_matrix_inverse<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeMinverse(py, q, threads)
     }
 
@@ -316,26 +392,59 @@ impl Model {
     /// `computeRNEADerivatives` (its ∂τ/∂a is M, `crba`).
     #[pyo3(signature = (q, v, a, threads=None))]
     #[allow(non_snake_case)]
-    fn computeRNEADerivatives<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computeRNEADerivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::InverseDynamicsDerivatives, &[q, v, a], threads)
     }
 
     /// Alias of `computeRNEADerivatives`.
     #[pyo3(signature = (q, v, a, threads=None))]
-    fn inverse_dynamics_derivatives<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn inverse_dynamics_derivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeRNEADerivatives(py, q, v, a, threads)
     }
 
     /// (∂a/∂q, ∂a/∂v, M⁻¹) at (q, v, tau): Pinocchio's `computeABADerivatives`.
     #[pyo3(signature = (q, v, tau, threads=None))]
     #[allow(non_snake_case)]
-    fn computeABADerivatives<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, tau: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
-        self.run(py, Kernel::ForwardDynamicsDerivatives, &[q, v, tau], threads)
+    fn computeABADerivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.run(
+            py,
+            Kernel::ForwardDynamicsDerivatives,
+            &[q, v, tau],
+            threads,
+        )
     }
 
     /// Alias of `computeABADerivatives`.
     #[pyo3(signature = (q, v, tau, threads=None))]
-    fn forward_dynamics_derivatives<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, tau: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn forward_dynamics_derivatives<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        tau: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeABADerivatives(py, q, v, tau, threads)
     }
 
@@ -344,13 +453,23 @@ impl Model {
     /// `framesForwardKinematics`.
     #[pyo3(signature = (q, threads=None))]
     #[allow(non_snake_case)]
-    fn framePlacements<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn framePlacements<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::FramePlacements, &[q], threads)
     }
 
     /// Alias of `framePlacements`.
     #[pyo3(signature = (q, threads=None))]
-    fn frame_placements<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn frame_placements<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.framePlacements(py, q, threads)
     }
 
@@ -358,13 +477,23 @@ impl Model {
     /// axes: Pinocchio's `getFrameJacobian(model, data, frame, LOCAL_WORLD_ALIGNED)`.
     #[pyo3(signature = (q, threads=None))]
     #[allow(non_snake_case)]
-    fn frameJacobians<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn frameJacobians<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::FrameJacobians, &[q], threads)
     }
 
     /// Alias of `frameJacobians`.
     #[pyo3(signature = (q, threads=None))]
-    fn frame_jacobians<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn frame_jacobians<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.frameJacobians(py, q, threads)
     }
 
@@ -373,19 +502,36 @@ impl Model {
     /// frame, LOCAL_WORLD_ALIGNED)` after `forwardKinematics(q, v, 0)`).
     #[pyo3(signature = (q, v, threads=None))]
     #[allow(non_snake_case)]
-    fn frameJacobianTimeVariationDotV<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn frameJacobianTimeVariationDotV<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::FrameJacobianDotQd, &[q, v], threads)
     }
 
     /// Alias of `frameJacobianTimeVariationDotV`.
     #[pyo3(signature = (q, v, threads=None))]
-    fn frame_jacobian_dot_v<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn frame_jacobian_dot_v<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.frameJacobianTimeVariationDotV(py, q, v, threads)
     }
 
     /// Joint friction f_v v + f_c sign(v) + offset (nv,), sign(0) = 0.
     #[pyo3(signature = (v, threads=None))]
-    fn friction_torques<'py>(&self, py: Python<'py>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn friction_torques<'py>(
+        &self,
+        py: Python<'py>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::FrictionTorques, &[v], threads)
     }
 
@@ -394,24 +540,49 @@ impl Model {
     /// Ixy, Iyy, Ixz, Iyz, Izz about the body origin), then friction and armature columns.
     #[pyo3(signature = (q, v, a, threads=None))]
     #[allow(non_snake_case)]
-    fn computeJointTorqueRegressor<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computeJointTorqueRegressor<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::Regressor, &[q, v, a], threads)
     }
 
     /// Alias of `computeJointTorqueRegressor`.
     #[pyo3(signature = (q, v, a, threads=None))]
-    fn regressor<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn regressor<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeJointTorqueRegressor(py, q, v, a, threads)
     }
 
     /// The base regressor Y_b (nv, len(base_parameter_names)) of τ = Y_b π_b, full column rank.
     #[pyo3(signature = (q, v, a, threads=None))]
-    fn base_regressor<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, a: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn base_regressor<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        a: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::BaseRegressor, &[q, v, a], threads)
     }
 
     /// The base parameters π_b of standard parameters π (in `parameter_names`' order).
-    fn base_parameters<'py>(&self, py: Python<'py>, standard: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn base_parameters<'py>(
+        &self,
+        py: Python<'py>,
+        standard: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let width = self.jit.parameter_names().len();
         let array = Array::read(standard, "standard", width)?;
         if array.states.is_some() {
@@ -419,20 +590,35 @@ impl Model {
                 "`standard` must be 1-D ({width},)"
             )));
         }
-        let values = self.jit.base_parameters(array.values()).map_err(errors::jit)?;
+        let values = self
+            .jit
+            .base_parameters(array.values())
+            .map_err(errors::jit)?;
         Ok(PyArray1::from_vec(py, values))
     }
 
     /// Kinetic energy ½ vᵀ M(q) v: Pinocchio's `computeKineticEnergy(model, data, q, v)`.
     #[pyo3(signature = (q, v, threads=None))]
     #[allow(non_snake_case)]
-    fn computeKineticEnergy<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computeKineticEnergy<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::KineticEnergy, &[q, v], threads)
     }
 
     /// Alias of `computeKineticEnergy`.
     #[pyo3(signature = (q, v, threads=None))]
-    fn kinetic_energy<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, v: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn kinetic_energy<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        v: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computeKineticEnergy(py, q, v, threads)
     }
 
@@ -440,13 +626,23 @@ impl Model {
     /// Pinocchio's `computePotentialEnergy(model, data, q)`.
     #[pyo3(signature = (q, threads=None))]
     #[allow(non_snake_case)]
-    fn computePotentialEnergy<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn computePotentialEnergy<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.run(py, Kernel::PotentialEnergy, &[q], threads)
     }
 
     /// Alias of `computePotentialEnergy`.
     #[pyo3(signature = (q, threads=None))]
-    fn potential_energy<'py>(&self, py: Python<'py>, q: &Bound<'py, PyAny>, threads: Option<isize>) -> PyResult<Bound<'py, PyAny>> {
+    fn potential_energy<'py>(
+        &self,
+        py: Python<'py>,
+        q: &Bound<'py, PyAny>,
+        threads: Option<isize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         self.computePotentialEnergy(py, q, threads)
     }
 }
