@@ -4,17 +4,17 @@
 //! Python exception that names the argument.
 
 use numpy::{
-    PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
-    PyUntypedArrayMethods,
+    PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 /// An argument read as float64 values, state after state.
 pub(crate) struct Array<'py> {
-    /// The array, borrowed for reading while the values are used.
-    readonly: PyReadonlyArrayDyn<'py, f64>,
-    /// The values, when the array was not C-contiguous.
+    /// The array (kept alive while its values are read in place).
+    array: Bound<'py, PyArrayDyn<f64>>,
+    /// The values, copied: for N states (read with the GIL released) and for an array that is
+    /// not C-contiguous. `None`: one C-contiguous state, read in place.
     copy: Option<Vec<f64>>,
     /// The number of states of a 2-D array; `None` for one state (1-D).
     pub states: Option<usize>,
@@ -25,17 +25,22 @@ impl<'py> Array<'py> {
     pub fn read(object: &Bound<'py, PyAny>, name: &str, width: usize) -> PyResult<Array<'py>> {
         let array = float64(object, name)?;
         let states = states(array.shape(), name, width)?;
-        let readonly = array
-            .try_readonly()
-            .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?;
-        // `as_slice` also accepts Fortran order, whose memory is not the states' row order:
-        // only a C-contiguous array is read in place.
-        let copy = match array.is_c_contiguous() {
+        // One C-contiguous state is read in place; every other array is copied in row order
+        // (`as_array` iterates in logical order; `as_slice` would also accept Fortran order).
+        let copy = match states.is_none() && array.is_c_contiguous() {
             true => None,
-            false => Some(readonly.as_array().iter().copied().collect()),
+            false => Some(
+                array
+                    .try_readonly()
+                    .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?
+                    .as_array()
+                    .iter()
+                    .copied()
+                    .collect(),
+            ),
         };
         let read = Array {
-            readonly,
+            array,
             copy,
             states,
         };
@@ -47,10 +52,14 @@ impl<'py> Array<'py> {
     pub fn values(&self) -> &[f64] {
         match &self.copy {
             Some(copy) => copy,
-            None => self.readonly.as_slice().unwrap_or_default(),
+            // SAFETY: the array is a C-contiguous float64 array, and one state: its values are
+            // read only by code that holds the GIL until it is done with them and runs no
+            // Python code meanwhile (one state's kernel call, the parameters' setters), so no
+            // Python thread can write them while the slice lives. (A batch is copied before the
+            // GIL is released.)
+            None => unsafe { self.array.as_slice() }.unwrap_or_default(),
         }
     }
-
     /// An error naming the first NaN or infinity.
     fn check_finite(&self, name: &str, width: usize) -> PyResult<()> {
         let values = self.values();

@@ -28,35 +28,80 @@ pub(crate) fn input_name(input: Input) -> &'static str {
     }
 }
 
-/// `kernel` of `model` at the state(s) `args` (the kernel's inputs in order), on `threads`
-/// threads for a batch.
+/// How a compiled kernel is called and its values returned: prepared for every kernel when the
+/// model is loaded, so that a call allocates nothing but its arrays.
+pub(crate) struct Plan {
+    /// The kernel.
+    kernel: Kernel,
+    /// Values per state.
+    per: usize,
+    /// The arrays of the result (`layout`).
+    parts: Vec<Part>,
+    /// Whether the one part is the whole output in order (written in place).
+    whole: bool,
+    /// Operations per state (the program's), for the threads a batch is worth.
+    ops: usize,
+}
+
+impl Plan {
+    /// The plans of every kernel `model` compiled.
+    pub fn all(model: &JitModel) -> Vec<Plan> {
+        model
+            .programs()
+            .kernels
+            .iter()
+            .filter_map(|k| {
+                let per = model.output_len(k.kernel)?;
+                let parts = layout::parts(k.kernel, sizes(model), per);
+                Some(Plan {
+                    kernel: k.kernel,
+                    per,
+                    whole: layout::is_whole(&parts, per),
+                    parts,
+                    ops: k.report.ops.total(),
+                })
+            })
+            .collect()
+    }
+
+    /// The plan of `kernel` among `plans`; an error when the model was loaded without it.
+    pub fn find(plans: &[Plan], kernel: Kernel) -> PyResult<&Plan> {
+        plans.iter().find(|p| p.kernel == kernel).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "the model has no `{kernel}` kernel: it was loaded without it (see `kernels=` of rne.load)"
+            ))
+        })
+    }
+}
+
+/// Operations a thread of a batch must have at least (about 50 µs of work): below that,
+/// starting a thread costs more than it saves. Results do not depend on the thread count.
+const OPS_PER_THREAD: usize = 100_000;
+
+/// The kernel of `plan` at the state(s) `args` (the kernel's inputs in order), on up to
+/// `threads` threads for a batch.
 pub(crate) fn call<'py>(
     py: Python<'py>,
     model: &JitModel,
-    kernel: Kernel,
+    plan: &Plan,
     args: &[&Bound<'py, PyAny>],
     threads: Option<isize>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let per = model.output_len(kernel).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "the model has no `{kernel}` kernel: it was loaded without it (see `kernels=` of rne.load)"
-        ))
-    })?;
-    let inputs = read_inputs(model, kernel, args)?;
+    let inputs = read_inputs(model, plan.kernel, args)?;
     let states = batch_states(&inputs)?;
     check_quaternions(model, &inputs)?;
-    let parts = layout::parts(kernel, sizes(model), per);
     match states {
-        None => single(py, model, kernel, &inputs, per, &parts),
+        None => single(py, model, plan, &inputs),
         Some(n) => {
-            let threads = thread_count(threads)?;
-            batch(py, model, kernel, &inputs, (n, per), &parts, threads)
+            let worth = (n.saturating_mul(plan.ops) / OPS_PER_THREAD).max(1);
+            let threads = thread_count(threads)?.min(worth);
+            batch(py, model, plan, &inputs, n, threads)
         }
     }
 }
 
 /// The sizes of `model`'s outputs.
-pub(crate) fn sizes(model: &JitModel) -> Sizes {
+fn sizes(model: &JitModel) -> Sizes {
     Sizes {
         nv: model.nv(),
         nf: model.frames().len(),
@@ -201,10 +246,8 @@ fn result<'py>(
 fn single<'py>(
     py: Python<'py>,
     model: &JitModel,
-    kernel: Kernel,
+    plan: &Plan,
     inputs: &[(Input, Array<'py>)],
-    per: usize,
-    parts: &[Part],
 ) -> PyResult<Bound<'py, PyAny>> {
     let state = State {
         q: values(inputs, Input::Q),
@@ -212,6 +255,7 @@ fn single<'py>(
         qdd: values(inputs, Input::Qdd),
         tau: values(inputs, Input::Tau),
     };
+    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
     if parts.len() == 1 && parts[0].shape.is_empty() {
         let mut value = [0.0];
         model
@@ -221,7 +265,7 @@ fn single<'py>(
     }
     let arrays = new_arrays(py, parts, None);
     let mut outs = slices(&arrays)?;
-    if layout::is_whole(parts, per) {
+    if plan.whole {
         model
             .evaluate(kernel, state, outs[0])
             .map_err(errors::jit)?;
@@ -233,14 +277,14 @@ fn single<'py>(
     result(py, arrays, None)
 }
 
-/// N states, computed with the GIL released, on `threads` threads.
+/// N states (their arrays copied by `Array::read`), computed with the GIL released, on
+/// `threads` threads.
 fn batch<'py>(
     py: Python<'py>,
     model: &JitModel,
-    kernel: Kernel,
+    plan: &Plan,
     inputs: &[(Input, Array<'py>)],
-    (n, per): (usize, usize),
-    parts: &[Part],
+    n: usize,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     let states = Batch {
@@ -249,9 +293,10 @@ fn batch<'py>(
         qdd: values(inputs, Input::Qdd),
         tau: values(inputs, Input::Tau),
     };
+    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
     let arrays = new_arrays(py, parts, Some(n));
     let mut outs = slices(&arrays)?;
-    let whole = layout::is_whole(parts, per);
+    let whole = plan.whole;
     py.detach(|| -> Result<(), JitError> {
         if n == 0 {
             return Ok(());

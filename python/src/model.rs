@@ -10,7 +10,7 @@ use rne_jit::JitModel;
 use rne_symbolic::RobotModel;
 
 use crate::arrays::Array;
-use crate::call::call;
+use crate::call::{call, Plan};
 use crate::errors;
 use crate::load::{read_and_compile, robot_path, scene, Options};
 
@@ -24,6 +24,7 @@ use crate::load::{read_and_compile, robot_path, scene, Options};
 #[pyclass(module = "rne._rne", name = "Model")]
 pub struct Model {
     jit: JitModel,
+    plans: Vec<Plan>,
     numeric: RobotModel,
     origin: String,
 }
@@ -46,7 +47,13 @@ impl Model {
         args: &[&Bound<'py, PyAny>],
         threads: Option<isize>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        call(py, &self.jit, kernel, args, threads)
+        call(
+            py,
+            &self.jit,
+            Plan::find(&self.plans, kernel)?,
+            args,
+            threads,
+        )
     }
 }
 
@@ -99,6 +106,7 @@ pub fn load<'py>(
     let scene = scene(&options)?;
     let loaded = py.detach(|| read_and_compile(&path, scene, kernels.as_deref()))?;
     Ok(Model {
+        plans: Plan::all(&loaded.jit),
         jit: loaded.jit,
         numeric: loaded.numeric,
         origin: loaded.origin,
