@@ -214,13 +214,19 @@ fn new_arrays<'py>(
         .collect()
 }
 
-/// The writable values of arrays just created here (C-contiguous, referenced nowhere else).
-fn slices<'a>(arrays: &'a [Bound<'_, PyArrayDyn<f64>>]) -> PyResult<Vec<&'a mut [f64]>> {
+/// The writable values of `arrays`.
+///
+/// # Safety
+/// The arrays must have been created by `new_arrays` in this call and not handed to Python
+/// yet: nothing else reads or writes them while the slices live.
+// A numpy array is shared memory behind a shared reference (as a `Cell`'s contents are): the
+// contract above, not the borrow, makes the slices exclusive.
+#[allow(clippy::mut_from_ref)]
+unsafe fn slices<'a>(arrays: &'a [Bound<'_, PyArrayDyn<f64>>]) -> PyResult<Vec<&'a mut [f64]>> {
     arrays
         .iter()
         .map(|a| {
-            // SAFETY: each array was created by `new_arrays` in this call and has not been
-            // handed to Python yet: nothing else reads or writes it while the slice lives.
+            // SAFETY: as the function's contract says, nothing else accesses the array.
             unsafe { a.as_slice_mut() }
                 .map_err(|e| PyRuntimeError::new_err(format!("internal error in rne: {e}")))
         })
@@ -264,7 +270,8 @@ fn single<'py>(
         return result(py, Vec::new(), Some(value[0]));
     }
     let arrays = new_arrays(py, parts, None);
-    let mut outs = slices(&arrays)?;
+    // SAFETY: the arrays were just created and are returned only after the slices' last use.
+    let mut outs = unsafe { slices(&arrays)? };
     if plan.whole {
         model
             .evaluate(kernel, state, outs[0])
@@ -295,7 +302,8 @@ fn batch<'py>(
     };
     let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
     let arrays = new_arrays(py, parts, Some(n));
-    let mut outs = slices(&arrays)?;
+    // SAFETY: the arrays were just created and are returned only after the slices' last use.
+    let mut outs = unsafe { slices(&arrays)? };
     let whole = plan.whole;
     py.detach(|| -> Result<(), JitError> {
         if n == 0 {
