@@ -8,7 +8,9 @@ time against the kernel's own (a state's share of a 10 000-state batch on one th
 usage: PYTHON bench.py [--threads T] [--repeats R]     (from the repository root)
 
 PYTHON must import both `rne` (pip install python/) and `pinocchio`; docs/python.md gives
-the command and the table it printed. Times are the best of R repetitions, in µs per state.
+the command and the table it printed. Times are the best of R repetitions, in µs per state:
+one thread's by the process's CPU time (time.process_time: what a run costs, whatever else the
+machine runs), the threaded ones' by wall time (time.perf_counter).
 """
 import argparse
 import os
@@ -16,10 +18,14 @@ import platform
 import time
 import timeit
 
-import numpy as np
-import pinocchio as pin
+# Pinocchio's OpenMP threads sleep between parallel calls instead of spinning, which would add
+# their CPU time to the one-thread measurements that follow (set before OpenMP starts).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
-import rne
+import numpy as np  # noqa: E402
+import pinocchio as pin  # noqa: E402
+
+import rne  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBOTS = [("UR5", "rne-models/robots/ur5.urdf"), ("Panda arm", "rne-models/robots/panda-arm.urdf")]
@@ -27,14 +33,20 @@ SIZES = [1, 100, 10_000]
 KERNELS = ["inverse_dynamics", "forward_dynamics", "inverse_dynamics_derivatives"]
 
 
-def best(f, repeats):
-    """The shortest of `repeats` runs of f(), s."""
+def best(f, repeats, clock=time.perf_counter):
+    """The shortest of `repeats` runs of f(), s, by `clock`."""
     times = []
     for _ in range(repeats):
-        start = time.perf_counter()
+        start = clock()
         f()
-        times.append(time.perf_counter() - start)
+        times.append(clock() - start)
     return min(times)
+
+
+def cpu(f, repeats):
+    """The shortest CPU time of this process over `repeats` runs of f() on one thread, s: what
+    a run costs whatever else the machine runs (its wall time grows with the machine's load)."""
+    return best(f, repeats, time.process_time)
 
 
 def states(model, n, seed=0):
@@ -79,7 +91,8 @@ def batch_rows(name, model, peer, threads, repeats):
              peer.loop(pin.computeRNEADerivatives, q, v, a), None),
         ]
         for kernel, ours, ours_t, loop, parallel in cases:
-            t1, tt, tl = (best(f, r) / n * 1e6 for f in (ours, ours_t, loop))
+            t1, tl = (cpu(f, r) / n * 1e6 for f in (ours, loop))
+            tt = best(ours_t, r) / n * 1e6
             tp = best(parallel, r) / n * 1e6 if parallel else None
             rows.append((name, kernel, n, t1, tt, tl, tp))
     return rows
@@ -102,9 +115,9 @@ def single_rows(name, model, peer, repeats):
          lambda: model.computeRNEADerivatives(q, v, a),
          lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0)),
     ]:
-        call = min(timeit.repeat(one, number=calls, repeat=repeats)) / calls * 1e6
-        own = best(batch, max(repeats, 3)) / 10_000 * 1e6
-        pin_call = min(timeit.repeat(theirs, number=calls, repeat=repeats)) / calls * 1e6
+        call = min(timeit.repeat(one, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
+        own = cpu(batch, max(repeats, 3)) / 10_000 * 1e6
+        pin_call = min(timeit.repeat(theirs, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
         rows.append((name, kernel, call, own, call - own, pin_call))
     return rows
 
@@ -134,12 +147,14 @@ def main():
         par = f"{tp:.3f}" if tp else "—"
         ratio = f"{tp / tt:.1f}×" if tp else "—"
         print(f"| {name} | {kernel} | {n} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {tl / tt:.1f}× | {ratio} |")
-    print("\nµs per state, best of the repetitions.\n")
+    print("\nµs per state, best of the repetitions: CPU time of the process for the one-thread "
+          "columns, wall time for the threaded ones.\n")
     print("| robot | kernel | rne, one call (1-D) | rne kernel's own time | overhead | Pinocchio, one call |")
     print("|---|---|---:|---:|---:|---:|")
     for name, kernel, call, own, over, pin_call in single:
         print(f"| {name} | {kernel} | {call:.3f} | {own:.3f} | {over:.3f} | {pin_call:.3f} |")
-    print("\nµs per call; the kernel's own time is a state's share of a 10 000-state batch on one thread.")
+    print("\nµs per call (CPU time); the kernel's own time is a state's share of a 10 000-state "
+          "batch on one thread.")
 
 
 if __name__ == "__main__":
