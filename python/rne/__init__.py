@@ -2,8 +2,8 @@
 
 A robot (a built-in name or a URDF / rne TOML file) is read and every kernel of its dynamics
 is compiled in memory to machine code for this processor (rne's JIT): the Newton-Euler
-recursion of Hoeifoedt, *Dynamics of robot manipulators by the Newton-Euler formulation*
-(NTNU 2010), generated as optimised straight-line programs. ``rne.load`` returns a
+recursion of Høifødt, *Dynamics of robot manipulators by the Newton-Euler formulation* (NTNU,
+2010), generated as optimised straight-line programs. ``rne.load`` returns a
 :class:`Model` whose kernels carry Pinocchio's names (``rnea``, ``crba``, ``aba``,
 ``computeRNEADerivatives`` ...) and snake_case aliases, and take numpy arrays: a 1-D ``q`` is
 one state, a 2-D ``(N, nq)`` array N states computed with the GIL released, optionally on
