@@ -13,7 +13,8 @@
 //! - designs excitation trajectories, finite Fourier series optimised for that condition
 //!   number within joint limits ([`excitation`]), and simulates measurements of them with
 //!   torque noise ([`simulate()`]);
-//! - draws measured against predicted torques ([`torque_figure`]).
+//! - draws measured against predicted torques (`torque_figure`, feature `figure`, on by
+//!   default).
 //!
 //! # Limitations
 //!
@@ -30,6 +31,7 @@ mod base;
 mod data;
 mod error;
 pub mod excitation;
+#[cfg(feature = "figure")]
 mod figure;
 mod free_flyer;
 mod identification;
@@ -42,6 +44,7 @@ pub use base::{BaseSet, State};
 pub use data::{Measurements, Sample};
 pub use error::IdentifyError;
 pub use excitation::{design, Design, Excitation, FourierTrajectory, Limits};
+#[cfg(feature = "figure")]
 pub use figure::torque_figure;
 pub use free_flyer::{free_flyer_state, BASE_COORDINATES};
 pub use identification::{fit, identify, predict, Fit};

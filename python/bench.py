@@ -1,0 +1,161 @@
+"""rne's Python kernels beside Pinocchio's Python bindings, in one process on one machine:
+inverse dynamics (ID), forward dynamics (FD) and the derivatives of ID (dID) of UR5 and the
+Panda arm (rne-models/robots, the same URDF files for both) over batches of 1, 100 and 10 000
+states, against a Python loop of `pin.rnea` / `pin.aba` / `pin.computeRNEADerivatives` and
+against `pin.rneaInParallel` / `pin.abaInParallel` at the same thread count; then one call's
+time against the kernel's own (a state's share of a 10 000-state batch on one thread).
+
+usage: PYTHON bench.py [--threads T] [--repeats R]     (from the repository root)
+
+PYTHON must import both `rne` (pip install python/) and `pinocchio`; docs/python.md gives
+the command and the table it printed. Times are the best of R repetitions, in µs per state:
+one thread's by the process's CPU time (time.process_time: what a run costs, whatever else the
+machine runs), the threaded ones' by wall time (time.perf_counter).
+"""
+import argparse
+import os
+import platform
+import time
+import timeit
+
+# Pinocchio's OpenMP threads sleep between parallel calls instead of spinning, which would add
+# their CPU time to the one-thread measurements that follow (set before OpenMP starts).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numpy as np  # noqa: E402
+import pinocchio as pin  # noqa: E402
+
+import rne  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROBOTS = [("UR5", "rne-models/robots/ur5.urdf"), ("Panda arm", "rne-models/robots/panda-arm.urdf")]
+SIZES = [1, 100, 10_000]
+KERNELS = ["inverse_dynamics", "forward_dynamics", "inverse_dynamics_derivatives"]
+
+
+def best(f, repeats, clock=time.perf_counter):
+    """The shortest of `repeats` runs of f(), s, by `clock`."""
+    times = []
+    for _ in range(repeats):
+        start = clock()
+        f()
+        times.append(clock() - start)
+    return min(times)
+
+
+def cpu(f, repeats):
+    """The shortest CPU time of this process over `repeats` runs of f() on one thread, s: what
+    a run costs whatever else the machine runs (its wall time grows with the machine's load)."""
+    return best(f, repeats, time.process_time)
+
+
+def states(model, n, seed=0):
+    rng = np.random.default_rng(seed)
+    q = rng.uniform(-np.pi, np.pi, (n, model.nq))
+    v, a = rng.uniform(-1, 1, (n, model.nv)), rng.uniform(-1, 1, (n, model.nv))
+    return q, v, a
+
+
+class Peer:
+    """Pinocchio on the same URDF: a loop of calls and the parallel functions."""
+
+    def __init__(self, path, threads):
+        self.model = pin.buildModelFromUrdf(path)
+        self.data = self.model.createData()
+        self.pool = pin.ModelPool(self.model, threads)
+        self.threads = threads
+
+    def loop(self, f, *arrays):
+        m, d = self.model, self.data
+        return lambda: [f(m, d, *row) for row in zip(*arrays)]
+
+    def parallel(self, f, *arrays):
+        columns = [np.asfortranarray(x.T) for x in arrays]
+        out = np.asfortranarray(np.zeros((self.model.nv, arrays[0].shape[0])))
+        return lambda: f(self.threads, self.pool, *columns, out)
+
+
+def batch_rows(name, model, peer, threads, repeats):
+    rows = []
+    for n in SIZES:
+        q, v, a = states(model, n)
+        tau = model.rnea(q, v, a)
+        r = max(repeats, 3) if n == 10_000 else repeats * 20
+        cases = [
+            ("ID", lambda: model.rnea(q, v, a), lambda: model.rnea(q, v, a, threads=threads),
+             peer.loop(pin.rnea, q, v, a), peer.parallel(pin.rneaInParallel, q, v, a)),
+            ("FD", lambda: model.aba(q, v, tau), lambda: model.aba(q, v, tau, threads=threads),
+             peer.loop(pin.aba, q, v, tau), peer.parallel(pin.abaInParallel, q, v, tau)),
+            ("dID", lambda: model.computeRNEADerivatives(q, v, a),
+             lambda: model.computeRNEADerivatives(q, v, a, threads=threads),
+             peer.loop(pin.computeRNEADerivatives, q, v, a), None),
+        ]
+        for kernel, ours, ours_t, loop, parallel in cases:
+            t1, tl = (cpu(f, r) / n * 1e6 for f in (ours, loop))
+            tt = best(ours_t, r) / n * 1e6
+            tp = best(parallel, r) / n * 1e6 if parallel else None
+            rows.append((name, kernel, n, t1, tt, tl, tp))
+    return rows
+
+
+def single_rows(name, model, peer, repeats):
+    """One call (1-D arrays) against the kernel's own time (a share of a 10 000-state batch)."""
+    q, v, a = states(model, 10_000)
+    tau = model.rnea(q, v, a)
+    q0, v0, a0, t0 = q[0], v[0], a[0], tau[0]
+    m, d = peer.model, peer.data
+    calls = 20_000
+    rows = []
+    for kernel, one, batch, theirs in [
+        ("ID", lambda: model.rnea(q0, v0, a0), lambda: model.rnea(q, v, a),
+         lambda: pin.rnea(m, d, q0, v0, a0)),
+        ("FD", lambda: model.aba(q0, v0, t0), lambda: model.aba(q, v, tau),
+         lambda: pin.aba(m, d, q0, v0, t0)),
+        ("dID", lambda: model.computeRNEADerivatives(q0, v0, a0),
+         lambda: model.computeRNEADerivatives(q, v, a),
+         lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0)),
+    ]:
+        call = min(timeit.repeat(one, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
+        own = cpu(batch, max(repeats, 3)) / 10_000 * 1e6
+        pin_call = min(timeit.repeat(theirs, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
+        rows.append((name, kernel, call, own, call - own, pin_call))
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--threads", type=int, default=os.cpu_count())
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores; "
+          f"Python {platform.python_version()}, numpy {np.__version__}, Pinocchio {pin.__version__}; "
+          f"{args.threads} threads\n")
+    batch, single = [], []
+    for name, file in ROBOTS:
+        path = os.path.join(ROOT, file)
+        model = rne.load(path, kernels=KERNELS)
+        peer = Peer(path, args.threads)
+        q, v, a = states(model, 3)
+        assert np.allclose(model.rnea(q, v, a), [pin.rnea(peer.model, peer.data, *s) for s in zip(q, v, a)])
+        batch += batch_rows(name, model, peer, args.threads, args.repeats)
+        single += single_rows(name, model, peer, args.repeats)
+    t = args.threads
+    print(f"| robot | kernel | states | rne, 1 thread | rne, {t} threads | Pinocchio loop | "
+          f"Pinocchio InParallel, {t} threads | loop / rne {t}t | InParallel / rne {t}t |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for name, kernel, n, t1, tt, tl, tp in batch:
+        par = f"{tp:.3f}" if tp else "—"
+        ratio = f"{tp / tt:.1f}×" if tp else "—"
+        print(f"| {name} | {kernel} | {n} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {tl / tt:.1f}× | {ratio} |")
+    print("\nµs per state, best of the repetitions: CPU time of the process for the one-thread "
+          "columns, wall time for the threaded ones.\n")
+    print("| robot | kernel | rne, one call (1-D) | rne kernel's own time | overhead | Pinocchio, one call |")
+    print("|---|---|---:|---:|---:|---:|")
+    for name, kernel, call, own, over, pin_call in single:
+        print(f"| {name} | {kernel} | {call:.3f} | {own:.3f} | {over:.3f} | {pin_call:.3f} |")
+    print("\nµs per call (CPU time); the kernel's own time is a state's share of a 10 000-state "
+          "batch on one thread.")
+
+
+if __name__ == "__main__":
+    main()

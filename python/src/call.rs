@@ -1,0 +1,327 @@
+//! One kernel called from Python: the arrays read and checked, one state computed in place, or
+//! a batch of N states computed with the GIL released on one or more threads, and the values
+//! returned as numpy arrays (`layout`).
+
+use numpy::ndarray::IxDyn;
+use numpy::{PyArrayDyn, PyArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyTuple};
+use rne_codegen_core::{Input, Kernel};
+use rne_jit::{Batch, JitError, JitModel, State};
+
+use crate::arrays::Array;
+use crate::errors;
+use crate::layout::{self, Part, Sizes};
+
+/// The most a base quaternion's norm may differ from 1 (as `rne eval` checks it).
+const QUATERNION_TOLERANCE: f64 = 1e-9;
+
+/// The Python name of a kernel's input (Pinocchio's: q, v, a, tau).
+pub(crate) fn input_name(input: Input) -> &'static str {
+    match input {
+        Input::Q => "q",
+        Input::Qd => "v",
+        Input::Qdd => "a",
+        Input::Tau => "tau",
+        Input::Standard => "standard",
+    }
+}
+
+/// How a compiled kernel is called and its values returned: prepared for every kernel when the
+/// model is loaded, so that a call allocates nothing but its arrays.
+pub(crate) struct Plan {
+    /// The kernel.
+    kernel: Kernel,
+    /// Values per state.
+    per: usize,
+    /// The arrays of the result (`layout`).
+    parts: Vec<Part>,
+    /// Whether the one part is the whole output in order (written in place).
+    whole: bool,
+    /// Operations per state (the program's), for the threads a batch is worth.
+    ops: usize,
+}
+
+impl Plan {
+    /// The plans of every kernel `model` compiled.
+    pub fn all(model: &JitModel) -> Vec<Plan> {
+        model
+            .programs()
+            .kernels
+            .iter()
+            .filter_map(|k| {
+                let per = model.output_len(k.kernel)?;
+                let parts = layout::parts(k.kernel, sizes(model), per);
+                Some(Plan {
+                    kernel: k.kernel,
+                    per,
+                    whole: layout::is_whole(&parts, per),
+                    parts,
+                    ops: k.report.ops.total(),
+                })
+            })
+            .collect()
+    }
+
+    /// The plan of `kernel` among `plans`; an error when the model was loaded without it.
+    pub fn find(plans: &[Plan], kernel: Kernel) -> PyResult<&Plan> {
+        plans.iter().find(|p| p.kernel == kernel).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "the model has no `{kernel}` kernel: it was loaded without it (see `kernels=` of rne.load)"
+            ))
+        })
+    }
+}
+
+/// Operations a thread of a batch must have at least (about 50 µs of work): below that,
+/// starting a thread costs more than it saves. Results do not depend on the thread count.
+const OPS_PER_THREAD: usize = 100_000;
+
+/// The kernel of `plan` at the state(s) `args` (the kernel's inputs in order), on up to
+/// `threads` threads for a batch.
+pub(crate) fn call<'py>(
+    py: Python<'py>,
+    model: &JitModel,
+    plan: &Plan,
+    args: &[&Bound<'py, PyAny>],
+    threads: Option<isize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let inputs = read_inputs(model, plan.kernel, args)?;
+    let states = batch_states(&inputs)?;
+    check_quaternions(model, &inputs)?;
+    match states {
+        None => single(py, model, plan, &inputs),
+        Some(n) => {
+            let worth = (n.saturating_mul(plan.ops) / OPS_PER_THREAD).max(1);
+            let threads = thread_count(threads)?.min(worth);
+            batch(py, model, plan, &inputs, n, threads)
+        }
+    }
+}
+
+/// The sizes of `model`'s outputs.
+fn sizes(model: &JitModel) -> Sizes {
+    Sizes {
+        nv: model.nv(),
+        nf: model.frames().len(),
+        np: model.parameter_names().len(),
+        nb: model.base_parameter_names().len(),
+    }
+}
+
+/// The kernel's inputs read from `args`.
+fn read_inputs<'py>(
+    model: &JitModel,
+    kernel: Kernel,
+    args: &[&Bound<'py, PyAny>],
+) -> PyResult<Vec<(Input, Array<'py>)>> {
+    kernel
+        .inputs()
+        .iter()
+        .zip(args)
+        .map(|(&input, arg)| {
+            let width = match input {
+                Input::Q => model.nq(),
+                Input::Standard => model.parameter_names().len(),
+                _ => model.nv(),
+            };
+            Ok((input, Array::read(arg, input_name(input), width)?))
+        })
+        .collect()
+}
+
+/// `None` when every input is one state, `Some(N)` when every input holds N states.
+fn batch_states(inputs: &[(Input, Array<'_>)]) -> PyResult<Option<usize>> {
+    let Some((first_input, first)) = inputs.first() else {
+        return Ok(None);
+    };
+    for (input, array) in &inputs[1..] {
+        if array.states != first.states {
+            let describe = |s: Option<usize>| match s {
+                None => "one state (1-D)".to_owned(),
+                Some(n) => format!("{n} states (2-D)"),
+            };
+            return Err(PyValueError::new_err(format!(
+                "`{}` holds {} but `{}` holds {}: give every argument as one state or every one as N states",
+                input_name(*first_input),
+                describe(first.states),
+                input_name(*input),
+                describe(array.states)
+            )));
+        }
+    }
+    Ok(first.states)
+}
+
+/// On a floating base, every configuration's quaternion [qx, qy, qz, qw] (q[3..7]) must have
+/// unit norm: the kernels assume it.
+fn check_quaternions(model: &JitModel, inputs: &[(Input, Array<'_>)]) -> PyResult<()> {
+    if !model.programs().floating_base {
+        return Ok(());
+    }
+    let Some((_, q)) = inputs.iter().find(|(i, _)| *i == Input::Q) else {
+        return Ok(());
+    };
+    for (k, state) in q.values().chunks_exact(model.nq()).enumerate() {
+        let norm = state[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+        if (norm - 1.0).abs() > QUATERNION_TOLERANCE {
+            let at = match q.states {
+                Some(_) => format!("q[{k}, 3:7]"),
+                None => "q[3:7]".to_owned(),
+            };
+            return Err(PyValueError::new_err(format!(
+                "the base quaternion [qx, qy, qz, qw] = {at} = {:?} has norm {norm}; it must be a unit quaternion (divide it by its norm)",
+                &state[3..7]
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The thread count asked for: one by default, every core for 0.
+fn thread_count(threads: Option<isize>) -> PyResult<usize> {
+    match threads {
+        None | Some(1) => Ok(1),
+        Some(0) => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+        Some(n) if n > 0 => Ok(n.unsigned_abs()),
+        Some(n) => Err(PyValueError::new_err(format!(
+            "threads must be positive (or 0 for every core), got {n}"
+        ))),
+    }
+}
+
+/// The slice of `input` among `inputs` (empty when the kernel does not take it).
+fn values<'a>(inputs: &'a [(Input, Array<'_>)], input: Input) -> &'a [f64] {
+    inputs
+        .iter()
+        .find(|(i, _)| *i == input)
+        .map_or(&[], |(_, a)| a.values())
+}
+
+/// New C-contiguous arrays, one per part, each with `lead` (the batch size) first when given.
+fn new_arrays<'py>(
+    py: Python<'py>,
+    parts: &[Part],
+    lead: Option<usize>,
+) -> Vec<Bound<'py, PyArrayDyn<f64>>> {
+    parts
+        .iter()
+        .map(|p| {
+            let shape: Vec<usize> = lead.into_iter().chain(p.shape.iter().copied()).collect();
+            PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false)
+        })
+        .collect()
+}
+
+/// The writable values of `arrays`.
+///
+/// # Safety
+/// The arrays must have been created by `new_arrays` in this call and not handed to Python
+/// yet: nothing else reads or writes them while the slices live.
+// A numpy array is shared memory behind a shared reference (as a `Cell`'s contents are): the
+// contract above, not the borrow, makes the slices exclusive.
+#[allow(clippy::mut_from_ref)]
+unsafe fn slices<'a>(arrays: &'a [Bound<'_, PyArrayDyn<f64>>]) -> PyResult<Vec<&'a mut [f64]>> {
+    arrays
+        .iter()
+        .map(|a| {
+            // SAFETY: as the function's contract says, nothing else accesses the array.
+            unsafe { a.as_slice_mut() }
+                .map_err(|e| PyRuntimeError::new_err(format!("internal error in rne: {e}")))
+        })
+        .collect()
+}
+
+/// The arrays as the Python result: one array (a float for one state's scalar), or a tuple.
+fn result<'py>(
+    py: Python<'py>,
+    arrays: Vec<Bound<'py, PyArrayDyn<f64>>>,
+    single_scalar: Option<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    if let Some(x) = single_scalar {
+        return Ok(PyFloat::new(py, x).into_any());
+    }
+    match <[_; 1]>::try_from(arrays) {
+        Ok([array]) => Ok(array.into_any()),
+        Err(arrays) => Ok(PyTuple::new(py, arrays)?.into_any()),
+    }
+}
+
+/// One state, computed with the GIL held (a call of a few microseconds at most).
+fn single<'py>(
+    py: Python<'py>,
+    model: &JitModel,
+    plan: &Plan,
+    inputs: &[(Input, Array<'py>)],
+) -> PyResult<Bound<'py, PyAny>> {
+    let state = State {
+        q: values(inputs, Input::Q),
+        qd: values(inputs, Input::Qd),
+        qdd: values(inputs, Input::Qdd),
+        tau: values(inputs, Input::Tau),
+    };
+    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
+    if parts.len() == 1 && parts[0].shape.is_empty() {
+        let mut value = [0.0];
+        model
+            .evaluate(kernel, state, &mut value)
+            .map_err(errors::jit)?;
+        return result(py, Vec::new(), Some(value[0]));
+    }
+    let arrays = new_arrays(py, parts, None);
+    // SAFETY: the arrays were just created and are returned only after the slices' last use.
+    let mut outs = unsafe { slices(&arrays)? };
+    if plan.whole {
+        model
+            .evaluate(kernel, state, outs[0])
+            .map_err(errors::jit)?;
+    } else {
+        let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
+        layout::gather(&values, per, parts, &mut outs);
+    }
+    drop(outs);
+    result(py, arrays, None)
+}
+
+/// N states (their arrays copied by `Array::read`), computed with the GIL released, on
+/// `threads` threads.
+fn batch<'py>(
+    py: Python<'py>,
+    model: &JitModel,
+    plan: &Plan,
+    inputs: &[(Input, Array<'py>)],
+    n: usize,
+    threads: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let states = Batch {
+        q: values(inputs, Input::Q),
+        qd: values(inputs, Input::Qd),
+        qdd: values(inputs, Input::Qdd),
+        tau: values(inputs, Input::Tau),
+    };
+    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
+    let arrays = new_arrays(py, parts, Some(n));
+    // SAFETY: the arrays were just created and are returned only after the slices' last use.
+    let mut outs = unsafe { slices(&arrays)? };
+    let whole = plan.whole;
+    py.detach(|| -> Result<(), JitError> {
+        if n == 0 {
+            return Ok(());
+        }
+        let run = |out: &mut [f64]| match threads {
+            1 => model.evaluate_batch(kernel, states, out),
+            t => model.evaluate_batch_threaded(kernel, states, out, t),
+        };
+        if whole {
+            return run(outs[0]);
+        }
+        let mut values = vec![0.0; n * per];
+        run(&mut values)?;
+        layout::gather(&values, per, parts, &mut outs);
+        Ok(())
+    })
+    .map_err(errors::jit)?;
+    drop(outs);
+    result(py, arrays, None)
+}
