@@ -528,3 +528,14 @@ impl RuntimeTrig for f64 {
         Real::sin_cos(self)
     }
 }
+
+/// The fast tier (single-pass register allocation) computes every kernel with the bits of the
+/// optimised tier: register allocation changes where values live, not the operations.
+#[test]
+fn both_tiers_compute_the_same_bits() {
+    let robot = rne_models::builtin::builtin("ur5").unwrap();
+    let model = builtin(robot);
+    let fast =
+        JitModel::compile_at(&model, &all_kernels(), robot.name, rne_jit::Tier::Fast).unwrap();
+    check_against_programs(&fast, &States::new(&fast, 200, 0x71e), "ur5, fast tier");
+}

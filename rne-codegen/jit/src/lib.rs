@@ -43,4 +43,4 @@ mod model;
 
 pub use batch::Batch;
 pub use error::JitError;
-pub use model::{JitModel, State, Timings};
+pub use model::{JitModel, State, Tier, Timings};

@@ -36,6 +36,19 @@ pub(crate) struct Compiled {
     scratch: usize,
 }
 
+/// How much work Cranelift spends on the code: the register allocator is most of the time to
+/// compile, and most of the difference in speed (docs/performance.md, "Robots chosen at run
+/// time"). Both tiers compute the same bits.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum Tier {
+    /// Cranelift's backtracking register allocator: the faster code.
+    #[default]
+    Optimized,
+    /// Cranelift's single-pass register allocator: compiles about ten times faster, code about
+    /// half as fast.
+    Fast,
+}
+
 /// How long the kernels took to obtain.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Timings {
@@ -80,12 +93,22 @@ impl JitModel {
         JitModel::compile(&model, scene, &origin)
     }
 
-    /// Compiles the kernels `scene` asks for, for `model`; `source` names the robot file in
-    /// errors.
+    /// Compiles the kernels `scene` asks for, for `model`, at [`Tier::Optimized`]; `source`
+    /// names the robot file in errors.
     pub fn compile(model: &RobotModel, scene: &Scene, source: &str) -> Result<JitModel, JitError> {
+        JitModel::compile_at(model, scene, source, Tier::Optimized)
+    }
+
+    /// Compiles the kernels `scene` asks for, for `model`, at `tier`.
+    pub fn compile_at(
+        model: &RobotModel,
+        scene: &Scene,
+        source: &str,
+        tier: Tier,
+    ) -> Result<JitModel, JitError> {
         let programs = generate_programs(model, scene, source)?;
         let start = Instant::now();
-        let (mut module, fused) = host_module(scene.fma)?;
+        let (mut module, fused) = host_module(scene.fma, tier)?;
         let mut lowering =
             Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
                 kernel: programs
@@ -378,7 +401,7 @@ fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitE
 /// A JIT module for this processor, its features detected at run time, with the runtime's
 /// sines and cosines linked in; and whether multiply-adds are fused there (`fma` asked for and
 /// the processor has FMA).
-fn host_module(fma: bool) -> Result<(JITModule, bool), JitError> {
+fn host_module(fma: bool, tier: Tier) -> Result<(JITModule, bool), JitError> {
     let mut flags = settings::builder();
     let set = |flags: &mut settings::Builder, name: &str, value: &str| {
         flags
@@ -386,6 +409,11 @@ fn host_module(fma: bool) -> Result<(JITModule, bool), JitError> {
             .map_err(|e| JitError::UnsupportedHost(format!("setting {name}: {e}")))
     };
     set(&mut flags, "opt_level", "speed")?;
+    let allocator = match tier {
+        Tier::Optimized => "backtracking",
+        Tier::Fast => "single_pass",
+    };
+    set(&mut flags, "regalloc_algorithm", allocator)?;
     set(&mut flags, "use_colocated_libcalls", "false")?;
     set(&mut flags, "is_pic", "false")?;
     set(

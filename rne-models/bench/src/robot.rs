@@ -14,7 +14,7 @@ mod peers;
 use rne_codegen::{Kernel, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, Engine as Agreement};
 use rne_interpreted::Interpreted;
-use rne_jit::JitModel;
+use rne_jit::{JitModel, Tier};
 use rne_models::BuiltinRobot;
 use rne_symbolic::RobotModel;
 
@@ -80,6 +80,8 @@ pub struct RobotBenchSettings {
     pub states: usize,
     /// The timing plan.
     pub plan: Plan,
+    /// How hard the JIT works on the code.
+    pub tier: Tier,
     /// The built-in robot, whose compiled module is then timed too.
     pub builtin: Option<&'static BuiltinRobot>,
     /// The peer scripts and the robot's URDF, when Pinocchio is timed too.
@@ -130,6 +132,8 @@ pub struct RobotBench {
     pub nv: usize,
     /// Whether the JIT fused multiply-adds (the processor has FMA and the scene asked).
     pub fused: bool,
+    /// The JIT's tier.
+    pub tier: Tier,
     /// Time to obtain the kernels.
     pub time_to_kernels: TimeToKernels,
     /// Every kernel on every engine that has it.
@@ -148,7 +152,8 @@ pub fn bench_robot(
         problem: e.to_string(),
     };
     progress("generating and compiling the kernels (JIT)");
-    let jit = JitModel::compile(model, &settings.scene, source).map_err(failed)?;
+    let jit =
+        JitModel::compile_at(model, &settings.scene, source, settings.tier).map_err(failed)?;
     let peak_memory_bytes = peak_memory();
     let timings = jit.timings();
     let states = random_states(jit.nq(), jit.nv(), settings.states, 0xbe4c);
@@ -244,6 +249,7 @@ pub fn bench_robot(
         nq: jit.nq(),
         nv: jit.nv(),
         fused: jit.fused(),
+        tier: settings.tier,
         time_to_kernels,
         kernels,
     })

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-pub use super::bench_robot::BenchEngine;
+pub use super::bench_robot::{BenchEngine, JitTier};
 use super::long_run::LongRun;
 use super::model::ModelOptions;
 use super::CliError;
@@ -39,6 +39,10 @@ pub struct BenchArgs {
     /// With MODEL: fuse multiply-adds where the processor has FMA (the macro's `fma: true`).
     #[arg(long)]
     pub fma: bool,
+    /// With MODEL: Cranelift's register allocator, `optimized` (backtracking: faster code) or
+    /// `fast` (single pass: about ten times faster to compile, code about half as fast).
+    #[arg(long, value_enum, default_value = "optimized")]
+    pub jit_tier: JitTier,
     /// With MODEL: print one JSON object.
     #[arg(long)]
     pub json: bool,

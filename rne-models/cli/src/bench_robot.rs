@@ -15,6 +15,7 @@ use rne_bench::robot::{
 };
 use rne_bench::Effort;
 use rne_codegen::{Kernel, Scene};
+use rne_jit::Tier;
 use rne_models::builtin::RobotSource;
 use serde_json::json;
 
@@ -40,6 +41,15 @@ impl BenchEngine {
             BenchEngine::Interpreted => Engine::Interpreted,
         }
     }
+}
+
+/// The JIT's tier (`--jit-tier`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum JitTier {
+    /// Backtracking register allocation: the faster code.
+    Optimized,
+    /// Single-pass register allocation: the faster compilation.
+    Fast,
 }
 
 /// Runs `rne bench MODEL` and prints its table or JSON.
@@ -69,6 +79,10 @@ pub fn run(model: &str, args: &BenchArgs, out: &mut dyn Write) -> Result<(), Cli
         scene,
         states: effort.pool(),
         plan: effort.kernel_plan(),
+        tier: match args.jit_tier {
+            JitTier::Optimized => Tier::Optimized,
+            JitTier::Fast => Tier::Fast,
+        },
         builtin: match source {
             RobotSource::Builtin(robot) if args.options.keeps_the_file_model() => Some(robot),
             _ => None,
@@ -161,6 +175,7 @@ fn to_json(report: &RobotBench) -> serde_json::Value {
         "nq": report.nq,
         "nv": report.nv,
         "fma": report.fused,
+        "jit_tier": format!("{:?}", report.tier).to_lowercase(),
         "time_to_kernels_s": {
             "rne_jit": t.rne_jit_s,
             "rne_generation": t.generation_s,
@@ -183,10 +198,11 @@ fn to_json(report: &RobotBench) -> serde_json::Value {
 fn table(report: &RobotBench) -> String {
     let t = &report.time_to_kernels;
     let mut s = format!(
-        "robot: {} (nq {}, nv {}), multiply-adds {}\n",
+        "robot: {} (nq {}, nv {}), JIT tier {:?}, multiply-adds {}\n",
         report.robot,
         report.nq,
         report.nv,
+        report.tier,
         if report.fused { "fused" } else { "not fused" }
     );
     s += &format!(
