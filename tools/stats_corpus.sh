@@ -18,7 +18,7 @@ cell() {
   if [ $status -eq 124 ]; then echo "timeout (600 s)"; return; fi
   if [ $status -ne 0 ]; then
     if grep -q "panicked\|RUST_BACKTRACE" <<<"$out"; then echo "**panic**"; return; fi
-    echo "error: $(grep -m1 '^error' <<<"$out" | sed 's/^error: //; s/|/\\|/g' | cut -c1-160)"
+    echo "error: $(grep -m1 '^error' <<<"$out" | sed "s|^error: ||; s|$dir/||g; s/|/\\\\|/g" | cut -c1-200)"
     return
   fi
   python3 -c '
