@@ -432,6 +432,7 @@ fn dropped_models_free_their_code() {
                 "--exact",
                 "dropped_models_free_their_code",
                 "--test-threads=1",
+                "--nocapture",
             ])
             .env("RNE_JIT_DROP_ALONE", "1")
             .status()
