@@ -11,6 +11,10 @@ use rne_symbolic::{ExprGraph, Id, Node, OpCount, Real, Symbol};
 
 use crate::latency::instr_cycles;
 
+#[cfg(test)]
+mod filetests;
+mod text;
+
 /// An operand: a previous instruction's result, a constant or an input.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Operand {
