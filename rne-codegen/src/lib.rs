@@ -85,9 +85,10 @@ pub use rne_runtime::convert;
 
 #[cfg(feature = "builder")]
 pub use rne_codegen_core::{
-    build_kernel, build_kernel_with, generate, generate_from_path, kernel_program, Builder,
-    BuiltKernel, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule,
-    KernelReport, KernelSetup, MimicMode, ParameterMode, Program, ScalarType, Scene,
+    build_kernel, build_kernel_with, c_identifier, emit_c, generate, generate_c,
+    generate_from_path, generate_programs, kernel_program, Builder, BuiltKernel, CModule,
+    CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule, GeneratedPrograms,
+    KernelProgram, KernelReport, KernelSetup, MimicMode, ParameterMode, Program, ScalarType, Scene,
     KEEP_GENERATED_ENV,
 };
 

@@ -20,7 +20,7 @@ pub struct BuiltKernel {
     pub roots: Vec<Id>,
     /// The optimised straight-line program: the outputs with their linear combinations
     /// rewritten ([`distribute_constants`]), lowered ([`Program::lower`]). This is exactly what
-    /// [`generate`] emits.
+    /// `generate` emits.
     pub program: Program,
 }
 

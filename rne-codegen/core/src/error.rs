@@ -88,6 +88,20 @@ pub enum CodegenError {
     /// A parameter name cannot be a Rust field name.
     #[error("parameter `{0}` cannot be a Rust field name of `Params`")]
     ParameterName(String),
+    /// A kernel cannot be written as C.
+    #[error("cannot write `{kernel}` as C: {reason}")]
+    CKernel {
+        /// The kernel.
+        kernel: crate::kernel::Kernel,
+        /// Why not.
+        reason: String,
+    },
+    /// A parameter name cannot be a field of the C parameters' struct.
+    #[error("parameter `{0}` cannot be a field of the C parameters' struct (a C identifier that is no C or C++ keyword)")]
+    CParameterName(String),
+    /// The scene asks for something the C emitter does not write.
+    #[error("cannot write C: {0}")]
+    CEmission(String),
     /// Writing generated files failed.
     #[error("cannot write {path}: {cause}")]
     Io {

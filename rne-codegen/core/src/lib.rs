@@ -8,6 +8,8 @@
 //! linear combinations are rewritten ([`distribute_constants`]); it is lowered to a
 //! straight-line [`Program`] (dead code removed, negations absorbed); the program is emitted
 //! with `quote` as a function, next to the module's constants and its `Model` type.
+//! [`generate_c`] writes the same programs ([`module_programs`]) as a C99 header and source
+//! for C and C++ programs, bit for bit the Rust kernels (`emit_c.rs`).
 //!
 //! # Optimisations and their limits
 //! Every rewrite keeps or lowers the operation count ([`rne_symbolic::OpCount`]). Only the
@@ -49,6 +51,7 @@ mod builder;
 mod built;
 mod dispatch;
 mod emit;
+mod emit_c;
 mod error;
 mod kernel;
 mod latency;
@@ -69,6 +72,7 @@ pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use built::{build_kernel, build_kernel_with, kernel_program, BuiltKernel};
 pub use dispatch::DISPATCH_FROM;
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
+pub use emit_c::{c_identifier, emit_c, generate_c, CModule};
 pub use error::CodegenError;
 pub use kernel::{
     articulated_applies, build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel,

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+use rne_symbolic::spec::{decode, parse_robot, LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
@@ -21,10 +21,11 @@ pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel
         free_mimic: scene.mimic == MimicMode::Free,
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
-    let text = std::fs::read_to_string(path).map_err(|cause| CodegenError::Read {
+    let bytes = std::fs::read(path).map_err(|cause| CodegenError::Read {
         file: origin.to_owned(),
         cause,
     })?;
+    let text = decode(bytes, origin)?;
     Ok(parse_robot(&text, origin, format, &options)?)
 }
 

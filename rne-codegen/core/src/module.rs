@@ -23,7 +23,7 @@ pub struct KernelReport {
     pub kernel: Kernel,
     /// Operations per call of the emitted function.
     pub ops: OpCount,
-    /// Its critical path in modelled cycles ([`Program::critical_path`]).
+    /// Its critical path in modelled cycles ([`Program::critical_path`](crate::Program::critical_path)).
     pub critical_path: u32,
     /// Time spent building and emitting this kernel: for forward dynamics whose method is
     /// chosen, building it both ways to choose included; for ∂ID built on one thread and

@@ -372,6 +372,13 @@ impl Program {
             .collect()
     }
 
+    /// [`Program::eval`] in `f64`, instantiated here: a caller's build evaluates at this
+    /// crate's optimisation level (the tests' debug builds evaluate programs of tens of
+    /// thousands of instructions at many states).
+    pub fn eval_f64(&self, input: &dyn Fn(Symbol) -> f64) -> Vec<f64> {
+        self.eval(input)
+    }
+
     /// The outputs in lane `lane` (an output picking a lane is read in this one).
     fn eval_lane<T: Real>(&self, input: &impl Fn(Symbol) -> T, lane: u8) -> Vec<T> {
         let mut temps: Vec<T> = Vec::with_capacity(self.instrs.len());

@@ -5,6 +5,8 @@
 
 use std::time::{Duration, Instant};
 
+use rne_symbolic::dynamics::base_parameters::BaseParameters;
+use rne_symbolic::model::Parameter;
 use rne_symbolic::{RobotModel, Symbol};
 
 use crate::built::BuiltKernel;
@@ -13,7 +15,7 @@ use crate::kernel::{Dims, Kernel};
 use crate::module::{ForwardDynamicsChoice, KernelReport};
 use crate::plan::Plan;
 use crate::program::Program;
-use crate::scene::Scene;
+use crate::scene::{ParameterMode, Scene};
 use crate::schedule;
 
 /// One kernel's program and how it was made.
@@ -37,6 +39,8 @@ pub struct GeneratedPrograms {
     pub kernels: Vec<KernelProgram>,
     /// Joint variable names, in state order.
     pub joints: Vec<String>,
+    /// Number of joint variables (after locking).
+    pub ndof: usize,
     /// Size of the configuration q.
     pub nq: usize,
     /// The sizes of the arrays: NV, NF frames, NP standard and NB base parameters.
@@ -55,6 +59,14 @@ pub struct GeneratedPrograms {
     pub parameter_values: Vec<f64>,
     /// The names of those parameters.
     pub parameter_symbols: Vec<String>,
+    /// How parameters enter the kernels.
+    pub parameter_mode: ParameterMode,
+    /// The parameters read at run time (`Runtime`: the robot file's; `Base`: the base
+    /// parameters as identifiers), with the robot file's values; empty for `Constant`.
+    pub runtime_parameters: Vec<Parameter>,
+    /// The base parameters (their map from the standard ones), when a kernel or the parameter
+    /// mode reads them.
+    pub base_parameters: Option<BaseParameters>,
     /// Both ways forward dynamics could be built, when it was and both apply.
     pub forward_dynamics_choice: Option<ForwardDynamicsChoice>,
     /// The model as the scene sees it (base, mimic, gravity, locks applied).
@@ -99,14 +111,23 @@ pub fn generate_programs(
     let parameter_values = (0..parameter_symbols.len())
         .map(|i| {
             let symbol = Symbol::Parameter(i as u16);
-            plan.dynamics.model.parameter_value(symbol).unwrap_or(f64::NAN)
+            plan.dynamics
+                .model
+                .parameter_value(symbol)
+                .unwrap_or(f64::NAN)
         })
         .collect();
+    let runtime_parameters = match scene.parameters {
+        ParameterMode::Constant => Vec::new(),
+        ParameterMode::Runtime => plan.model.parameters.clone(),
+        ParameterMode::Base => plan.dynamics.model.parameters.clone(),
+    };
     let base_parameters = built.base_parameters.as_ref();
     Ok(GeneratedPrograms {
         robot: plan.model.name.clone(),
         kernels: built.kernels,
         joints: plan.dynamics.model.joint_names(),
+        ndof: plan.dynamics.dof(),
         nq: plan.dynamics.layout().nq(),
         dims: Dims {
             nb: base_parameters.map_or(0, |b| b.len()),
@@ -125,6 +146,9 @@ pub fn generate_programs(
         parameter_names: plan.parameter_names.clone(),
         parameter_values,
         parameter_symbols,
+        parameter_mode: scene.parameters,
+        runtime_parameters,
+        base_parameters: built.base_parameters.clone(),
         forward_dynamics_choice: built.forward_dynamics_choice,
         model: plan.model.clone(),
         generation_time: start.elapsed(),

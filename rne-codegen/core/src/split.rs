@@ -99,9 +99,10 @@ pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<Spli
     (program.instrs.len() > SPLIT_ABOVE).then(|| plan_parts(program, named, prologue, PART_LEN))
 }
 
-/// The plan of `program` in parts of `part_len` instructions, whatever its length ([`plan`]
-/// with the part length a parameter, for the tests).
-pub(crate) fn plan_parts(
+/// [`plan`] with parts of `part_len` instructions, whatever the program's length (the C
+/// emitter's, `emit_c`, whose compilers call for other lengths than rustc; the golden files'
+/// small split cases).
+pub fn plan_parts(
     program: &Program,
     named: &[bool],
     prologue: &[bool],

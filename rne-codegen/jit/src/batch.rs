@@ -25,7 +25,12 @@ impl JitModel {
     /// states is `out.len()` over the kernel's [`JitModel::output_len`], and every array the
     /// kernel takes must hold that many states. Each state is checked as
     /// [`JitModel::evaluate`] checks one.
-    pub fn evaluate_batch(&self, kernel: Kernel, batch: Batch<'_>, out: &mut [f64]) -> Result<(), JitError> {
+    pub fn evaluate_batch(
+        &self,
+        kernel: Kernel,
+        batch: Batch<'_>,
+        out: &mut [f64],
+    ) -> Result<(), JitError> {
         let states = self.batch_states(kernel, &batch, out.len())?;
         let per = self.compiled_kernel(kernel)?.outputs();
         for (i, out) in out.chunks_mut(per.max(1)).enumerate().take(states) {
@@ -64,8 +69,7 @@ impl JitModel {
                 .collect();
             handles
                 .into_iter()
-                .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
-                .collect::<Result<(), JitError>>()
+                .try_for_each(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
         })
     }
 
@@ -82,9 +86,14 @@ impl JitModel {
 
     /// The number of states of a batch whose results fill `out_len` values, once every array
     /// the kernel takes is known to hold that many.
-    fn batch_states(&self, kernel: Kernel, batch: &Batch<'_>, out_len: usize) -> Result<usize, JitError> {
+    fn batch_states(
+        &self,
+        kernel: Kernel,
+        batch: &Batch<'_>,
+        out_len: usize,
+    ) -> Result<usize, JitError> {
         let per = self.compiled_kernel(kernel)?.outputs();
-        if per == 0 || out_len % per != 0 {
+        if per == 0 || !out_len.is_multiple_of(per) {
             return Err(JitError::OutputLength {
                 kernel,
                 got: out_len,

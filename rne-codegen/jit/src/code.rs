@@ -73,7 +73,12 @@ impl Entry {
     }
 
     /// Runs the function, or `None` when an array is shorter than what it reaches.
-    pub(crate) fn call(&self, arrays: Arrays<'_>, out: &mut [f64], scratch: &mut [f64]) -> Option<()> {
+    pub(crate) fn call(
+        &self,
+        arrays: Arrays<'_>,
+        out: &mut [f64],
+        scratch: &mut [f64],
+    ) -> Option<()> {
         let e = self.extents;
         let fits = arrays.q.len() >= e.q
             && arrays.qd.len() >= e.qd

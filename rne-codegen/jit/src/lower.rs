@@ -91,7 +91,11 @@ impl Lowering {
         let mut functions = Vec::with_capacity(parts.len());
         for (k, &part) in parts.iter().enumerate() {
             let id = module
-                .declare_function(&format!("{name}_{k}"), Linkage::Local, &self.kernel_signature)
+                .declare_function(
+                    &format!("{name}_{k}"),
+                    Linkage::Local,
+                    &self.kernel_signature,
+                )
                 .map_err(|e| e.to_string())?;
             self.context.func.signature = self.kernel_signature.clone();
             self.context.func.name = UserFuncName::user(0, id.as_u32());
@@ -269,7 +273,10 @@ impl<'f> Body<'f> {
                 Instr::Cos(Operand::Input(Symbol::Position(k))) => (k, &cosines),
                 _ => continue,
             };
-            let j = joints.iter().position(|&j| j == k).expect("collected above");
+            let j = joints
+                .iter()
+                .position(|&j| j == k)
+                .expect("collected above");
             self.temps.insert(t, values[j]);
         }
     }
@@ -279,9 +286,11 @@ impl<'f> Body<'f> {
     fn sin_cos(&mut self, angles: &[Value]) -> (Vec<Value>, Vec<Value>) {
         let n = angles.len();
         let bytes = u32::try_from(24 * n).expect("a few joints");
-        let slot = self
-            .builder
-            .create_sized_stack_slot(StackSlotData::new(StackSlotKind::ExplicitSlot, bytes, 3));
+        let slot = self.builder.create_sized_stack_slot(StackSlotData::new(
+            StackSlotKind::ExplicitSlot,
+            bytes,
+            3,
+        ));
         let address = |b: &mut FunctionBuilder, offset: usize| {
             b.ins().stack_addr(self.pointer, slot, (8 * offset) as i32)
         };
@@ -397,7 +406,12 @@ impl<'f> Body<'f> {
 
     /// An operand's value: an instruction of this part, one of an earlier part (from its
     /// scratch slot), a constant or an input.
-    fn operand(&mut self, o: Operand, slots: &Slots, extents: &mut Extents) -> Result<Value, String> {
+    fn operand(
+        &mut self,
+        o: Operand,
+        slots: &Slots,
+        extents: &mut Extents,
+    ) -> Result<Value, String> {
         Ok(match o {
             Operand::Const(c) => self.constant(c),
             Operand::Input(Symbol::Lane(_)) | Operand::Lane { .. } => {
@@ -449,9 +463,12 @@ impl<'f> Body<'f> {
 
     fn load(&mut self, array: Array, index: usize) -> Value {
         let base = self.arrays[array as usize];
-        self.builder
-            .ins()
-            .load(types::F64, MemFlagsData::trusted(), base, (8 * index) as i32)
+        self.builder.ins().load(
+            types::F64,
+            MemFlagsData::trusted(),
+            base,
+            (8 * index) as i32,
+        )
     }
 
     fn store(&mut self, array: Array, index: usize, value: Value) {

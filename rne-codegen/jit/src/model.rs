@@ -86,10 +86,14 @@ impl JitModel {
         let programs = generate_programs(model, scene, source)?;
         let start = Instant::now();
         let (mut module, fused) = host_module(scene.fma)?;
-        let mut lowering = Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
-            kernel: programs.kernels.first().map_or(Kernel::InverseDynamics, |k| k.kernel),
-            message,
-        })?;
+        let mut lowering =
+            Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
+                kernel: programs
+                    .kernels
+                    .first()
+                    .map_or(Kernel::InverseDynamics, |k| k.kernel),
+                message,
+            })?;
         let mut declared = Vec::with_capacity(programs.kernels.len());
         for k in &programs.kernels {
             let parts = lowering
@@ -244,8 +248,15 @@ impl JitModel {
 
     /// `kernel` at `state` into `out` (its [`JitModel::output_len`] values). The arrays the
     /// kernel takes must have the robot's lengths and finite values (an error otherwise).
-    pub fn evaluate(&self, kernel: Kernel, state: State<'_>, out: &mut [f64]) -> Result<(), JitError> {
-        let compiled = self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })?;
+    pub fn evaluate(
+        &self,
+        kernel: Kernel,
+        state: State<'_>,
+        out: &mut [f64],
+    ) -> Result<(), JitError> {
+        let compiled = self
+            .compiled(kernel)
+            .ok_or(JitError::MissingKernel { kernel })?;
         self.check_state(kernel, &state)?;
         if out.len() != compiled.outputs {
             return Err(JitError::OutputLength {
@@ -260,7 +271,9 @@ impl JitModel {
 
     /// `kernel` at `state`, as a new vector.
     pub fn evaluate_vec(&self, kernel: Kernel, state: State<'_>) -> Result<Vec<f64>, JitError> {
-        let len = self.output_len(kernel).ok_or(JitError::MissingKernel { kernel })?;
+        let len = self
+            .output_len(kernel)
+            .ok_or(JitError::MissingKernel { kernel })?;
         let mut out = vec![0.0; len];
         self.evaluate(kernel, state, &mut out)?;
         Ok(out)
@@ -270,7 +283,9 @@ impl JitModel {
     /// kernel; NP values in, NB out).
     pub fn base_parameters(&self, standard: &[f64]) -> Result<Vec<f64>, JitError> {
         let kernel = Kernel::BaseParameters;
-        let compiled = self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })?;
+        let compiled = self
+            .compiled(kernel)
+            .ok_or(JitError::MissingKernel { kernel })?;
         let expected = self.parameter_names.len();
         if standard.len() != expected {
             return Err(JitError::InputLength {
@@ -287,7 +302,13 @@ impl JitModel {
     }
 
     /// Runs every part of `compiled`; the arrays are checked.
-    pub(crate) fn run(&self, compiled: &Compiled, state: State<'_>, parameters: &[f64], out: &mut [f64]) {
+    pub(crate) fn run(
+        &self,
+        compiled: &Compiled,
+        state: State<'_>,
+        parameters: &[f64],
+        out: &mut [f64],
+    ) {
         let arrays = Arrays {
             q: state.q,
             qd: state.qd,
@@ -329,7 +350,8 @@ impl JitModel {
 
     /// The compiled kernel, for the batch functions.
     pub(crate) fn compiled_kernel(&self, kernel: Kernel) -> Result<&Compiled, JitError> {
-        self.compiled(kernel).ok_or(JitError::MissingKernel { kernel })
+        self.compiled(kernel)
+            .ok_or(JitError::MissingKernel { kernel })
     }
 }
 
@@ -366,7 +388,15 @@ fn host_module(fma: bool) -> Result<(JITModule, bool), JitError> {
     set(&mut flags, "opt_level", "speed")?;
     set(&mut flags, "use_colocated_libcalls", "false")?;
     set(&mut flags, "is_pic", "false")?;
-    set(&mut flags, "enable_verifier", if cfg!(debug_assertions) { "true" } else { "false" })?;
+    set(
+        &mut flags,
+        "enable_verifier",
+        if cfg!(debug_assertions) {
+            "true"
+        } else {
+            "false"
+        },
+    )?;
     let isa = cranelift_native::builder()
         .map_err(|e| JitError::UnsupportedHost(e.to_owned()))?
         .finish(settings::Flags::new(flags))

@@ -32,6 +32,7 @@ pub mod kernels;
 pub mod pinocchio;
 pub mod precision;
 pub mod report;
+pub mod robot;
 pub mod robots;
 pub mod sample;
 pub mod scenes;

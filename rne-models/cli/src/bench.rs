@@ -1,13 +1,16 @@
 //! `rne bench [--quick] [--out DIR] [--pinocchio [RUN_SH] [--no-codegen] [--pinocchio-extra SH]]`:
 //! run time against error for the kernels and the integrators (docs/design.md §5), written as
-//! markdown with SVG and PNG figures.
+//! markdown with SVG and PNG figures; `rne bench MODEL [--json]`: one robot, any URDF or spec,
+//! kernel by kernel on every engine (module `bench_robot`).
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 
+pub use super::bench_robot::BenchEngine;
 use super::long_run::LongRun;
+use super::model::ModelOptions;
 use super::CliError;
 use rne_bench::pinocchio::{default_script, extra_beside};
 use rne_bench::{self as bench, Effort, PinocchioScript};
@@ -15,6 +18,30 @@ use rne_bench::{self as bench, Effort, PinocchioScript};
 /// Arguments of `rne bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
+    /// One robot to time kernel by kernel (a built-in name, a .toml spec or a .urdf file)
+    /// instead of the report on the built-in robots.
+    pub model: Option<String>,
+    /// Model options (with MODEL).
+    #[command(flatten)]
+    pub options: ModelOptions,
+    /// With MODEL: the engines to time, comma-separated (`compiled` only for a built-in
+    /// robot on its own base).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "jit,compiled,interpreted"
+    )]
+    pub engines: Vec<BenchEngine>,
+    /// With MODEL: the kernels to time, comma-separated, or `all`; default the dynamics and
+    /// their derivatives.
+    #[arg(long, value_delimiter = ',')]
+    pub kernels: Vec<String>,
+    /// With MODEL: fuse multiply-adds where the processor has FMA (the macro's `fma: true`).
+    #[arg(long)]
+    pub fma: bool,
+    /// With MODEL: print one JSON object.
+    #[arg(long)]
+    pub json: bool,
     /// Few states, short batches and short runs: a check in seconds instead of the report.
     #[arg(long)]
     pub quick: bool,
@@ -51,6 +78,9 @@ pub struct BenchArgs {
 
 /// Runs the benchmarks, writes the report and prints it.
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    if let Some(model) = &args.model {
+        return super::bench_robot::run(model, args, out);
+    }
     let effort = if args.quick {
         Effort::Quick
     } else {

@@ -1,28 +1,48 @@
-//! `rne eval MODEL --q ..`: the dynamics at one state, from the generated kernels (built-in
-//! robots as their files describe them), the expression graph (other files, other bases or
-//! mimic modes) or the independent numeric reference. With a floating base `--q` has NQ
-//! entries and the others NV (docs/design.md §4.5).
+//! `rne eval MODEL --q ..`: the dynamics at one state, computed by one engine — the kernels
+//! compiled in memory (`jit`, the default), the built-in robots' kernels compiled into rne
+//! (`compiled`), the same programs evaluated operation by operation (`interpreted`), or the
+//! independent numeric reference (`numeric`). With a floating base `--q` has NQ entries and
+//! the others NV (docs/design.md §4.5).
 
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
 
-use super::eval_kernels::{self, Group, State};
+use super::eval_kernels::{self, Group, Names, State};
 use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
-use rne_codegen::{Dynamics, Kernel, Shape};
+use rne_codegen::{Dynamics, Kernel, Scene, Shape};
 use rne_interpreted::{evaluate, Interpreted, StateRef};
+use rne_jit::{JitError, JitModel};
 use rne_models::{RobotSource, Visitor};
 use rne_reference::Reference;
+use rne_symbolic::RobotModel;
 
 /// Which implementation computes the numbers.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Engine {
-    /// Generated kernels for built-in robots; the expression graph for other files.
-    Symbolic,
+    /// The generated programs compiled in memory for this processor (Cranelift); the
+    /// interpreter where the processor has no JIT.
+    Jit,
+    /// The built-in robots' kernels compiled into rne (robots as their files describe them).
+    Compiled,
+    /// The generated programs evaluated operation by operation.
+    #[value(alias = "symbolic")]
+    Interpreted,
     /// The independent numeric reference (spatial RNEA, CRBA, ABA).
     Numeric,
+}
+
+impl Engine {
+    fn label(self) -> &'static str {
+        match self {
+            Engine::Jit => "jit",
+            Engine::Compiled => "compiled",
+            Engine::Interpreted => "interpreted",
+            Engine::Numeric => "numeric",
+        }
+    }
 }
 
 /// What to print.
@@ -45,6 +65,8 @@ pub enum Quantity {
     Fd,
     /// Kinetic and potential energy.
     Energy,
+    /// The dynamics above: τ, M, C, g, the bias, q̈ and the energies (the default).
+    Dynamics,
     /// ∂τ/∂q, ∂τ/∂q̇, ∂q̈/∂q, ∂q̈/∂q̇ and M⁻¹ (∂/∂q in the tangent space).
     Derivatives,
     /// Placements, Jacobians and J̇q̇ of every frame.
@@ -63,7 +85,8 @@ pub struct EvalArgs {
     /// Model options.
     #[command(flatten)]
     pub options: ModelOptions,
-    /// Configuration q, comma-separated (NQ values: a floating base's 7 first).
+    /// Configuration q, comma-separated (NQ values: a floating base's 7 first, its quaternion
+    /// [qx, qy, qz, qw] of unit norm).
     #[arg(long, allow_hyphen_values = true)]
     pub q: String,
     /// Velocity v (NV values; default zero).
@@ -76,173 +99,321 @@ pub struct EvalArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub tau: Option<String>,
     /// What to compute, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "all")]
+    #[arg(long, value_delimiter = ',', default_value = "dynamics")]
     pub what: Vec<Quantity>,
     /// Which implementation computes it.
-    #[arg(long, value_enum, default_value = "symbolic")]
+    #[arg(long, value_enum, default_value = "jit")]
     pub engine: Engine,
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
 }
 
+/// The state given, checked: each array of its length and finite, a floating base's
+/// quaternion of unit norm.
+struct Given {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    tau: Vec<f64>,
+}
+
+impl Given {
+    fn parse(args: &EvalArgs, model: &RobotModel) -> Result<Given, CliError> {
+        let layout = model.state_layout();
+        let array = |name: &str, text: Option<&String>, len: usize| -> Result<Vec<f64>, CliError> {
+            let values = match text {
+                Some(text) => parse_list(name, text)?,
+                None => vec![0.0; len],
+            };
+            if values.len() != len {
+                return Err(CliError::Argument(format!(
+                    "--{name} has {} values; the robot needs {len}",
+                    values.len()
+                )));
+            }
+            if let Some(k) = values.iter().position(|x| !x.is_finite()) {
+                return Err(CliError::Argument(format!(
+                    "--{name}: entry {k} is {}; every value must be finite",
+                    values[k]
+                )));
+            }
+            Ok(values)
+        };
+        let given = Given {
+            q: array("q", Some(&args.q), layout.nq())?,
+            qd: array("qd", args.qd.as_ref(), layout.nv())?,
+            qdd: array("qdd", args.qdd.as_ref(), layout.nv())?,
+            tau: array("tau", args.tau.as_ref(), layout.nv())?,
+        };
+        if layout.floating {
+            let norm = given.q[3..7].iter().map(|x| x * x).sum::<f64>().sqrt();
+            if (norm - 1.0).abs() > 1e-9 {
+                return Err(CliError::Argument(format!(
+                    "--q: the base quaternion [qx, qy, qz, qw] = {:?} has norm {norm}; it must \
+                     be a unit quaternion (divide it by its norm)",
+                    &given.q[3..7]
+                )));
+            }
+        }
+        Ok(given)
+    }
+
+    fn state(&self) -> StateRef<'_> {
+        StateRef {
+            q: &self.q,
+            qd: &self.qd,
+            qdd: &self.qdd,
+            tau: &self.tau,
+        }
+    }
+}
+
 /// Computes the requested quantities and prints them.
 pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, false)?;
-    let nv = model.state_layout().nv();
-    let q = parse_list("q", &args.q)?;
-    let state = |name: &str, text: &Option<String>| match text {
-        Some(text) => parse_list(name, text),
-        None => Ok(vec![0.0; nv]),
-    };
-    let (qd, qdd, tau) = (
-        state("qd", &args.qd)?,
-        state("qdd", &args.qdd)?,
-        state("tau", &args.tau)?,
-    );
+    let given = Given::parse(args, &model)?;
     // Forward dynamics of a model with a joint that moves no mass is undefined: an error when
-    // asked for by name, left out (and said why) from `all`.
+    // asked for by name, left out (and said why) otherwise.
     let singular = model.check_mass_matrix_invertible().err();
     if let (Some(e), true) = (&singular, args.what.contains(&Quantity::Fd)) {
         return Err(CliError::Argument(format!("{}: {e}", args.model)));
     }
-    let wants = |q: Quantity| {
-        (args.what.contains(&q) || args.what.contains(&Quantity::All))
-            && !(q == Quantity::Fd && singular.is_some())
+    let wanted = Wanted::new(&args.what, singular.is_some());
+    let (engine, mut results) = match args.engine {
+        Engine::Numeric => (Engine::Numeric, numeric(&model, &wanted, &given, args)?),
+        Engine::Compiled => (
+            Engine::Compiled,
+            compiled(&source, &model, &wanted, &given, args)?,
+        ),
+        Engine::Interpreted => (
+            Engine::Interpreted,
+            interpreted(&model, &wanted, &given, args)?,
+        ),
+        Engine::Jit => match jit(&model, &wanted, &given, args) {
+            Err(CliError::Jit(JitError::UnsupportedHost(why))) => {
+                eprintln!("warning: {why}; the interpreter computes instead");
+                (
+                    Engine::Interpreted,
+                    interpreted(&model, &wanted, &given, args)?,
+                )
+            }
+            other => (Engine::Jit, other?),
+        },
     };
-
-    let mut results: Vec<(&str, serde_json::Value)> = Vec::new();
-    let vector = |v: Vec<f64>| serde_json::json!(v);
-    let matrix = |m: Vec<Vec<f64>>| serde_json::json!(m);
-    match args.engine {
-        Engine::Symbolic => {
-            let kernels: Vec<Kernel> = KERNELS
-                .iter()
-                .filter(|(quantity, _)| wants(*quantity))
-                .map(|&(_, kernel)| kernel)
-                .collect();
-            let state = StateRef {
-                q: &q,
-                qd: &qd,
-                qdd: &qdd,
-                tau: &tau,
-            };
-            let values = match &source {
-                RobotSource::Builtin(robot) if args.options.keeps_the_file_model() => {
-                    robot.visit(Values {
-                        kernels: &kernels,
-                        state,
-                    })?
-                }
-                _ => {
-                    let programs = Interpreted::new(&model);
-                    kernels
-                        .iter()
-                        .map(|&k| Ok((k, programs.evaluate(k, state)?)))
-                        .collect::<Result<_, rne_interpreted::Error>>()?
-                }
-            };
-            for (kernel, v) in values {
-                let value = match kernel.shape() {
-                    Shape::Matrix => matrix(v.chunks(nv.max(1)).map(<[f64]>::to_vec).collect()),
-                    Shape::Scalar => serde_json::json!(v.first().copied().unwrap_or(f64::NAN)),
-                    _ => vector(v),
-                };
-                results.push((key(kernel), value));
-            }
-        }
-        Engine::Numeric => {
-            let mut reference = Reference::try_new(&model.to_numeric())?;
-            let rows = |m: nalgebra::DMatrix<f64>| -> Vec<Vec<f64>> {
-                m.row_iter().map(|r| r.iter().copied().collect()).collect()
-            };
-            if wants(Quantity::Tau) {
-                results.push((
-                    "tau",
-                    vector(reference.inverse_dynamics(&q, &qd, &qdd)?.data.into()),
-                ));
-            }
-            if wants(Quantity::M) {
-                results.push(("M", matrix(rows(reference.mass_matrix(&q)?))));
-            }
-            if args.what.contains(&Quantity::C) {
-                return Err(CliError::Argument(
-                    "the numeric reference computes C(q, q̇) q̇ (see `bias`), not the Christoffel matrix; use --engine symbolic".into(),
-                ));
-            }
-            if wants(Quantity::G) {
-                results.push(("g", vector(reference.gravity_torques(&q)?.data.into())));
-            }
-            if wants(Quantity::Bias) {
-                results.push(("bias", vector(reference.bias_torques(&q, &qd)?.data.into())));
-            }
-            if wants(Quantity::Fd) {
-                results.push((
-                    "qdd",
-                    vector(reference.forward_dynamics(&q, &qd, &tau)?.data.into()),
-                ));
-            }
-            if wants(Quantity::Energy) {
-                results.push((
-                    "kinetic",
-                    serde_json::json!(reference.kinetic_energy(&q, &qd)?),
-                ));
-                results.push((
-                    "potential",
-                    serde_json::json!(reference.potential_energy(&q)?),
-                ));
-            }
-        }
-    }
-
-    let groups = [
-        (Quantity::Derivatives, Group::Derivatives),
-        (Quantity::Kinematics, Group::Kinematics),
-        (Quantity::Regressor, Group::Regressor),
-    ];
-    let at = State {
-        q: &q,
-        qd: &qd,
-        qdd: &qdd,
-        tau: &tau,
-    };
-    for (quantity, group) in groups {
-        if !wants(quantity) || (group == Group::Derivatives && singular.is_some()) {
-            continue;
-        }
-        results.extend(match args.engine {
-            Engine::Symbolic => eval_kernels::symbolic(&model, &args.options.scene(), group, &at)?,
-            Engine::Numeric => eval_kernels::numeric(&model, &args.options.scene(), group, &at)?,
-        });
-    }
     if let Some(e) = &singular {
         results.push(("qdd_undefined", serde_json::json!(e.to_string())));
     }
-    if args.json {
-        let mut object = serde_json::Map::new();
-        object.insert("model".into(), serde_json::json!(source.display_name()));
-        object.insert("joints".into(), serde_json::json!(model.joint_names()));
-        for (key, value) in results {
-            object.insert(key.into(), value);
-        }
-        writeln!(out, "{}", serde_json::Value::Object(object))?;
-    } else {
-        writeln!(out, "model: {}", source.display_name())?;
-        writeln!(out, "joints: {}", model.joint_names().join(", "))?;
-        for (key, value) in results {
-            match value {
-                serde_json::Value::Array(rows) if rows.first().is_some_and(|r| r.is_array()) => {
-                    writeln!(out, "{key}:")?;
-                    for row in rows {
-                        writeln!(out, "  {}", format_row(&row))?;
-                    }
-                }
-                other => writeln!(out, "{key}: {}", format_row(&other))?,
-            }
-        }
+    print(out, args, &source, &model, engine, results)
+}
+
+/// The kernels and groups asked for.
+struct Wanted {
+    kernels: Vec<Kernel>,
+    groups: Vec<Group>,
+}
+
+impl Wanted {
+    fn new(what: &[Quantity], singular: bool) -> Wanted {
+        let asks = |q: Quantity| {
+            what.contains(&q)
+                || what.contains(&Quantity::All)
+                || (what.contains(&Quantity::Dynamics) && DYNAMICS.contains(&q))
+        };
+        let kernels = KERNELS
+            .iter()
+            .filter(|(q, k)| asks(*q) && !(singular && k.inverts_mass_matrix()))
+            .map(|&(_, k)| k)
+            .collect();
+        let groups = [
+            (Quantity::Derivatives, Group::Derivatives),
+            (Quantity::Kinematics, Group::Kinematics),
+            (Quantity::Regressor, Group::Regressor),
+        ]
+        .into_iter()
+        .filter(|&(q, g)| asks(q) && !(singular && g == Group::Derivatives))
+        .map(|(_, g)| g)
+        .collect();
+        Wanted { kernels, groups }
     }
-    Ok(())
+
+    /// Every kernel, the groups' included.
+    fn all_kernels(&self) -> Vec<Kernel> {
+        let mut all = self.kernels.clone();
+        all.extend(self.groups.iter().flat_map(|g| g.kernels().iter().copied()));
+        all
+    }
+}
+
+/// The quantities of `Quantity::Dynamics`.
+const DYNAMICS: [Quantity; 7] = [
+    Quantity::Tau,
+    Quantity::M,
+    Quantity::C,
+    Quantity::G,
+    Quantity::Bias,
+    Quantity::Fd,
+    Quantity::Energy,
+];
+
+type Results = Vec<(&'static str, serde_json::Value)>;
+
+/// The entries of one kernel's values.
+fn entry(kernel: Kernel, values: Vec<f64>, nv: usize) -> (&'static str, serde_json::Value) {
+    let value = match kernel.shape() {
+        Shape::Matrix => serde_json::json!(values
+            .chunks(nv.max(1))
+            .map(<[f64]>::to_vec)
+            .collect::<Vec<_>>()),
+        Shape::Scalar => serde_json::json!(values.first().copied().unwrap_or(f64::NAN)),
+        _ => serde_json::json!(values),
+    };
+    (key(kernel), value)
+}
+
+/// By the kernels compiled in memory: the kernels asked for and their groups', at once.
+fn jit(
+    model: &RobotModel,
+    wanted: &Wanted,
+    given: &Given,
+    args: &EvalArgs,
+) -> Result<Results, CliError> {
+    let scene = Scene {
+        outputs: wanted.all_kernels(),
+        ..args.options.scene()
+    };
+    let jit = JitModel::compile(model, &scene, &args.model)?;
+    let s = given.state();
+    let state = rne_jit::State {
+        q: s.q,
+        qd: s.qd,
+        qdd: s.qdd,
+        tau: s.tau,
+    };
+    let mut results: Results = Vec::new();
+    for &kernel in &wanted.kernels {
+        results.push(entry(kernel, jit.evaluate_vec(kernel, state)?, jit.nv()));
+    }
+    let names = Names {
+        frames: jit.frames(),
+        parameters: jit.parameter_names(),
+        base_parameters: jit.base_parameter_names(),
+        nv: jit.nv(),
+    };
+    let mut eval = |kernel| Ok(jit.evaluate_vec(kernel, state)?);
+    for &group in &wanted.groups {
+        results.extend(eval_kernels::entries(group, &names, &mut eval)?);
+    }
+    Ok(results)
+}
+
+/// By the programs evaluated operation by operation.
+fn interpreted(
+    model: &RobotModel,
+    wanted: &Wanted,
+    given: &Given,
+    args: &EvalArgs,
+) -> Result<Results, CliError> {
+    let programs = Interpreted::with_kernels(model, &wanted.kernels);
+    let mut results: Results = Vec::new();
+    for &kernel in &wanted.kernels {
+        let values = programs.evaluate(kernel, given.state())?;
+        results.push(entry(kernel, values, programs.nv()));
+    }
+    results.extend(groups(model, wanted, given, args, eval_kernels::symbolic)?);
+    Ok(results)
+}
+
+/// By the built-in robot's compiled module: the dynamics kernels of a robot as its file
+/// describes it.
+fn compiled(
+    source: &RobotSource,
+    model: &RobotModel,
+    wanted: &Wanted,
+    given: &Given,
+    args: &EvalArgs,
+) -> Result<Results, CliError> {
+    let robot = match source {
+        RobotSource::Builtin(robot) if args.options.keeps_the_file_model() => robot,
+        _ => {
+            return Err(CliError::Argument(format!(
+                "`{}`: the compiled kernels are the built-in robots' as their files describe \
+                 them (see `rne models`); use --engine jit",
+                args.model
+            )))
+        }
+    };
+    if !wanted.groups.is_empty() {
+        return Err(CliError::Argument(
+            "the built-in robots' compiled modules have the dynamics kernels; use --engine \
+             jit for derivatives, kinematics and regressors"
+                .into(),
+        ));
+    }
+    let values = robot.visit(Values {
+        kernels: &wanted.kernels,
+        state: given.state(),
+    })?;
+    let nv = model.state_layout().nv();
+    Ok(values.into_iter().map(|(k, v)| entry(k, v, nv)).collect())
+}
+
+/// By the independent numeric reference.
+fn numeric(
+    model: &RobotModel,
+    wanted: &Wanted,
+    given: &Given,
+    args: &EvalArgs,
+) -> Result<Results, CliError> {
+    if wanted.kernels.contains(&Kernel::CoriolisMatrix) && args.what.contains(&Quantity::C) {
+        return Err(CliError::Argument(
+            "the numeric reference computes C(q, q̇) q̇ (see `bias`), not the Christoffel \
+             matrix; use --engine jit"
+                .into(),
+        ));
+    }
+    let mut reference = Reference::try_new(&model.to_numeric())?;
+    let (q, qd, qdd, tau) = (&given.q, &given.qd, &given.qdd, &given.tau);
+    let nv = model.state_layout().nv();
+    let rows = |m: nalgebra::DMatrix<f64>| -> Vec<f64> { m.transpose().as_slice().to_vec() };
+    let mut results: Results = Vec::new();
+    for &kernel in &wanted.kernels {
+        let values = match kernel {
+            Kernel::InverseDynamics => reference.inverse_dynamics(q, qd, qdd)?.data.into(),
+            Kernel::MassMatrix => rows(reference.mass_matrix(q)?),
+            Kernel::GravityTorques => reference.gravity_torques(q)?.data.into(),
+            Kernel::BiasTorques => reference.bias_torques(q, qd)?.data.into(),
+            Kernel::ForwardDynamics => reference.forward_dynamics(q, qd, tau)?.data.into(),
+            Kernel::KineticEnergy => vec![reference.kinetic_energy(q, qd)?],
+            Kernel::PotentialEnergy => vec![reference.potential_energy(q)?],
+            _ => continue,
+        };
+        results.push(entry(kernel, values, nv));
+    }
+    results.extend(groups(model, wanted, given, args, eval_kernels::numeric)?);
+    Ok(results)
+}
+
+/// The groups' entries by `engine` (an `eval_kernels` function).
+fn groups(
+    model: &RobotModel,
+    wanted: &Wanted,
+    given: &Given,
+    args: &EvalArgs,
+    engine: fn(&RobotModel, &Scene, Group, &State) -> Result<Results, CliError>,
+) -> Result<Results, CliError> {
+    let at = State {
+        q: &given.q,
+        qd: &given.qd,
+        qdd: &given.qdd,
+        tau: &given.tau,
+    };
+    let mut results = Results::new();
+    for &group in &wanted.groups {
+        results.extend(engine(model, &args.options.scene(), group, &at)?);
+    }
+    Ok(results)
 }
 
 /// The kernels behind each quantity, in output order.
@@ -289,15 +460,88 @@ impl Visitor for Values<'_> {
     }
 }
 
-fn format_row(value: &serde_json::Value) -> String {
+/// Prints the results: one JSON object, or a header naming the model and the engine and each
+/// quantity with its numbers in shortest round-trip form, matrices in aligned columns.
+fn print(
+    out: &mut dyn Write,
+    args: &EvalArgs,
+    source: &RobotSource,
+    model: &RobotModel,
+    engine: Engine,
+    results: Results,
+) -> Result<(), CliError> {
+    if args.json {
+        let mut object = serde_json::Map::new();
+        object.insert("model".into(), serde_json::json!(source.display_name()));
+        object.insert("engine".into(), serde_json::json!(engine.label()));
+        object.insert("joints".into(), serde_json::json!(model.joint_names()));
+        for (key, value) in results {
+            object.insert(key.into(), value);
+        }
+        writeln!(out, "{}", serde_json::Value::Object(object))?;
+        return Ok(());
+    }
+    writeln!(out, "model: {}", source.display_name())?;
+    writeln!(out, "engine: {}", engine.label())?;
+    writeln!(out, "joints: {}", model.joint_names().join(", "))?;
+    for (key, value) in results {
+        match value {
+            serde_json::Value::Array(rows) if rows.first().is_some_and(|r| r.is_array()) => {
+                writeln!(out, "{key}:")?;
+                for line in aligned(&rows) {
+                    writeln!(out, "  {line}")?;
+                }
+            }
+            other => writeln!(out, "{key}: {}", text(&other))?,
+        }
+    }
+    Ok(())
+}
+
+/// A value's text: numbers in their shortest round-trip form, arrays in brackets.
+fn text(value: &serde_json::Value) -> String {
     match value {
         serde_json::Value::Array(items) => {
-            let items: Vec<String> = items.iter().map(format_row).collect();
+            let items: Vec<String> = items.iter().map(text).collect();
             format!("[{}]", items.join(", "))
         }
         serde_json::Value::Number(n) => n
             .as_f64()
-            .map_or_else(|| n.to_string(), |x| format!("{x:.17e}")),
+            .map_or_else(|| n.to_string(), |x| format!("{x:?}")),
         other => other.to_string(),
     }
+}
+
+/// Rows of a matrix with each column right-aligned to its widest entry (rows of other shapes
+/// as they are).
+fn aligned(rows: &[serde_json::Value]) -> Vec<String> {
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|row| match row {
+            serde_json::Value::Array(items) => items.iter().map(text).collect(),
+            other => vec![text(other)],
+        })
+        .collect();
+    let columns = cells.iter().map(Vec::len).max().unwrap_or(0);
+    let widths: Vec<usize> = (0..columns)
+        .map(|c| {
+            cells
+                .iter()
+                .filter_map(|r| r.get(c))
+                .map(String::len)
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    cells
+        .iter()
+        .map(|row| {
+            let padded: Vec<String> = row
+                .iter()
+                .zip(&widths)
+                .map(|(cell, &w)| format!("{cell:>w$}"))
+                .collect();
+            format!("[{}]", padded.join("  "))
+        })
+        .collect()
 }

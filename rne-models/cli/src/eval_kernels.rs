@@ -35,7 +35,8 @@ pub enum Group {
 }
 
 impl Group {
-    fn kernels(self) -> &'static [Kernel] {
+    /// The kernels behind the group's entries.
+    pub fn kernels(self) -> &'static [Kernel] {
         match self {
             Group::Derivatives => &[
                 Kernel::InverseDynamicsDerivatives,
@@ -65,51 +66,32 @@ fn matrix_rows(m: &DMatrix<f64>) -> Value {
         .collect::<Vec<_>>())
 }
 
-/// The entries of `group` at `state` from the generator's programs for `model` as `scene` sees
-/// it (the model options' scene: the base and mimic mode already applied are kept).
-pub fn symbolic(
-    model: &RobotModel,
-    scene: &Scene,
+/// What the entries of a group are named and sized by: the kinematics kernels' frames, the
+/// standard and base parameters' names, NV.
+pub struct Names<'a> {
+    /// The frames of the kinematics kernels, in output order.
+    pub frames: &'a [String],
+    /// The standard parameters (the regressor's columns).
+    pub parameters: &'a [String],
+    /// The base parameters (the base regressor's columns).
+    pub base_parameters: &'a [String],
+    /// Size of the velocity.
+    pub nv: usize,
+}
+
+/// The entries of `group` from its kernels' values, `eval(kernel)` (matrices row-major,
+/// tuples concatenated): the same keys whatever engine computed them.
+pub fn entries(
     group: Group,
-    state: &State,
+    names: &Names<'_>,
+    eval: &mut dyn FnMut(Kernel) -> Result<Vec<f64>, CliError>,
 ) -> Result<Vec<(&'static str, Value)>, CliError> {
-    let model = scene.apply(model)?;
-    let dynamics = SymbolicDynamics::new(&model);
-    let setup = KernelSetup::new(&dynamics, group.kernels());
-    let layout = dynamics.layout();
-    let nv = layout.nv();
-    let sizes = [
-        ("q", state.q, layout.nq()),
-        ("qd", state.qd, nv),
-        ("qdd", state.qdd, nv),
-        ("tau", state.tau, nv),
-    ];
-    for (name, values, expected) in sizes {
-        if values.len() != expected {
-            return Err(CliError::Argument(format!(
-                "--{name} has {} values; {} needs {expected}",
-                values.len(),
-                model.name
-            )));
-        }
-    }
-    let eval = |kernel: Kernel| -> Vec<f64> {
-        let program = build_kernel_with(&dynamics, kernel, &setup).program;
-        program.eval(|s| match s {
-            Symbol::Position(k) => state.q[k as usize],
-            Symbol::Velocity(k) => state.qd[k as usize],
-            Symbol::Acceleration(k) => state.qdd[k as usize],
-            Symbol::Force(k) => state.tau[k as usize],
-            Symbol::Parameter(_) => model.parameter_value(s).unwrap_or(f64::NAN),
-            // Given its lane's value by `Program::eval`.
-            Symbol::Lane(_) => f64::NAN,
-        })
-    };
+    let nv = names.nv;
     let nn = nv * nv;
     Ok(match group {
         Group::Derivatives => {
-            let id = eval(Kernel::InverseDynamicsDerivatives);
-            let fd = eval(Kernel::ForwardDynamicsDerivatives);
+            let id = eval(Kernel::InverseDynamicsDerivatives)?;
+            let fd = eval(Kernel::ForwardDynamicsDerivatives)?;
             vec![
                 ("dtau_dq", rows(&id[..nn], nv)),
                 ("dtau_dqd", rows(&id[nn..], nv)),
@@ -119,43 +101,82 @@ pub fn symbolic(
             ]
         }
         Group::Kinematics => {
-            let names: Vec<&str> = setup
-                .frames
-                .iter()
-                .map(|&f| dynamics.frames()[f].name.as_str())
-                .collect();
-            let placements: Vec<Value> = eval(Kernel::FramePlacements)
+            let placements: Vec<Value> = eval(Kernel::FramePlacements)?
                 .chunks(12)
                 .map(|p| json!([rows(&p[..9], 3), p[9..].to_vec()]))
                 .collect();
-            let jacobians: Vec<Value> = eval(Kernel::FrameJacobians)
+            let jacobians: Vec<Value> = eval(Kernel::FrameJacobians)?
                 .chunks(6 * nv.max(1))
                 .map(|j| rows(j, nv))
                 .collect();
             vec![
-                ("frames", json!(names)),
+                ("frames", json!(names.frames)),
                 ("placements", json!(placements)),
                 ("jacobians", json!(jacobians)),
                 (
                     "jacobian_dot_qd",
-                    rows(&eval(Kernel::FrameJacobianDotQd), 6),
+                    rows(&eval(Kernel::FrameJacobianDotQd)?, 6),
                 ),
             ]
         }
-        Group::Regressor => {
-            let names = dynamics.parameter_names();
-            let base = setup.base_parameters.as_ref().expect("found for the group");
-            vec![
-                ("parameters", json!(names)),
-                ("regressor", rows(&eval(Kernel::Regressor), names.len())),
-                ("base_parameters", json!(base.names(&names))),
-                (
-                    "base_regressor",
-                    rows(&eval(Kernel::BaseRegressor), base.len()),
-                ),
-            ]
-        }
+        Group::Regressor => vec![
+            ("parameters", json!(names.parameters)),
+            (
+                "regressor",
+                rows(&eval(Kernel::Regressor)?, names.parameters.len()),
+            ),
+            ("base_parameters", json!(names.base_parameters)),
+            (
+                "base_regressor",
+                rows(&eval(Kernel::BaseRegressor)?, names.base_parameters.len()),
+            ),
+        ],
     })
+}
+
+/// The entries of `group` at `state` from the generator's programs for `model` as `scene` sees
+/// it (the model options' scene: the base and mimic mode already applied are kept), evaluated
+/// operation by operation.
+pub fn symbolic(
+    model: &RobotModel,
+    scene: &Scene,
+    group: Group,
+    state: &State,
+) -> Result<Vec<(&'static str, Value)>, CliError> {
+    let model = scene.apply(model)?;
+    let dynamics = SymbolicDynamics::new(&model);
+    let setup = KernelSetup::new(&dynamics, group.kernels());
+    let nv = dynamics.layout().nv();
+    let mut eval = |kernel: Kernel| -> Result<Vec<f64>, CliError> {
+        let program = build_kernel_with(&dynamics, kernel, &setup).program;
+        Ok(program.eval(|s| match s {
+            Symbol::Position(k) => state.q[k as usize],
+            Symbol::Velocity(k) => state.qd[k as usize],
+            Symbol::Acceleration(k) => state.qdd[k as usize],
+            Symbol::Force(k) => state.tau[k as usize],
+            Symbol::Parameter(_) => model.parameter_value(s).unwrap_or(f64::NAN),
+            // Given its lane's value by `Program::eval`.
+            Symbol::Lane(_) => f64::NAN,
+        }))
+    };
+    let frames: Vec<String> = setup
+        .frames
+        .iter()
+        .map(|&f| dynamics.frames()[f].name.clone())
+        .collect();
+    let parameters = dynamics.parameter_names();
+    let base_parameters = setup
+        .base_parameters
+        .as_ref()
+        .map(|base| base.names(&parameters))
+        .unwrap_or_default();
+    let names = Names {
+        frames: &frames,
+        parameters: &parameters,
+        base_parameters: &base_parameters,
+        nv,
+    };
+    entries(group, &names, &mut eval)
 }
 
 /// The entries of `group` at `state` from the independent numeric reference (the base

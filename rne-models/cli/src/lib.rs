@@ -5,6 +5,7 @@
 
 mod accuracy;
 mod bench;
+mod bench_robot;
 mod check;
 mod corpus;
 mod emit;

@@ -19,18 +19,21 @@ pub enum CliError {
     /// kernel the engine does not have).
     #[error(transparent)]
     Evaluation(#[from] rne_interpreted::Error),
+    /// The JIT could not compile the model or call a kernel.
+    #[error(transparent)]
+    Jit(#[from] rne_jit::JitError),
     /// The numeric reference rejected the model or the state.
     #[error("numeric reference: {0}")]
     Reference(rne_reference::ReferenceError),
     /// A scenario could not be run or written.
     #[error(transparent)]
-    Scenario(#[from] rne_scenarios::ScenarioError),
+    Scenario(Box<rne_scenarios::ScenarioError>),
     /// A stress case could not be run or its report written.
     #[error(transparent)]
-    Stress(#[from] rne_stress::StressError),
+    Stress(Box<rne_stress::StressError>),
     /// A benchmark could not be run or its report written.
     #[error(transparent)]
-    Bench(#[from] rne_bench::BenchError),
+    Bench(Box<rne_bench::BenchError>),
     /// A built-in robot's kernels disagree with the numeric reference.
     #[error("errors above {tolerance:e}: {}", failures.join(", "))]
     Disagreement {
@@ -118,6 +121,26 @@ pub enum CliError {
 impl From<rne_reference::ReferenceError> for CliError {
     fn from(error: rne_reference::ReferenceError) -> CliError {
         CliError::Reference(error)
+    }
+}
+
+// Boxed: the errors of the benchmarks, the scenarios and the stress cases are the largest, and
+// every command's result would carry their size.
+impl From<rne_bench::BenchError> for CliError {
+    fn from(error: rne_bench::BenchError) -> CliError {
+        CliError::Bench(Box::new(error))
+    }
+}
+
+impl From<rne_scenarios::ScenarioError> for CliError {
+    fn from(error: rne_scenarios::ScenarioError) -> CliError {
+        CliError::Scenario(Box::new(error))
+    }
+}
+
+impl From<rne_stress::StressError> for CliError {
+    fn from(error: rne_stress::StressError) -> CliError {
+        CliError::Stress(Box::new(error))
     }
 }
 

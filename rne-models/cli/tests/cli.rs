@@ -123,7 +123,7 @@ fn bad_input_is_a_clear_error() {
     let cases: [(&[&str], &str); 12] = [
         (
             &["eval", "planar-elbow", "--q", "1,2,3"],
-            "`q` has 3 values; the robot needs 2",
+            "--q has 3 values; the robot needs 2",
         ),
         (
             &["eval", "planar-elbow", "--q", "1,x"],

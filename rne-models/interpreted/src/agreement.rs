@@ -290,3 +290,23 @@ fn in_force_space(
 fn rows(m: &DMatrix<f64>) -> Vec<f64> {
     m.transpose().as_slice().to_vec()
 }
+
+impl Engine for rne_jit::JitModel {
+    fn has(&self, kernel: Kernel) -> bool {
+        rne_jit::JitModel::has(self, kernel)
+    }
+
+    fn evaluate(&self, kernel: Kernel, state: StateRef<'_>) -> Result<Vec<f64>, Error> {
+        let StateRef { q, qd, qdd, tau } = state;
+        self.evaluate_vec(kernel, rne_jit::State { q, qd, qdd, tau })
+            .map_err(Error::from)
+    }
+
+    fn base_parameters(&self, standard: &[f64]) -> Result<Vec<f64>, Error> {
+        rne_jit::JitModel::base_parameters(self, standard).map_err(Error::from)
+    }
+
+    fn frames(&self) -> Vec<String> {
+        rne_jit::JitModel::frames(self).to_vec()
+    }
+}

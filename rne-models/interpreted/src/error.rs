@@ -48,7 +48,18 @@ pub enum Error {
     /// A frame of the kinematics kernels is no link of the numeric reference's model.
     #[error("frame `{0}` is no link of the numeric reference's model")]
     Frame(String),
+    /// The JIT could not compile the model or call a kernel.
+    #[error(transparent)]
+    Jit(#[from] rne_jit::JitError),
     /// The numeric reference cannot evaluate the model.
     #[error("numeric reference: {0}")]
-    Reference(#[from] ReferenceError),
+    Reference(ReferenceError),
+}
+
+// By hand rather than `#[from]`, which would also return the cause from `source()`, so that a
+// printed chain would show it twice (docs/design.md §2.3).
+impl From<ReferenceError> for Error {
+    fn from(error: ReferenceError) -> Error {
+        Error::Reference(error)
+    }
 }

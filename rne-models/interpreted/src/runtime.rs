@@ -1,10 +1,12 @@
 //! Run-time models as [`Dynamics`]: the one adapter through which code written over the trait
-//! (simulation, benchmarks) runs a model that was not generated — a spec file's
-//! [`Interpreted`] programs, or the numeric reference — once its number of joints N is known.
+//! (simulation, benchmarks) runs a model that was not generated — a robot file's kernels
+//! compiled in memory ([`JitModel`]), its [`Interpreted`] programs, or the numeric reference —
+//! once its number of joints N is known.
 
 use std::cell::RefCell;
 
 use rne_codegen::{Dynamics, Kernel};
+use rne_jit::JitModel;
 use rne_models::Visitor;
 use rne_reference::Reference;
 
@@ -29,6 +31,9 @@ const REFERENCE_KERNELS: [Kernel; 7] = [
 
 /// What computes the kernels.
 enum Engine<'a> {
+    /// The optimised programs compiled in memory (what the generated kernels compute, bit for
+    /// bit with `fma` off).
+    Jit(&'a JitModel),
     /// The optimised programs, in `f64` (what the generated kernels compute, bit for bit).
     Interpreted(&'a Interpreted),
     /// The numeric reference through its allocation-free `*_into` methods; they need a
@@ -56,6 +61,15 @@ impl<'a, const N: usize> RuntimeModel<'a, N> {
         })
     }
 
+    /// The compiled kernels of `jit`, which must have N configuration and N velocity variables.
+    pub fn jit(jit: &'a JitModel) -> Result<Self, Error> {
+        check::<N>(jit.nq())?;
+        check::<N>(jit.nv())?;
+        Ok(RuntimeModel {
+            engine: Engine::Jit(jit),
+        })
+    }
+
     /// The numeric reference, which must have N configuration and N velocity variables.
     pub fn reference(reference: Reference) -> Result<Self, Error> {
         check::<N>(reference.nq())?;
@@ -68,6 +82,19 @@ impl<'a, const N: usize> RuntimeModel<'a, N> {
     /// Writes `kernel` at `state` into `out`; `false` if the engine has no such kernel.
     fn write(&self, kernel: Kernel, state: StateRef<'_>, out: &mut [f64]) -> bool {
         match &self.engine {
+            Engine::Jit(jit) => {
+                let StateRef { q, qd, qdd, tau } = state;
+                let state = rne_jit::State { q, qd, qdd, tau };
+                // A state the JIT refuses (NaN) gives NaN, as a generated kernel's arithmetic.
+                match jit.evaluate(kernel, state, out) {
+                    Ok(()) => true,
+                    Err(rne_jit::JitError::NonFinite { .. }) => {
+                        out.fill(f64::NAN);
+                        true
+                    }
+                    Err(_) => false,
+                }
+            }
             Engine::Interpreted(programs) => match programs.eval(kernel, state) {
                 Some(values) if values.len() == out.len() => {
                     out.copy_from_slice(&values);
@@ -155,6 +182,7 @@ impl<const N: usize> Dynamics<N, N> for RuntimeModel<'_, N> {
 
     fn has(&self, kernel: Kernel) -> bool {
         match &self.engine {
+            Engine::Jit(jit) => jit.has(kernel),
             Engine::Interpreted(programs) => programs.has(kernel),
             Engine::Reference(_) => REFERENCE_KERNELS.contains(&kernel),
         }

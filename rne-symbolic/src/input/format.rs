@@ -51,14 +51,45 @@ impl RobotFormat {
 pub fn load_robot(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let format = RobotFormat::from_path(path)?;
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        SpecError::new(
-            SpecErrorKind::Io,
-            format!("cannot read the robot file: {e}"),
-        )
-        .locate(&origin, "")
-    })?;
+    let text = read_text(path, &origin, "robot file")?;
     parse_robot(&text, &origin, format, options)
+}
+
+/// The text of the file at `path`, named `origin` in errors (`what` says what it is: "robot
+/// file", "spec"): an error when it cannot be read, and one naming the line and column of
+/// the first byte that is not UTF-8 when it is not UTF-8 text.
+pub(crate) fn read_text(path: &Path, origin: &str, what: &str) -> Result<String, SpecError> {
+    let bytes = std::fs::read(path).map_err(|e| {
+        SpecError::new(SpecErrorKind::Io, format!("cannot read the {what}: {e}")).locate(origin, "")
+    })?;
+    decode(bytes, origin)
+}
+
+/// `bytes` as UTF-8 text, or an error naming `origin` and the line and column of the first
+/// byte that is not UTF-8.
+pub fn decode(bytes: Vec<u8>, origin: &str) -> Result<String, SpecError> {
+    String::from_utf8(bytes).map_err(|e| {
+        let error = e.utf8_error();
+        let bytes = e.as_bytes();
+        let valid = error.valid_up_to();
+        // Valid up to `valid` by the error's own account.
+        let before = std::str::from_utf8(&bytes[..valid]).unwrap_or_default();
+        let column = before.len() - before.rfind('\n').map_or(0, |n| n + 1) + 1;
+        let message = match error.error_len() {
+            Some(_) => format!(
+                "the file is not UTF-8 text: byte {:#04x} at column {column} is not valid \
+                 UTF-8 (robot files are UTF-8)",
+                bytes[valid]
+            ),
+            None => format!(
+                "the file is not UTF-8 text: it ends inside a UTF-8 character at column \
+                 {column} (robot files are UTF-8)"
+            ),
+        };
+        SpecError::new(SpecErrorKind::Io, message)
+            .at_span(Some(valid..valid))
+            .locate(origin, before)
+    })
 }
 
 /// Reads a robot description in `format` from `text`; `origin` names the file in error
@@ -97,5 +128,25 @@ mod tests {
             .message()
             .ends_with("(expand a .xacro file with xacro into a .urdf first)"));
         assert!(format("robots/arm").is_err());
+    }
+
+    /// Bytes that are not UTF-8 (a fuzzed file: stray bytes, truncation inside a character)
+    /// are an error naming the file, the line and the column of the first one.
+    #[test]
+    fn bytes_that_are_not_utf8_are_located() {
+        let error = decode(b"<robot>\n  <li\xffnk/>".to_vec(), "arm.urdf").unwrap_err();
+        assert_eq!(error.kind(), SpecErrorKind::Io);
+        assert_eq!(
+            error.to_string(),
+            "arm.urdf:2: the file is not UTF-8 text: byte 0xff at column 6 is not valid UTF-8 \
+             (robot files are UTF-8)"
+        );
+        let error = decode("name = \"é".as_bytes()[..9].to_vec(), "arm.toml").unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "arm.toml:1: the file is not UTF-8 text: it ends inside a UTF-8 character at \
+             column 9 (robot files are UTF-8)"
+        );
+        assert_eq!(decode(b"ok".to_vec(), "x.toml").unwrap(), "ok");
     }
 }

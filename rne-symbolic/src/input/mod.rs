@@ -22,7 +22,8 @@ mod options;
 pub(crate) mod transplant;
 pub(crate) mod validate;
 
-pub use format::{load_robot, parse_robot, RobotFormat};
+pub(crate) use format::read_text;
+pub use format::{decode, load_robot, parse_robot, RobotFormat};
 pub use options::LoadOptions;
 pub use validate::NEGLIGIBLE_INERTIA;
 

@@ -5,7 +5,7 @@
 use std::fmt;
 use std::ops::Range;
 
-use super::location::Location;
+use super::location::{Lines, Location};
 
 /// A message of kind `K` about a robot file, naming the file, the joint or link and the field.
 ///
@@ -68,6 +68,13 @@ impl<K: Copy> Diagnostic<K> {
     /// Sets the file name and turns the byte range into a line number of `text`.
     pub(crate) fn locate(mut self, file: &str, text: &str) -> Self {
         self.0.at.locate(file, text);
+        self
+    }
+
+    /// Sets the file name and turns the byte range into a line number by `lines` (for the
+    /// many messages of one file).
+    pub(crate) fn locate_in(mut self, file: &str, lines: &Lines<'_>) -> Self {
+        self.0.at.locate_in(file, lines);
         self
     }
 

@@ -85,7 +85,7 @@ mod diagnostic;
 mod document;
 mod error;
 mod expression;
-mod location;
+pub(crate) mod location;
 mod parameters;
 mod schema;
 mod scope;
@@ -95,13 +95,13 @@ mod warning;
 use std::path::Path;
 
 /// The readers' common entry points, re-exported where callers have always found them.
-pub use crate::input::{load_robot, parse_robot, LoadOptions, RobotFormat};
+pub use crate::input::{decode, load_robot, parse_robot, LoadOptions, RobotFormat};
 pub use diagnostic::Diagnostic;
 pub use error::{SpecError, SpecErrorKind};
 pub use warning::{SpecWarning, SpecWarningKind};
 
 use self::document::Table;
-use self::location::Location;
+use self::location::{Lines, Location};
 use self::schema::{LinkSpec, RobotSpec};
 use self::scope::Namespace;
 use self::tree::Tree;
@@ -113,9 +113,7 @@ use crate::RobotModel;
 /// Reads the spec file at `path` (docs/design.md §2.1); errors name the file as `path` displays.
 pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let origin = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        SpecError::new(SpecErrorKind::Io, format!("cannot read the spec: {e}")).locate(&origin, "")
-    })?;
+    let text = input::read_text(path, &origin, "spec")?;
     parse_str(&text, &origin, options)
 }
 
@@ -123,9 +121,10 @@ pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecE
 pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let root = document::parse(text).map_err(|e| e.locate(origin, text))?;
     let mut model = read(&root, options).map_err(|mut e| {
-        with_position(e.location_mut(), &root);
+        with_position(e.location_mut(), &root, &LinkTables::new(&root));
         e.locate(origin, text)
     })?;
+    let (tables, lines) = (LinkTables::new(&root), Lines::new(text));
     model.warnings = std::mem::take(&mut model.warnings)
         .into_iter()
         .map(|w| {
@@ -134,8 +133,8 @@ pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<Robo
                 field: w.field().map(str::to_owned),
                 ..Location::default()
             };
-            with_position(&mut at, &root);
-            w.at_span(at.span).locate(origin, text)
+            with_position(&mut at, &root, &tables);
+            w.at_span(at.span).locate_in(origin, &lines)
         })
         .collect();
     input::enforce(model, options.strict)
@@ -210,10 +209,10 @@ fn gravity(
 }
 
 /// Gives a finding without a position the position of its field (in its link, if any).
-fn with_position(at: &mut Location, root: &Table) {
+fn with_position(at: &mut Location, root: &Table, tables: &LinkTables<'_>) {
     let table = match &at.link {
         None => Some((root, None)),
-        Some(name) => link_table(root, name),
+        Some(name) => tables.get(name),
     };
     let span = table.and_then(|(table, link_span)| {
         at.field
@@ -224,12 +223,26 @@ fn with_position(at: &mut Location, root: &Table) {
     at.at_span(span);
 }
 
-/// The first `[[link]]` table named `name`, and where it was written.
-fn link_table<'r>(root: &'r Table, name: &str) -> Option<(&'r Table, document::Span)> {
-    let links = root.get("link")?.as_array("link").ok()?;
-    links.iter().find_map(|item| {
-        let table = item.as_table("link").ok()?;
-        let named = table.get("name")?.as_str("name").ok()? == name;
-        named.then(|| (table, item.span.clone()))
-    })
+/// The first `[[link]]` table of each name, and where it was written: found once for all the
+/// findings of a file.
+struct LinkTables<'r>(std::collections::HashMap<&'r str, (&'r Table, document::Span)>);
+
+impl<'r> LinkTables<'r> {
+    fn new(root: &'r Table) -> LinkTables<'r> {
+        let mut tables = std::collections::HashMap::new();
+        let links = root.get("link").and_then(|l| l.as_array("link").ok());
+        for item in links.unwrap_or_default() {
+            let Ok(table) = item.as_table("link") else {
+                continue;
+            };
+            if let Some(name) = table.get("name").and_then(|n| n.as_str("name").ok()) {
+                tables.entry(name).or_insert((table, item.span.clone()));
+            }
+        }
+        LinkTables(tables)
+    }
+
+    fn get(&self, name: &str) -> Option<(&'r Table, document::Span)> {
+        self.0.get(name).cloned()
+    }
 }

@@ -75,7 +75,11 @@ mod document;
 mod elements;
 mod tree;
 
+use std::collections::HashMap;
+use std::ops::Range;
+
 use crate::input::{self, LoadOptions};
+use crate::spec::location::Lines;
 use crate::spec::{SpecError, SpecWarning};
 use crate::RobotModel;
 
@@ -86,14 +90,15 @@ use self::elements::UrdfRobot;
 pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let robot = document::read(text).map_err(|e| e.locate(origin, text))?;
     let mut model = read(&robot, origin, options).map_err(|e| {
-        let span = element_span(&robot, e.joint(), e.link());
+        let span = Elements::new(&robot).span(e.joint(), e.link());
         e.at_span(span).locate(origin, text)
     })?;
+    let (elements, lines) = (Elements::new(&robot), Lines::new(text));
     model.warnings = std::mem::take(&mut model.warnings)
         .into_iter()
         .map(|w: SpecWarning| {
-            let span = element_span(&robot, w.joint(), w.link());
-            w.at_span(span).locate(origin, text)
+            let span = elements.span(w.joint(), w.link());
+            w.at_span(span).locate_in(origin, &lines)
         })
         .collect();
     input::enforce(model, options.strict)
@@ -109,16 +114,31 @@ fn read(robot: &UrdfRobot, origin: &str, options: &LoadOptions) -> Result<RobotM
     input::assemble(input, &options)
 }
 
-/// The opening tag of the first `<joint>` named `joint`, else of the first `<link>` named
-/// `link`.
-fn element_span(
-    robot: &UrdfRobot,
-    joint: Option<&str>,
-    link: Option<&str>,
-) -> Option<std::ops::Range<usize>> {
-    let joint = joint.and_then(|name| robot.joints.iter().find(|j| j.name == name));
-    let link = link.and_then(|name| robot.links.iter().find(|l| l.name == name));
-    joint
-        .map(|j| j.span.clone())
-        .or(link.map(|l| l.span.clone()))
+/// The opening tag of the first `<joint>` and of the first `<link>` of each name: found once
+/// for all the findings of a file.
+struct Elements<'r> {
+    joints: HashMap<&'r str, &'r Range<usize>>,
+    links: HashMap<&'r str, &'r Range<usize>>,
+}
+
+impl<'r> Elements<'r> {
+    fn new(robot: &'r UrdfRobot) -> Elements<'r> {
+        let mut joints = HashMap::new();
+        for joint in &robot.joints {
+            joints.entry(joint.name.as_str()).or_insert(&joint.span);
+        }
+        let mut links = HashMap::new();
+        for link in &robot.links {
+            links.entry(link.name.as_str()).or_insert(&link.span);
+        }
+        Elements { joints, links }
+    }
+
+    /// The opening tag of the first `<joint>` named `joint`, else of the first `<link>` named
+    /// `link`.
+    fn span(&self, joint: Option<&str>, link: Option<&str>) -> Option<Range<usize>> {
+        let joint = joint.and_then(|name| self.joints.get(name));
+        let link = link.and_then(|name| self.links.get(name));
+        joint.or(link).map(|span| (*span).clone())
+    }
 }

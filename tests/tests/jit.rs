@@ -1,0 +1,515 @@
+//! The JIT (rne-jit) computes what the macro's kernels compute, bit for bit: every kernel of
+//! every built-in robot, of the committed robot files on both bases, with run-time parameters
+//! and with fused multiply-adds, against the same programs evaluated operation by operation
+//! (`Program::eval`, which the compiled modules equal bit for bit: `control_kernels.rs`) and
+//! against the compiled modules themselves; its calls refuse wrong lengths and non-finite
+//! states; batches and threads give the single calls' bits; dropped models free their code.
+
+use std::path::PathBuf;
+
+use rne_codegen::{Dynamics, Kernel};
+use rne_codegen_core::{read_robot, ParameterMode, Program, Scene};
+use rne_interpreted::StateRef;
+use rne_jit::{Batch, JitError, JitModel, State};
+use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
+use rne_models::Visitor;
+use rne_symbolic::model::Base;
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{Real, RobotModel, Symbol};
+
+/// Seeded states of a model: q (a unit quaternion first on a floating base), q̇, q̈, τ.
+struct States {
+    q: Vec<Vec<f64>>,
+    qd: Vec<Vec<f64>>,
+    qdd: Vec<Vec<f64>>,
+    tau: Vec<Vec<f64>>,
+}
+
+impl States {
+    fn new(jit: &JitModel, count: usize, seed: u64) -> States {
+        let states = rne_interpreted::agreement::random_states(jit.nq(), jit.nv(), count, seed);
+        States {
+            q: states.iter().map(|s| s.q.clone()).collect(),
+            qd: states.iter().map(|s| s.qd.clone()).collect(),
+            qdd: states.iter().map(|s| s.qdd.clone()).collect(),
+            tau: states.iter().map(|s| s.tau.clone()).collect(),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.q.len()
+    }
+
+    fn state(&self, k: usize) -> State<'_> {
+        State {
+            q: &self.q[k],
+            qd: &self.qd[k],
+            qdd: &self.qdd[k],
+            tau: &self.tau[k],
+        }
+    }
+}
+
+/// `program` at `state` with `parameters` for its parameter symbols, multiply-adds fused when
+/// `fused` (as the JIT fuses them on a processor with FMA) or as the runtime's `mul_add`.
+fn eval(program: &Program, state: State<'_>, parameters: &[f64], fused: bool) -> Vec<f64> {
+    let input = |s: Symbol| match s {
+        Symbol::Position(k) => state.q[k as usize],
+        Symbol::Velocity(k) => state.qd[k as usize],
+        Symbol::Acceleration(k) => state.qdd[k as usize],
+        Symbol::Force(k) => state.tau[k as usize],
+        Symbol::Parameter(k) => parameters[k as usize],
+        Symbol::Lane(_) => f64::NAN,
+    };
+    if fused {
+        program
+            .eval(|s| Fused(input(s)))
+            .iter()
+            .map(|x| x.0)
+            .collect()
+    } else {
+        program.eval_f64(&input)
+    }
+}
+
+/// Whether two results are the same bits (NaN payloads included).
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+/// Every kernel of `jit` at every state of `states` against its program (the standard
+/// parameters' base map at the model's own values of them).
+fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
+    for kp in &jit.programs().kernels {
+        if kp.kernel == Kernel::BaseParameters {
+            let standard: Vec<f64> = (0..jit.parameter_names().len())
+                .map(|i| 0.5 + i as f64 * 0.01)
+                .collect();
+            let expected = eval(&kp.program, State::default(), &standard, jit.fused());
+            assert!(same_bits(
+                &jit.base_parameters(&standard).unwrap(),
+                &expected
+            ));
+            continue;
+        }
+        let mut out = vec![0.0; kp.program.outputs.len()];
+        for k in 0..states.len() {
+            let state = states.state(k);
+            jit.evaluate(kp.kernel, state, &mut out).unwrap();
+            let expected = eval(&kp.program, state, jit.parameters(), jit.fused());
+            assert!(
+                same_bits(&out, &expected),
+                "{what}: `{}` at state {k} differs from its program",
+                kp.kernel
+            );
+        }
+    }
+}
+
+fn all_kernels() -> Scene {
+    Scene {
+        outputs: Kernel::ALL.to_vec(),
+        ..Scene::default()
+    }
+}
+
+fn builtin(robot: &'static rne_models::BuiltinRobot) -> RobotModel {
+    RobotSource::Builtin(robot)
+        .load(&LoadOptions::default())
+        .unwrap()
+}
+
+/// How many seeded states the built-in robots are checked at: `RNE_JIT_STATES`, or 300 (CI's
+/// debug build; docs/jit.md gives the run at 10 000).
+fn builtin_states() -> usize {
+    std::env::var("RNE_JIT_STATES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(300)
+}
+
+/// Every kernel of every built-in robot, fma off, at seeded states ([`builtin_states`]).
+#[test]
+fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
+    for robot in BUILTIN_ROBOTS {
+        let jit = JitModel::compile(&builtin(robot), &all_kernels(), robot.name).unwrap();
+        assert_eq!(jit.kernels().len(), Kernel::ALL.len());
+        check_against_programs(
+            &jit,
+            &States::new(&jit, builtin_states(), 0x717),
+            robot.name,
+        );
+    }
+}
+
+/// The eight dynamics kernels of every built-in robot against its compiled module (the
+/// macro's `Model`, through `rne_interpreted::evaluate`), bit for bit.
+#[test]
+fn the_dynamics_kernels_are_the_compiled_modules_bit_for_bit() {
+    for robot in BUILTIN_ROBOTS {
+        let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+        let states = States::new(&jit, 1_000, 0x718);
+        robot.visit(AgainstCompiled {
+            jit: &jit,
+            states: &states,
+            robot: robot.name,
+        });
+    }
+}
+
+/// The visit comparing a built-in robot's compiled `Model` with the JIT.
+struct AgainstCompiled<'a> {
+    jit: &'a JitModel,
+    states: &'a States,
+    robot: &'a str,
+}
+
+impl Visitor for AgainstCompiled<'_> {
+    type Output = ();
+
+    fn visit<const N: usize, D: Dynamics<N, N, Scalar = f64>>(self, module: D) {
+        for kernel in Kernel::DYNAMICS {
+            for k in 0..self.states.len() {
+                let s = self.states.state(k);
+                let state = StateRef {
+                    q: s.q,
+                    qd: s.qd,
+                    qdd: s.qdd,
+                    tau: s.tau,
+                };
+                let compiled = rne_interpreted::evaluate(&module, kernel, state).unwrap();
+                let jitted = self.jit.evaluate_vec(kernel, s).unwrap();
+                assert!(
+                    same_bits(&jitted, &compiled),
+                    "{} `{kernel}` state {k}",
+                    self.robot
+                );
+            }
+        }
+    }
+}
+
+/// The committed robot files (the tests' and the corpus's fixtures, Baxter, TIAGo and Iris among
+/// them) on a fixed and a floating base, every kernel.
+#[test]
+fn every_kernel_of_the_committed_robot_files_on_both_bases() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let files = [
+        root.join("fixtures/robots/ur5.urdf"),
+        root.join("fixtures/robots/gripper-mimic.urdf"),
+        root.join("fixtures/robots/geared-arm.toml"),
+        root.join("fixtures/robots/hopper-floating.toml"),
+        root.join("../rne-models/corpus/tests/fixtures/baxter.urdf"),
+        root.join("../rne-models/corpus/tests/fixtures/tiago_no_hand.urdf"),
+        root.join("../rne-models/corpus/tests/fixtures/iris.urdf"),
+    ];
+    for path in files {
+        for base in [Base::Fixed, Base::Floating] {
+            let scene = Scene {
+                base: Some(base),
+                ..all_kernels()
+            };
+            let what = format!("{} {base:?}", path.display());
+            let model = read_robot(&path, &path.display().to_string(), &scene).unwrap();
+            let jit = JitModel::compile(&model, &scene, &what).unwrap();
+            check_against_programs(&jit, &States::new(&jit, 50, 0x719), &what);
+        }
+    }
+}
+
+/// Fused multiply-adds: with `fma` on, each kernel is its fused program, rounded once per
+/// multiply-add where the processor fuses (as the macro's kernel compiled for it) and twice
+/// where it does not (as the runtime's `mul_add` there).
+#[test]
+fn with_fma_every_kernel_is_its_fused_program() {
+    let scene = Scene {
+        fma: true,
+        ..all_kernels()
+    };
+    for robot in BUILTIN_ROBOTS {
+        let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+        let fuses = cfg!(target_arch = "aarch64") || std::is_x86_feature_detected!("fma");
+        assert_eq!(
+            jit.fused(),
+            fuses,
+            "fused exactly where the processor has FMA"
+        );
+        check_against_programs(&jit, &States::new(&jit, 500, 0x71a), robot.name);
+    }
+}
+
+/// Run-time parameters: the kernels read the values set, bit for bit the program at them.
+#[test]
+fn runtime_parameters_are_read_at_every_call() {
+    let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
+    let scene = Scene {
+        parameters: ParameterMode::Runtime,
+        ..all_kernels()
+    };
+    let model = RobotSource::Builtin(robot)
+        .load(&LoadOptions {
+            symbolic_parameters: true,
+            ..LoadOptions::default()
+        })
+        .unwrap();
+    let mut jit = JitModel::compile(&model, &scene, robot.name).unwrap();
+    assert!(!jit.parameter_symbols().is_empty());
+    let states = States::new(&jit, 200, 0x71b);
+    check_against_programs(&jit, &states, "spec values");
+    let doubled: Vec<f64> = jit.parameters().iter().map(|p| 2.0 * p).collect();
+    let before = jit
+        .evaluate_vec(Kernel::InverseDynamics, states.state(0))
+        .unwrap();
+    jit.set_parameters(&doubled).unwrap();
+    assert_ne!(
+        jit.evaluate_vec(Kernel::InverseDynamics, states.state(0))
+            .unwrap(),
+        before
+    );
+    check_against_programs(&jit, &states, "doubled parameters");
+    assert!(matches!(
+        jit.set_parameters(&[1.0]),
+        Err(JitError::ParameterLength { got: 1, .. })
+    ));
+}
+
+/// Wrong lengths, non-finite values and kernels not compiled are errors naming the kernel, the
+/// array and the entry; nothing reaches the compiled code.
+#[test]
+fn bad_calls_are_errors() {
+    let robot = rne_models::builtin::builtin("ur5").unwrap();
+    let scene = Scene {
+        outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix],
+        ..Scene::default()
+    };
+    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let (q, v) = (vec![0.1; 6], vec![0.2; 6]);
+    let state = State {
+        q: &q,
+        qd: &v,
+        qdd: &v,
+        tau: &[],
+    };
+    let mut out = vec![0.0; 6];
+    let short = State {
+        q: &q[..5],
+        ..state
+    };
+    let error = jit
+        .evaluate(Kernel::InverseDynamics, short, &mut out)
+        .unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "`inverse_dynamics`: `q` has 5 values; the robot needs 6"
+    );
+    let mut nan = q.clone();
+    nan[3] = f64::NAN;
+    let error = jit
+        .evaluate(
+            Kernel::InverseDynamics,
+            State { q: &nan, ..state },
+            &mut out,
+        )
+        .unwrap_err();
+    assert!(
+        matches!(error, JitError::NonFinite { index: 3, .. }),
+        "{error}"
+    );
+    let mut infinite = v.clone();
+    infinite[0] = f64::INFINITY;
+    let error = jit
+        .evaluate(
+            Kernel::InverseDynamics,
+            State {
+                qdd: &infinite,
+                ..state
+            },
+            &mut out,
+        )
+        .unwrap_err();
+    assert!(error.to_string().contains("`qdd[0]` is inf"), "{error}");
+    let error = jit
+        .evaluate(Kernel::MassMatrix, state, &mut out)
+        .unwrap_err();
+    assert!(
+        matches!(error, JitError::OutputLength { expected: 36, .. }),
+        "{error}"
+    );
+    let error = jit
+        .evaluate(Kernel::ForwardDynamics, state, &mut out)
+        .unwrap_err();
+    assert!(matches!(error, JitError::MissingKernel { .. }), "{error}");
+    let batch = Batch {
+        q: &q,
+        qd: &v,
+        qdd: &v[..3],
+        tau: &[],
+    };
+    let error = jit
+        .evaluate_batch(Kernel::InverseDynamics, batch, &mut out)
+        .unwrap_err();
+    assert!(matches!(error, JitError::BatchLength { .. }), "{error}");
+}
+
+/// A batch gives each state's single call bit for bit, on one thread and on several.
+#[test]
+fn batches_and_threads_give_the_single_calls() {
+    let robot = rne_models::builtin::builtin("panda-arm").unwrap();
+    let scene = Scene {
+        outputs: vec![Kernel::ForwardDynamics, Kernel::InverseDynamicsDerivatives],
+        ..Scene::default()
+    };
+    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let states = States::new(&jit, 333, 0x71c);
+    let flat = |v: &[Vec<f64>]| v.concat();
+    let (q, qd, qdd, tau) = (
+        flat(&states.q),
+        flat(&states.qd),
+        flat(&states.qdd),
+        flat(&states.tau),
+    );
+    let batch = Batch {
+        q: &q,
+        qd: &qd,
+        qdd: &qdd,
+        tau: &tau,
+    };
+    for kernel in jit.kernels() {
+        let per = jit.output_len(kernel).unwrap();
+        let singles: Vec<f64> = (0..states.len())
+            .flat_map(|k| jit.evaluate_vec(kernel, states.state(k)).unwrap())
+            .collect();
+        let mut one = vec![0.0; per * states.len()];
+        jit.evaluate_batch(kernel, batch, &mut one).unwrap();
+        assert!(same_bits(&one, &singles), "{kernel}: batch");
+        for threads in [2, 3, 7] {
+            let mut many = vec![0.0; per * states.len()];
+            jit.evaluate_batch_threaded(kernel, batch, &mut many, threads)
+                .unwrap();
+            assert!(same_bits(&many, &singles), "{kernel}: {threads} threads");
+        }
+    }
+}
+
+/// A model is `Send` and `Sync`: one compiled model serves threads at once.
+#[test]
+fn a_model_is_shared_between_threads() {
+    fn shared<T: Send + Sync>(_: &T) {}
+    let robot = rne_models::builtin::builtin("puma560").unwrap();
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+    shared(&jit);
+    let states = States::new(&jit, 64, 0x71d);
+    let expected: Vec<Vec<f64>> = (0..states.len())
+        .map(|k| {
+            jit.evaluate_vec(Kernel::MassMatrix, states.state(k))
+                .unwrap()
+        })
+        .collect();
+    std::thread::scope(|scope| {
+        for _ in 0..4 {
+            scope.spawn(|| {
+                for (k, m) in expected.iter().enumerate() {
+                    let got = jit
+                        .evaluate_vec(Kernel::MassMatrix, states.state(k))
+                        .unwrap();
+                    assert!(same_bits(&got, m));
+                }
+            });
+        }
+    });
+}
+
+/// Resident memory after compiling and dropping a model many times stays where the first
+/// models left it: dropping a model frees its code.
+#[test]
+#[cfg(target_os = "linux")]
+fn dropped_models_free_their_code() {
+    let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
+    let model = builtin(robot);
+    let scene = Scene::default();
+    let resident = || -> usize {
+        let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
+        let pages: usize = statm.split_whitespace().nth(1).unwrap().parse().unwrap();
+        pages * 4096
+    };
+    for _ in 0..50 {
+        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+    }
+    let before = resident();
+    for _ in 0..500 {
+        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+    }
+    let grown = resident().saturating_sub(before);
+    // A leaked model keeps at least a page of code per kernel: 500 × 8 pages ≈ 16 MB.
+    assert!(
+        grown < 4 << 20,
+        "resident memory grew by {grown} bytes over 500 models"
+    );
+}
+
+/// `f64` whose `mul_add` is fused: how the JIT computes on a processor with FMA.
+#[derive(Copy, Clone, Debug, PartialEq, PartialOrd)]
+struct Fused(f64);
+
+macro_rules! fused_ops {
+    ($($trait:ident $method:ident $op:tt),*) => {$(
+        impl std::ops::$trait for Fused {
+            type Output = Fused;
+            fn $method(self, other: Fused) -> Fused {
+                Fused(self.0 $op other.0)
+            }
+        }
+    )*};
+}
+fused_ops!(Add add +, Sub sub -, Mul mul *, Div div /);
+
+macro_rules! fused_assign_ops {
+    ($($trait:ident $method:ident $op:tt),*) => {$(
+        impl std::ops::$trait for Fused {
+            fn $method(&mut self, other: Fused) {
+                self.0 $op other.0;
+            }
+        }
+    )*};
+}
+fused_assign_ops!(AddAssign add_assign +=, SubAssign sub_assign -=, MulAssign mul_assign *=);
+
+impl std::ops::Neg for Fused {
+    type Output = Fused;
+    fn neg(self) -> Fused {
+        Fused(-self.0)
+    }
+}
+
+impl Real for Fused {
+    fn from_f64(x: f64) -> Fused {
+        Fused(x)
+    }
+    fn sin_cos(self) -> (Fused, Fused) {
+        let (s, c) = self.0.sin_cos_runtime();
+        (Fused(s), Fused(c))
+    }
+    fn sqrt(self) -> Fused {
+        Fused(Real::sqrt(self.0))
+    }
+    fn abs(self) -> Fused {
+        Fused(self.0.abs())
+    }
+    fn sign(self) -> Fused {
+        Fused(Real::sign(self.0))
+    }
+    fn mul_add(self, a: Fused, b: Fused) -> Fused {
+        Fused(f64::mul_add(self.0, a.0, b.0))
+    }
+}
+
+/// The runtime's sine and cosine of an `f64`.
+trait RuntimeTrig {
+    fn sin_cos_runtime(self) -> (f64, f64);
+}
+
+impl RuntimeTrig for f64 {
+    fn sin_cos_runtime(self) -> (f64, f64) {
+        Real::sin_cos(self)
+    }
+}
