@@ -191,18 +191,18 @@ fn cargo_warning(warning: &SpecWarning) -> String {
 
 fn write_file(path: &Path, contents: &str) -> Result<(), CodegenError> {
     if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).map_err(|source| CodegenError::Io {
+        std::fs::create_dir_all(parent).map_err(|cause| CodegenError::Io {
             path: parent.to_path_buf(),
-            source,
+            cause,
         })?;
     }
     // Leave an identical file untouched, so that cargo does not rebuild what includes it.
     if std::fs::read_to_string(path).is_ok_and(|old| old == contents) {
         return Ok(());
     }
-    std::fs::write(path, contents).map_err(|source| CodegenError::Io {
+    std::fs::write(path, contents).map_err(|cause| CodegenError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     })
 }
 

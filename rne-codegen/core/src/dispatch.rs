@@ -1,27 +1,12 @@
 //! Kernels compiled twice, for the build's target and with AVX and AVX2, the second called
 //! where the processor has them (`rne_runtime::cpu`, whose docs say why).
 //!
-//! Only large kernels are. `rne bench --quick` on an AMD EPYC (Zen 4, AVX-512), the portable
-//! build before and with this dispatch (first for AVX alone and every kernel of 1800
-//! instructions or more, two runs each):
-//! - UR5's forward-dynamics derivatives (3250 instructions): 663 → 518–523 ns;
-//! - the Panda arm's inverse-dynamics derivatives (5470): 1340–1376 → 1016–1019 ns, its
-//!   forward-dynamics derivatives (8260): 1870–1875 → 1454–1475 ns;
-//! - UR5's inverse-dynamics derivatives (1910): 252 → 265–268 ns, slower: the call and the
-//!   copy of the result cost more than AVX saves on a kernel that spills little.
-//!
-//! With AVX2 enabled as well (three interleaved runs against AVX alone, a noisy machine:
-//! the lower two of each), UR5's forward-dynamics derivatives took 447–482 ns against 515,
-//! the Panda arm's derivatives the same. Building everything for AVX instead
-//! (`-C target-feature=+avx,+avx2`) made the Jacobians of every frame (460–900 instructions)
-//! about 10 % slower and the Panda arm's inverse dynamics (740) 18 % slower.
-//!
-//! The threshold was 2500 instructions until an AMD EPYC of the Zen 3 generation (AVX2, no
-//! AVX-512) timed the kernels between 1400 and 2500 faster dispatched (`rne bench --quick`,
-//! three interleaved runs of each build, the first of each discarded as noisy): UR5's
-//! inverse-dynamics derivatives 485–486 → 418–420 ns, UR5's regressor (about 1480) 400–405 →
-//! 286–294 ns, the Panda arm's regressor 537–546 → 484–486 ns; the Zen 4 above had UR5's
-//! inverse-dynamics derivatives 5 % slower dispatched.
+//! Only large kernels are: a portable x86-64 build targets SSE2, whose two-operand
+//! instructions make a large kernel copy and spill values that AVX's three-operand forms keep
+//! in registers, while for a small kernel the call and the copy of the result cost more than
+//! AVX saves; building everything for AVX instead made the small kernels slower. The
+//! measurements behind [`DISPATCH_FROM`] are in docs/performance.md ("The large kernels in a
+//! portable build use AVX where the processor has it").
 
 /// The fewest instructions a kernel has for it to be compiled for AVX and AVX2 too.
 pub const DISPATCH_FROM: usize = 1400;

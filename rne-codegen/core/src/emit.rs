@@ -452,76 +452,38 @@ fn arguments(kernel: Kernel, t: &str) -> String {
 /// as Rust source: one straight-line function, or for a large program a function calling its
 /// parts in turn (module `split`: parts of about 1000 instructions above 15000).
 pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitContext<'_>) -> String {
-    let uses = program.use_counts();
-    let mut emitter = Emitter {
-        program,
-        ctx,
-        names: vec![None; program.instrs.len()],
-        trig: BTreeMap::new(),
-        reads_standard: kernel.inputs().contains(&Input::Standard),
-        real: format!("{}::Real", ctx.runtime),
-        vector: program.vector_results(),
-    };
-    let mut prologue = vec![false; program.instrs.len()];
-    let mut next = 0u32;
-    for (t, &instr) in program.instrs.iter().enumerate() {
-        if let Instr::Sin(Operand::Input(Symbol::Position(k)))
-        | Instr::Cos(Operand::Input(Symbol::Position(k))) = instr
-        {
-            let entry = emitter.trig.entry(k).or_default();
-            match instr {
-                Instr::Sin(_) => entry.0 = true,
-                _ => entry.1 = true,
-            }
-            prologue[t] = true;
-            continue;
-        }
-        if uses[t] >= 2 {
-            emitter.names[t] = Some(next);
-            next += 1;
-        }
-    }
     let layout = Layout::of(kernel, dims);
     assert_eq!(
         layout.len(),
         program.outputs.len(),
         "`{kernel}` computes one output per scalar of its result"
     );
+    let bindings = Bindings::of(program);
+    let emitter = Emitter {
+        program,
+        ctx,
+        names: bindings.names,
+        trig: bindings.trig,
+        reads_standard: kernel.inputs().contains(&Input::Standard),
+        real: format!("{}::Real", ctx.runtime),
+        vector: program.vector_results(),
+    };
     let t = match ctx.scalar {
         ScalarType::F64 => "f64",
         ScalarType::F32 => "f32",
         ScalarType::Generic => "T",
     };
-    let (generics, params, args) = (emitter.generics(), emitter.params(), arguments(kernel, t));
+    let (generics, params) = (emitter.generics(), emitter.params());
+    let inputs = format!("{params}{}", arguments(kernel, t));
     let ret = layout.type_text(t);
     let signature = format!(
-        "#[doc = {doc}]\n#[inline]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub fn {name}{generics}({params}{args}) -> {ret} {{\n",
+        "#[doc = {doc}]\n#[inline]\n#[allow(unused_variables, unused_parens, clippy::all, clippy::pedantic)]\npub fn {name}{generics}({inputs}) -> {ret} {{\n",
         doc = DocLiteral(kernel.summary()),
         name = kernel.name(),
     );
-    // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
-    // body's text is seldom copied as it grows.
-    let mut body = String::with_capacity(24 * program.instrs.len());
-    emitter.write_trig_bindings(&mut body);
     let named: Vec<bool> = emitter.names.iter().map(Option::is_some).collect();
-    let plan = split::plan(program, &named, &prologue);
-    match &plan {
-        None if layout == Layout::Scalar => {
-            for t in (0..program.instrs.len()).filter(|&t| named[t]) {
-                emitter.write_binding(t, &mut body);
-            }
-            emitter.write(program.outputs[0], &mut body);
-        }
-        None => emitter.write_stored_as_computed(&layout, &ret, &named, &mut body),
-        Some(plan) => {
-            emitter.write_parts(kernel, plan, t, &mut body);
-            let mut outputs = program.outputs.iter().enumerate().map(|(k, &o)| match o {
-                Operand::Temp(_) => format!("slots[{k}]"),
-                _ => emitter.operand(o),
-            });
-            layout.write_value(&mut outputs, &mut body);
-        }
-    }
+    let plan = split::plan(program, &named, &bindings.prologue);
+    let mut body = emitter.body(kernel, &layout, (t, &ret), &named, plan.as_ref());
     let mut out = String::with_capacity(signature.len() + body.len() + 1024);
     out.push_str(&signature);
     // A split kernel is not dispatched: its parts are functions of their own, which a copy
@@ -535,7 +497,7 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
         body.push('\n');
         out.push_str(&dispatching_body(
             &generics,
-            &format!("{params}{args}"),
+            &inputs,
             &ret,
             &names,
             &body,
@@ -546,6 +508,89 @@ pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitConte
     }
     out.push_str("\n}\n");
     out
+}
+
+/// Which values of a program the emitted code binds to a name.
+pub(crate) struct Bindings {
+    /// Number `n` of each value bound as `tn`: the results used more than once.
+    pub names: Vec<Option<u32>>,
+    /// Whether each instruction is a joint's sine or cosine, bound at the top (`s3`, `c3`).
+    pub prologue: Vec<bool>,
+    /// `sin`/`cos` of joint k: which of the two are used.
+    pub trig: BTreeMap<u16, (bool, bool)>,
+}
+
+impl Bindings {
+    /// The bindings of `program`, temporaries numbered in program order.
+    pub fn of(program: &Program) -> Bindings {
+        let uses = program.use_counts();
+        let mut bindings = Bindings {
+            names: vec![None; program.instrs.len()],
+            prologue: vec![false; program.instrs.len()],
+            trig: BTreeMap::new(),
+        };
+        let mut next = 0u32;
+        for (t, &instr) in program.instrs.iter().enumerate() {
+            if let Instr::Sin(Operand::Input(Symbol::Position(k)))
+            | Instr::Cos(Operand::Input(Symbol::Position(k))) = instr
+            {
+                let entry = bindings.trig.entry(k).or_default();
+                match instr {
+                    Instr::Sin(_) => entry.0 = true,
+                    _ => entry.1 = true,
+                }
+                bindings.prologue[t] = true;
+                continue;
+            }
+            if uses[t] >= 2 {
+                bindings.names[t] = Some(next);
+                next += 1;
+            }
+        }
+        bindings
+    }
+}
+
+impl Emitter<'_> {
+    /// The function's body: the joints' sines and cosines, then the values and the result,
+    /// in one piece or, with a plan, as calls of the parts (`(t, ret)`: the scalar's and the
+    /// result's type).
+    fn body(
+        &self,
+        kernel: Kernel,
+        layout: &Layout,
+        (t, ret): (&str, &str),
+        named: &[bool],
+        plan: Option<&SplitPlan>,
+    ) -> String {
+        // Room for about 24 bytes of text per instruction (a kernel writes 15–25), so that the
+        // body's text is seldom copied as it grows.
+        let mut body = String::with_capacity(24 * self.program.instrs.len());
+        self.write_trig_bindings(&mut body);
+        match plan {
+            None if *layout == Layout::Scalar => {
+                for t in (0..self.program.instrs.len()).filter(|&t| named[t]) {
+                    self.write_binding(t, &mut body);
+                }
+                self.write(self.program.outputs[0], &mut body);
+            }
+            None => self.write_stored_as_computed(layout, ret, named, &mut body),
+            Some(plan) => {
+                self.write_parts(kernel, plan, t, &mut body);
+                let mut outputs = self
+                    .program
+                    .outputs
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &o)| match o {
+                        Operand::Temp(_) => format!("slots[{k}]"),
+                        _ => self.operand(o),
+                    });
+                layout.write_value(&mut outputs, &mut body);
+            }
+        }
+        body
+    }
 }
 
 impl Emitter<'_> {

@@ -11,12 +11,12 @@ pub enum CodegenError {
     #[error(transparent)]
     Spec(#[from] rne_symbolic::spec::SpecError),
     /// The robot file could not be read.
-    #[error("cannot read robot file `{file}`: {source}")]
+    #[error("cannot read robot file `{file}`: {cause}")]
     Read {
         /// The file, as the user named it.
         file: String,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// A `lock` names no joint.
     #[error(transparent)]
@@ -64,12 +64,12 @@ pub enum CodegenError {
         limit: usize,
     },
     /// An `outputs` entry is not a kernel.
-    #[error("unknown output `{name}`; {source}")]
+    #[error("unknown output `{name}`; {cause}")]
     UnknownKernel {
         /// The name given.
         name: String,
         /// The names there are.
-        source: crate::kernel::UnknownKernel,
+        cause: crate::kernel::UnknownKernel,
     },
     /// A `frames` entry names no link of the robot.
     #[error("unknown frame `{frame}`; the robot's frames are: {}", known.join(", "))]
@@ -103,12 +103,12 @@ pub enum CodegenError {
     #[error("cannot write C: {0}")]
     CEmission(String),
     /// Writing generated files failed.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}: {cause}")]
     Io {
         /// The file.
         path: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// A required environment variable of a build script is missing.
     #[error("environment variable {0} is not set (is this running inside a build script?)")]

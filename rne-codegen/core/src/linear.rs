@@ -11,7 +11,7 @@
 //! from the previous link) is added last — the recursion's long sums sit on the critical
 //! path of the kernels, and their depth is latency. The pass never adds an
 //! operation: every coefficient group costs at most the multiplications the original tree
-//! spent on it, and the additions are one fewer than the terms, as before. Limits: only sums
+//! spent on it, and the additions are one fewer than the terms, as in the original sum. Limits: only sums
 //! used once are opened (a shared sum is computed once and stays a term); no factor other
 //! than a constant is distributed or collected; the evaluation order of the sums changes,
 //! which changes rounding in the last bits.

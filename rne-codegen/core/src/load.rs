@@ -21,9 +21,9 @@ pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel
         free_mimic: scene.mimic == MimicMode::Free,
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
-    let bytes = std::fs::read(path).map_err(|source| CodegenError::Read {
+    let bytes = std::fs::read(path).map_err(|cause| CodegenError::Read {
         file: origin.to_owned(),
-        source,
+        cause,
     })?;
     let text = decode(bytes, origin)?;
     Ok(parse_robot(&text, origin, format, &options)?)

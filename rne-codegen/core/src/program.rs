@@ -11,6 +11,10 @@ use rne_symbolic::{ExprGraph, Id, Node, OpCount, Real, Symbol};
 
 use crate::latency::instr_cycles;
 
+#[cfg(test)]
+mod filetests;
+mod text;
+
 /// An operand: a previous instruction's result, a constant or an input.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Operand {
@@ -84,6 +88,24 @@ impl Instr {
             }
         };
         std::iter::once(a).chain(b).chain(c)
+    }
+
+    /// The same operation on the operands `f` maps these to.
+    pub fn map_operands(self, mut f: impl FnMut(Operand) -> Operand) -> Instr {
+        match self {
+            Instr::Add(a, b) => Instr::Add(f(a), f(b)),
+            Instr::Sub(a, b) => Instr::Sub(f(a), f(b)),
+            Instr::Mul(a, b) => Instr::Mul(f(a), f(b)),
+            Instr::Div(a, b) => Instr::Div(f(a), f(b)),
+            Instr::Neg(a) => Instr::Neg(f(a)),
+            Instr::Sin(a) => Instr::Sin(f(a)),
+            Instr::Cos(a) => Instr::Cos(f(a)),
+            Instr::Sqrt(a) => Instr::Sqrt(f(a)),
+            Instr::Sign(a) => Instr::Sign(f(a)),
+            Instr::MulAdd(a, b, c) => Instr::MulAdd(f(a), f(b), f(c)),
+            Instr::MulSub(a, b, c) => Instr::MulSub(f(a), f(b), f(c)),
+            Instr::NegMulAdd(a, b, c) => Instr::NegMulAdd(f(a), f(b), f(c)),
+        }
     }
 }
 
@@ -166,59 +188,17 @@ impl Program {
     /// rounding does where the target fuses ([`Real::mul_add`]).
     pub fn fuse_multiply_add(&self) -> Program {
         let uses = self.use_counts();
-        let single_product = |o: Operand| match o {
-            Operand::Temp(t) if uses[t as usize] == 1 => match self.instrs[t as usize] {
-                Instr::Mul(a, b) => Some((t, a, b)),
-                _ => None,
-            },
-            _ => None,
-        };
         // When each instruction's value is ready in the fused program (a fused product's
         // entry is never read).
         let mut ready: Vec<u32> = Vec::with_capacity(self.instrs.len());
-        let at = |o: Operand, ready: &[u32]| o.temp().map_or(0, |t| ready[t as usize]);
         let mut fused: Vec<Option<Instr>> = self.instrs.iter().map(|&i| Some(i)).collect();
-        for (k, instr) in self.instrs.iter().enumerate() {
-            let sum = |x: Operand, y: Operand, ready: &[u32]| {
-                at(x, ready).max(at(y, ready)) + instr_cycles(*instr)
-            };
-            let (unfused, x, y, subtract) = match *instr {
-                Instr::Add(x, y) => (sum(x, y, &ready), x, y, false),
-                Instr::Sub(x, y) => (sum(x, y, &ready), x, y, true),
-                _ => {
-                    let operands = instr.operands().map(|o| at(o, &ready)).max();
-                    ready.push(operands.unwrap_or(0) + instr_cycles(*instr));
-                    continue;
-                }
-            };
-            // (finish, product index, fused instruction) of fusing each candidate product.
-            let candidate = |product: Operand, addend: Operand, first: bool, ready: &[u32]| {
-                single_product(product).map(|(t, a, b)| {
-                    let fused = match (subtract, first) {
-                        (false, _) => Instr::MulAdd(a, b, addend),
-                        (true, true) => Instr::MulSub(a, b, addend),
-                        (true, false) => Instr::NegMulAdd(a, b, addend),
-                    };
-                    let operands = fused.operands().map(|o| at(o, ready)).max();
-                    (operands.unwrap_or(0) + instr_cycles(fused), t, fused)
-                })
-            };
-            let best = [
-                candidate(x, y, true, &ready),
-                candidate(y, x, false, &ready),
-            ]
-            .into_iter()
-            .flatten()
-            .filter(|&(finish, _, _)| finish <= unfused)
-            .min_by_key(|&(finish, t, _)| (finish, std::cmp::Reverse(t)));
-            match best {
-                Some((finish, t, instr)) => {
-                    fused[t as usize] = None;
-                    fused[k] = Some(instr);
-                    ready.push(finish);
-                }
-                None => ready.push(unfused),
+        for (k, &instr) in self.instrs.iter().enumerate() {
+            let (finish, fusion) = self.best_fusion(instr, &uses, &ready);
+            if let Some((product, instr)) = fusion {
+                fused[product as usize] = None;
+                fused[k] = Some(instr);
             }
+            ready.push(finish);
         }
         // Renumber the temporaries past the removed products.
         let mut index: Vec<u32> = Vec::with_capacity(fused.len());
@@ -234,25 +214,59 @@ impl Program {
         for instr in fused {
             index.push(program.instrs.len() as u32);
             if let Some(instr) = instr {
-                let r = |o| renumber(o, &index);
-                program.instrs.push(match instr {
-                    Instr::Add(a, b) => Instr::Add(r(a), r(b)),
-                    Instr::Sub(a, b) => Instr::Sub(r(a), r(b)),
-                    Instr::Mul(a, b) => Instr::Mul(r(a), r(b)),
-                    Instr::Div(a, b) => Instr::Div(r(a), r(b)),
-                    Instr::Neg(a) => Instr::Neg(r(a)),
-                    Instr::Sin(a) => Instr::Sin(r(a)),
-                    Instr::Cos(a) => Instr::Cos(r(a)),
-                    Instr::Sqrt(a) => Instr::Sqrt(r(a)),
-                    Instr::Sign(a) => Instr::Sign(r(a)),
-                    Instr::MulAdd(a, b, c) => Instr::MulAdd(r(a), r(b), r(c)),
-                    Instr::MulSub(a, b, c) => Instr::MulSub(r(a), r(b), r(c)),
-                    Instr::NegMulAdd(a, b, c) => Instr::NegMulAdd(r(a), r(b), r(c)),
-                });
+                program
+                    .instrs
+                    .push(instr.map_operands(|o| renumber(o, &index)));
             }
         }
         program.outputs = self.outputs.iter().map(|&o| renumber(o, &index)).collect();
         program
+    }
+
+    /// When `instr` is ready, given when the earlier instructions are (`ready`), and the
+    /// product it is fused with and the fused instruction, if fusing is worth it
+    /// ([`Program::fuse_multiply_add`]). `uses`: [`Program::use_counts`].
+    fn best_fusion(
+        &self,
+        instr: Instr,
+        uses: &[u32],
+        ready: &[u32],
+    ) -> (u32, Option<(u32, Instr)>) {
+        let at = |o: Operand| o.temp().map_or(0, |t| ready[t as usize]);
+        let finish = |i: Instr| i.operands().map(at).max().unwrap_or(0) + instr_cycles(i);
+        let unfused = finish(instr);
+        let (x, y, subtract) = match instr {
+            Instr::Add(x, y) => (x, y, false),
+            Instr::Sub(x, y) => (x, y, true),
+            _ => return (unfused, None),
+        };
+        let single_product = |o: Operand| match o {
+            Operand::Temp(t) if uses[t as usize] == 1 => match self.instrs[t as usize] {
+                Instr::Mul(a, b) => Some((t, a, b)),
+                _ => None,
+            },
+            _ => None,
+        };
+        // (finish, product index, fused instruction) of fusing each candidate product.
+        let candidate = |product: Operand, addend: Operand, first: bool| {
+            single_product(product).map(|(t, a, b)| {
+                let fused = match (subtract, first) {
+                    (false, _) => Instr::MulAdd(a, b, addend),
+                    (true, true) => Instr::MulSub(a, b, addend),
+                    (true, false) => Instr::NegMulAdd(a, b, addend),
+                };
+                (finish(fused), t, fused)
+            })
+        };
+        let best = [candidate(x, y, true), candidate(y, x, false)]
+            .into_iter()
+            .flatten()
+            .filter(|&(finish, _, _)| finish <= unfused)
+            .min_by_key(|&(finish, t, _)| (finish, std::cmp::Reverse(t)));
+        match best {
+            Some((finish, t, fused)) => (finish, Some((t, fused))),
+            None => (unfused, None),
+        }
     }
 
     fn push(&mut self, instr: Instr) -> Operand {

@@ -9,7 +9,7 @@
 //! (`emit.rs`). A value one part computes and a later part reads travels through a slot of
 //! an array the kernel owns; outputs are written to their own slots; slots are reused once
 //! the value in them has been read for the last time. Smaller programs are emitted as one
-//! function, exactly as before, so the kernels of arms and small robots are unaffected.
+//! function, so the kernels of arms and small robots are written as one straight-line body.
 //!
 //! The plan is a function of the program alone, so the emitted text is the same on every
 //! build.
@@ -52,6 +52,43 @@ pub struct SplitPlan {
     pub len: usize,
 }
 
+/// One line per part (the values it reads from slots, then its statements), then the slot of
+/// each value that travels and the number of slots:
+///
+/// ```text
+/// part 0: let t1, out[1] = t3
+/// part 1: reads t1; let t4, out[0] = t6
+/// slots: t1 in 2
+/// slots in all: 3
+/// ```
+impl std::fmt::Display for SplitPlan {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (p, statements) in self.parts.iter().enumerate() {
+            write!(f, "part {p}: ")?;
+            if !self.imports[p].is_empty() {
+                let imports: Vec<String> =
+                    self.imports[p].iter().map(|v| format!("t{v}")).collect();
+                write!(f, "reads {}; ", imports.join(" "))?;
+            }
+            let statements: Vec<String> = statements
+                .iter()
+                .map(|s| match *s {
+                    Statement::Let(i) => format!("let t{i}"),
+                    Statement::Output { output, instr } => format!("out[{output}] = t{instr}"),
+                })
+                .collect();
+            writeln!(f, "{}", statements.join(", "))?;
+        }
+        let slots: Vec<String> = self
+            .slots
+            .iter()
+            .map(|(v, s)| format!("t{v} in {s}"))
+            .collect();
+        writeln!(f, "slots: {}", slots.join(", "))?;
+        writeln!(f, "slots in all: {}", self.len)
+    }
+}
+
 /// Plans the parts of `program`, or `None` when it is small enough to stay one function.
 ///
 /// `named[i]`: instruction `i` is bound by a `let` (used more than once); `prologue[i]`: its
@@ -59,20 +96,52 @@ pub struct SplitPlan {
 /// is written inline where it is used, so a statement reads the named and prologue values
 /// found by walking its expression through the unnamed ones.
 pub fn plan(program: &Program, named: &[bool], prologue: &[bool]) -> Option<SplitPlan> {
-    if program.instrs.len() <= SPLIT_ABOVE {
-        return None;
-    }
-    Some(plan_parts(program, named, prologue, PART_LEN))
+    (program.instrs.len() > SPLIT_ABOVE).then(|| plan_parts(program, named, prologue, PART_LEN))
 }
 
 /// [`plan`] with parts of `part_len` instructions, whatever the program's length (the C
-/// emitter's, `emit_c`, whose compilers call for other lengths than rustc).
+/// emitter's, `emit_c`, whose compilers call for other lengths than rustc; the golden files'
+/// small split cases).
 pub fn plan_parts(
     program: &Program,
     named: &[bool],
     prologue: &[bool],
     part_len: usize,
 ) -> SplitPlan {
+    let parts = statements(program, named, part_len);
+    let (defined, readers) = readers(program, named, prologue, &parts);
+    let mut imports: Vec<Vec<usize>> = vec![Vec::new(); parts.len()];
+    // (part defining it, +1 so that the prologue is 0; last part reading it; value)
+    let mut travelling: Vec<(usize, usize, usize)> = Vec::new();
+    for (value, reading) in readers.iter().enumerate() {
+        let home = defined[value];
+        let mut foreign = reading
+            .iter()
+            .copied()
+            .filter(|&p| Some(p) != home)
+            .peekable();
+        if foreign.peek().is_none() {
+            continue;
+        }
+        for p in foreign {
+            imports[p].push(value);
+        }
+        let last = *reading.last().expect("read by a part");
+        travelling.push((home.map_or(0, |p| p + 1), last, value));
+    }
+    travelling.sort_unstable();
+    let (slots, len) = slots(&travelling, program.outputs.len());
+    SplitPlan {
+        parts,
+        imports,
+        slots,
+        len,
+    }
+}
+
+/// The statements of each part that has any, in program order: a statement belongs to the
+/// part of its instruction's index.
+fn statements(program: &Program, named: &[bool], part_len: usize) -> Vec<Vec<Statement>> {
     let mut outputs_at: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
     for (k, output) in program.outputs.iter().enumerate() {
         if let Operand::Temp(t) = *output {
@@ -90,10 +159,17 @@ pub fn plan_parts(
             parts.entry(part_of(i)).or_default().push(statement);
         }
     }
-    let parts: Vec<Vec<Statement>> = parts.into_values().collect();
+    parts.into_values().collect()
+}
 
-    // Where each named value is defined (`None`: the prologue) and every part reading it,
-    // ascending (parts are visited in order).
+/// Where each named value is defined (`None`: the prologue) and every part reading it,
+/// ascending (parts are visited in order).
+fn readers(
+    program: &Program,
+    named: &[bool],
+    prologue: &[bool],
+    parts: &[Vec<Statement>],
+) -> (Vec<Option<usize>>, Vec<Vec<usize>>) {
     let mut defined: Vec<Option<usize>> = vec![None; program.instrs.len()];
     let mut readers: Vec<Vec<usize>> = vec![Vec::new(); program.instrs.len()];
     for (p, statements) in parts.iter().enumerate() {
@@ -118,34 +194,19 @@ pub fn plan_parts(
             }
         }
     }
-    let mut imports: Vec<Vec<usize>> = vec![Vec::new(); parts.len()];
-    // (part defining it, +1 so that the prologue is 0; last part reading it; value)
-    let mut travelling: Vec<(usize, usize, usize)> = Vec::new();
-    for (value, reading) in readers.iter().enumerate() {
-        let home = defined[value];
-        let mut foreign = reading
-            .iter()
-            .copied()
-            .filter(|&p| Some(p) != home)
-            .peekable();
-        if foreign.peek().is_none() {
-            continue;
-        }
-        for p in foreign {
-            imports[p].push(value);
-        }
-        let last = *reading.last().expect("read by a part");
-        travelling.push((home.map_or(0, |p| p + 1), last, value));
-    }
-    travelling.sort_unstable();
+    (defined, readers)
+}
 
-    // Slots after the outputs', each reused once every part reading its value has run.
+/// The slot of each travelling value (sorted (home part + 1, last part reading it, value)),
+/// after the `outputs` slots of the outputs, each reused once every part reading its value has
+/// run; and the number of slots.
+fn slots(travelling: &[(usize, usize, usize)], outputs: usize) -> (BTreeMap<usize, usize>, usize) {
     let mut slots = BTreeMap::new();
     let mut free: BTreeSet<usize> = BTreeSet::new();
     // (part last reading the value in it, slot), the earliest-freed first.
     let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
-    let mut len = program.outputs.len();
-    for (home, last, value) in travelling {
+    let mut len = outputs;
+    for &(home, last, value) in travelling {
         // Written in part `home − 1`, after every read of a value last read before it.
         while let Some(&Reverse((last_read, slot))) = busy.peek() {
             if last_read + 1 >= home {
@@ -161,12 +222,7 @@ pub fn plan_parts(
         busy.push(Reverse((last, slot)));
         slots.insert(value, slot);
     }
-    SplitPlan {
-        parts,
-        imports,
-        slots,
-        len,
-    }
+    (slots, len)
 }
 
 /// The named and prologue values `operand` reads, through the unnamed instructions written

@@ -69,8 +69,7 @@ impl JitModel {
                 .collect();
             handles
                 .into_iter()
-                .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
-                .collect::<Result<(), JitError>>()
+                .try_for_each(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
         })
     }
 
@@ -94,7 +93,7 @@ impl JitModel {
         out_len: usize,
     ) -> Result<usize, JitError> {
         let per = self.compiled_kernel(kernel)?.outputs();
-        if per == 0 || out_len % per != 0 {
+        if per == 0 || !out_len.is_multiple_of(per) {
             return Err(JitError::OutputLength {
                 kernel,
                 got: out_len,

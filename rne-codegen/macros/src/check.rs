@@ -10,7 +10,7 @@ use rne_codegen_core::{
 use rne_symbolic::model::Base;
 use syn::{Attribute, Ident, LitStr, Visibility};
 
-use crate::ast::{DynamicsModule, Element, Value};
+use crate::ast::{DynamicsModule, Element, Key, Number, Value};
 
 /// A checked macro input.
 pub struct CheckedModule {
@@ -47,6 +47,7 @@ const KEYS: [&str; 16] = [
     "crate",
 ];
 
+#[derive(Default)]
 struct Errors(Option<syn::Error>);
 
 impl Errors {
@@ -57,235 +58,351 @@ impl Errors {
             None => self.0 = Some(error),
         }
     }
+
+    /// The value of the option named `name`, or `None` after an error built by `unknown` from
+    /// the name given.
+    fn pick<T: Clone>(
+        &mut self,
+        name: &Ident,
+        options: &[(&str, T)],
+        unknown: impl FnOnce(&str) -> String,
+    ) -> Option<T> {
+        let given = name.to_string();
+        let value = options.iter().find(|(option, _)| *option == given);
+        if value.is_none() {
+            self.push(name.span(), unknown(&given));
+        }
+        value.map(|(_, value)| value.clone())
+    }
 }
 
+/// Sets `place` to `value` when there is one (a setting that was not an error).
+fn set<T>(place: &mut T, value: Option<T>) {
+    if let Some(value) = value {
+        *place = value;
+    }
+}
+
+/// Checks the settings in order, each key at most once, and builds the module's scene.
 pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
-    let mut errors = Errors(None);
-    let mut seen = BTreeSet::new();
-    let mut robot = None;
-    let mut scene = Scene::default();
-    let mut lock_spans = Vec::new();
-    let mut output_spans = Vec::new();
-    let mut frame_spans = Vec::new();
+    let mut checker = Checker::default();
     for setting in &input.settings {
-        let key = setting.key.to_string();
-        if !KEYS.contains(&key.as_str()) {
-            errors.push(
-                setting.key.span(),
-                format!(
-                    "unknown setting `{key}`; expected one of: {}",
-                    KEYS.join(", ")
-                ),
+        if let Some(key) = checker.key(&setting.key) {
+            checker.setting(key, &setting.value);
+        }
+    }
+    checker.finish(input)
+}
+
+/// What the settings checked so far give, and the errors they have.
+#[derive(Default)]
+struct Checker {
+    errors: Errors,
+    seen: BTreeSet<&'static str>,
+    robot: Option<LitStr>,
+    scene: Scene,
+    lock_spans: Vec<Span>,
+    output_spans: Vec<Span>,
+    frame_spans: Vec<Span>,
+}
+
+impl Checker {
+    /// The setting's key if it is one of [`KEYS`] not given before; an error otherwise.
+    fn key(&mut self, key: &Ident) -> Option<&'static str> {
+        let name = key.to_string();
+        let Some(&known) = KEYS.iter().find(|&&k| k == name) else {
+            let message = format!(
+                "unknown setting `{name}`; expected one of: {}",
+                KEYS.join(", ")
             );
-            continue;
+            self.errors.push(key.span(), message);
+            return None;
+        };
+        if !self.seen.insert(known) {
+            self.errors
+                .push(key.span(), format!("`{name}` is given twice"));
+            return None;
         }
-        if !seen.insert(key.clone()) {
-            errors.push(setting.key.span(), format!("`{key}` is given twice"));
-            continue;
+        Some(known)
+    }
+
+    /// One setting, by its key and the shape of its value.
+    fn setting(&mut self, key: &str, value: &Value) {
+        match (key, value) {
+            ("robot", Value::Str(path)) => self.robot = Some(path.clone()),
+            ("outputs", Value::List(bracket, elements)) => self.outputs(bracket, elements),
+            ("gravity", Value::List(bracket, elements)) => self.gravity(bracket, elements),
+            ("lock", Value::Map(_, entries)) => self.lock(entries),
+            ("frames", Value::List(bracket, elements)) => self.frames(bracket, elements),
+            ("velocities" | "base" | "mimic" | "friction", Value::Ident(name)) => {
+                self.scene_choice(key, name)
+            }
+            (
+                "forward_dynamics" | "parameters" | "scalar" | "validation" | "fma" | "derivatives",
+                Value::Ident(name),
+            ) => self.generation_choice(key, name),
+            ("crate", Value::Path(path)) => {
+                self.scene.crate_path = quote::quote!(#path).to_string()
+            }
+            (key, value) => self.errors.push(value_span(value), expected_shape(key)),
         }
-        match (key.as_str(), &setting.value) {
-            ("robot", Value::Str(path)) => robot = Some(path.clone()),
-            ("outputs", Value::List(bracket, elements)) => {
-                let mut outputs = Vec::new();
-                for element in elements {
-                    match element {
-                        Element::Ident(name) => {
-                            match name.to_string().parse::<Kernel>() {
-                                Ok(kernel) if outputs.contains(&kernel) => errors
-                                    .push(name.span(), format!("output `{name}` is listed twice")),
-                                Ok(kernel) => {
-                                    outputs.push(kernel);
-                                    output_spans.push(name.span());
-                                }
-                                Err(e) => errors
-                                    .push(name.span(), format!("unknown output `{name}`; {e}")),
-                            }
-                        }
-                        Element::Number(n) => errors.push(n.span, "expected an output name"),
-                        Element::Str(s) => errors.push(s.span(), "expected an output name"),
-                    }
+    }
+
+    /// `outputs: [..]`: known kernels, each once, at least one.
+    fn outputs(&mut self, bracket: &syn::token::Bracket, elements: &[Element]) {
+        let mut outputs = Vec::new();
+        for element in elements {
+            let name = match element {
+                Element::Ident(name) => name,
+                Element::Number(n) => {
+                    self.errors.push(n.span, "expected an output name");
+                    continue;
                 }
-                if elements.is_empty() {
-                    errors.push(
-                        bracket.span.join(),
-                        "`outputs` must name at least one function",
-                    );
+                Element::Str(s) => {
+                    self.errors.push(s.span(), "expected an output name");
+                    continue;
                 }
-                scene.outputs = outputs;
+            };
+            match name.to_string().parse::<Kernel>() {
+                Ok(kernel) if outputs.contains(&kernel) => self
+                    .errors
+                    .push(name.span(), format!("output `{name}` is listed twice")),
+                Ok(kernel) => {
+                    outputs.push(kernel);
+                    self.output_spans.push(name.span());
+                }
+                Err(e) => self
+                    .errors
+                    .push(name.span(), format!("unknown output `{name}`; {e}")),
             }
-            ("gravity", Value::List(bracket, elements)) => {
-                let mut gravity = Vec::new();
-                for element in elements {
-                    match element {
-                        Element::Number(n) if n.value.is_finite() => gravity.push(n.value),
-                        Element::Number(n) => {
-                            errors.push(n.span, "gravity components must be finite")
-                        }
-                        Element::Ident(name) => errors.push(name.span(), "expected a number"),
-                        Element::Str(s) => errors.push(s.span(), "expected a number"),
-                    }
-                }
-                match <[f64; 3]>::try_from(gravity) {
-                    Ok(g) => scene.gravity = Some(g),
-                    Err(v) if v.len() == elements.len() => errors.push(
-                        bracket.span.join(),
-                        format!("gravity needs 3 components, got {}", v.len()),
-                    ),
-                    Err(_) => {}
-                }
+        }
+        if elements.is_empty() {
+            self.errors.push(
+                bracket.span.join(),
+                "`outputs` must name at least one function",
+            );
+        }
+        self.scene.outputs = outputs;
+    }
+
+    /// `gravity: [x, y, z]`: three finite numbers.
+    fn gravity(&mut self, bracket: &syn::token::Bracket, elements: &[Element]) {
+        let mut gravity = Vec::new();
+        for element in elements {
+            match element {
+                Element::Number(n) if n.value.is_finite() => gravity.push(n.value),
+                Element::Number(n) => self
+                    .errors
+                    .push(n.span, "gravity components must be finite"),
+                Element::Ident(name) => self.errors.push(name.span(), "expected a number"),
+                Element::Str(s) => self.errors.push(s.span(), "expected a number"),
             }
-            ("lock", Value::Map(_, entries)) => {
-                let mut names = BTreeSet::new();
-                for (joint, value) in entries {
-                    if !names.insert(joint.name.clone()) {
-                        errors.push(
-                            joint.span,
-                            format!("joint `{}` is locked twice", joint.name),
-                        );
-                    } else if !value.value.is_finite() {
-                        errors.push(value.span, "a locked joint's value must be finite");
-                    } else {
-                        scene.lock.push((joint.name.clone(), value.value));
-                        lock_spans.push(joint.span);
-                    }
-                }
+        }
+        match <[f64; 3]>::try_from(gravity) {
+            Ok(g) => self.scene.gravity = Some(g),
+            Err(v) if v.len() == elements.len() => self.errors.push(
+                bracket.span.join(),
+                format!("gravity needs 3 components, got {}", v.len()),
+            ),
+            Err(_) => {}
+        }
+    }
+
+    /// `lock: { joint: value, .. }`: each joint once, at a finite value.
+    fn lock(&mut self, entries: &[(Key, Number)]) {
+        let mut names = BTreeSet::new();
+        for (joint, value) in entries {
+            if !names.insert(joint.name.clone()) {
+                self.errors.push(
+                    joint.span,
+                    format!("joint `{}` is locked twice", joint.name),
+                );
+            } else if !value.value.is_finite() {
+                self.errors
+                    .push(value.span, "a locked joint's value must be finite");
+            } else {
+                self.scene.lock.push((joint.name.clone(), value.value));
+                self.lock_spans.push(joint.span);
             }
-            ("velocities", Value::Ident(v)) => match v.to_string().as_str() {
-                "zero" => scene.zero_velocities = true,
-                "free" => scene.zero_velocities = false,
-                other => errors.push(
-                    v.span(),
+        }
+    }
+
+    /// `frames: [..]`: link names (identifiers or strings), each once, at least one.
+    fn frames(&mut self, bracket: &syn::token::Bracket, elements: &[Element]) {
+        let mut frames: Vec<String> = Vec::new();
+        for element in elements {
+            let (name, span) = match element {
+                Element::Ident(name) => (name.to_string(), name.span()),
+                Element::Str(s) => (s.value(), s.span()),
+                Element::Number(n) => {
+                    self.errors.push(n.span, "expected a frame (link) name");
+                    continue;
+                }
+            };
+            if frames.contains(&name) {
+                self.errors
+                    .push(span, format!("frame `{name}` is listed twice"));
+            } else {
+                frames.push(name);
+                self.frame_spans.push(span);
+            }
+        }
+        if elements.is_empty() {
+            self.errors
+                .push(bracket.span.join(), "`frames` must name at least one frame");
+        }
+        self.scene.frames = Some(frames);
+    }
+
+    /// The scene's settings given by a name: what moves and what acts on it.
+    fn scene_choice(&mut self, key: &str, name: &Ident) {
+        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        match key {
+            "velocities" => set(
+                &mut scene.zero_velocities,
+                errors.pick(name, &[("zero", true), ("free", false)], |other| {
                     format!(
                         "unknown velocities `{other}`; expected `zero` (a static scene) or `free`"
-                    ),
+                    )
+                }),
+            ),
+            "base" => set(
+                &mut scene.base,
+                errors.pick(
+                    name,
+                    &[
+                        ("fixed", Some(Base::Fixed)),
+                        ("floating", Some(Base::Floating)),
+                    ],
+                    |other| format!("unknown base `{other}`; expected `fixed` or `floating`"),
                 ),
-            },
-            ("base", Value::Ident(base)) => match base.to_string().as_str() {
-                "fixed" => scene.base = Some(Base::Fixed),
-                "floating" => scene.base = Some(Base::Floating),
-                other => errors.push(
-                    base.span(),
-                    format!("unknown base `{other}`; expected `fixed` or `floating`"),
+            ),
+            "mimic" => set(
+                &mut scene.mimic,
+                errors.pick(
+                    name,
+                    &[
+                        ("constrained", MimicMode::Constrained),
+                        ("free", MimicMode::Free),
+                    ],
+                    |other| {
+                        format!("unknown mimic mode `{other}`; expected `constrained` or `free`")
+                    },
                 ),
-            },
-            ("mimic", Value::Ident(mode)) => match mode.to_string().as_str() {
-                "constrained" => scene.mimic = MimicMode::Constrained,
-                "free" => scene.mimic = MimicMode::Free,
-                other => errors.push(
-                    mode.span(),
-                    format!("unknown mimic mode `{other}`; expected `constrained` or `free`"),
+            ),
+            _ => set(
+                &mut scene.friction,
+                errors.pick(name, &[("include", true), ("exclude", false)], |other| {
+                    format!("unknown friction `{other}`; expected `include` or `exclude`")
+                }),
+            ),
+        }
+    }
+
+    /// The settings given by a name that choose how the module is generated.
+    fn generation_choice(&mut self, key: &str, name: &Ident) {
+        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        match key {
+            "forward_dynamics" => set(
+                &mut scene.forward_dynamics,
+                errors.pick(
+                    name,
+                    &[
+                        ("auto", ForwardDynamicsMethod::Auto),
+                        ("aba", ForwardDynamicsMethod::Aba),
+                        ("ldlt", ForwardDynamicsMethod::Ldlt),
+                    ],
+                    |other| {
+                        format!(
+                            "unknown forward_dynamics `{other}`; expected `auto`, `aba` or `ldlt`"
+                        )
+                    },
                 ),
-            },
-            ("friction", Value::Ident(mode)) => match mode.to_string().as_str() {
-                "include" => scene.friction = true,
-                "exclude" => scene.friction = false,
-                other => errors.push(
-                    mode.span(),
-                    format!("unknown friction `{other}`; expected `include` or `exclude`"),
+            ),
+            "parameters" => set(
+                &mut scene.parameters,
+                errors.pick(
+                    name,
+                    &[
+                        ("constant", ParameterMode::Constant),
+                        ("runtime", ParameterMode::Runtime),
+                        ("base", ParameterMode::Base),
+                    ],
+                    |other| {
+                        format!(
+                            "unknown parameters mode `{other}`; expected `constant`, `runtime` \
+                             or `base`"
+                        )
+                    },
                 ),
-            },
-            ("frames", Value::List(bracket, elements)) => {
-                let mut frames: Vec<String> = Vec::new();
-                for element in elements {
-                    let (name, span) = match element {
-                        Element::Ident(name) => (name.to_string(), name.span()),
-                        Element::Str(s) => (s.value(), s.span()),
-                        Element::Number(n) => {
-                            errors.push(n.span, "expected a frame (link) name");
-                            continue;
-                        }
-                    };
-                    if frames.contains(&name) {
-                        errors.push(span, format!("frame `{name}` is listed twice"));
-                    } else {
-                        frames.push(name);
-                        frame_spans.push(span);
-                    }
-                }
-                if elements.is_empty() {
-                    errors.push(bracket.span.join(), "`frames` must name at least one frame");
-                }
-                scene.frames = Some(frames);
-            }
-            ("forward_dynamics", Value::Ident(method)) => match method.to_string().as_str() {
-                "auto" => scene.forward_dynamics = ForwardDynamicsMethod::Auto,
-                "aba" => scene.forward_dynamics = ForwardDynamicsMethod::Aba,
-                "ldlt" => scene.forward_dynamics = ForwardDynamicsMethod::Ldlt,
-                other => errors.push(
-                    method.span(),
-                    format!("unknown forward_dynamics `{other}`; expected `auto`, `aba` or `ldlt`"),
+            ),
+            "scalar" => set(
+                &mut scene.scalar,
+                errors.pick(
+                    name,
+                    &[
+                        ("f64", ScalarType::F64),
+                        ("f32", ScalarType::F32),
+                        ("generic", ScalarType::Generic),
+                    ],
+                    |other| format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
                 ),
-            },
-            ("parameters", Value::Ident(mode)) => match mode.to_string().as_str() {
-                "constant" => scene.parameters = ParameterMode::Constant,
-                "runtime" => scene.parameters = ParameterMode::Runtime,
-                "base" => scene.parameters = ParameterMode::Base,
-                other => errors.push(
-                    mode.span(),
-                    format!(
-                        "unknown parameters mode `{other}`; expected `constant`, `runtime` or `base`"
-                    ),
-                ),
-            },
-            ("scalar", Value::Ident(scalar)) => match scalar.to_string().as_str() {
-                "f64" => scene.scalar = ScalarType::F64,
-                "f32" => scene.scalar = ScalarType::F32,
-                "generic" => scene.scalar = ScalarType::Generic,
-                other => errors.push(
-                    scalar.span(),
-                    format!("unknown scalar `{other}`; expected `f64`, `f32` or `generic`"),
-                ),
-            },
-            ("validation", Value::Ident(mode)) => match mode.to_string().as_str() {
-                "strict" => scene.strict = true,
-                "warn" => scene.strict = false,
-                other => errors.push(
-                    mode.span(),
+            ),
+            _ => self.switch(key, name),
+        }
+    }
+
+    /// The generation settings that turn something on or off.
+    fn switch(&mut self, key: &str, name: &Ident) {
+        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        match key {
+            "validation" => set(
+                &mut scene.strict,
+                errors.pick(name, &[("strict", true), ("warn", false)], |other| {
                     format!(
                         "unknown validation `{other}`; expected `warn` (warnings in the module's \
                          docs) or `strict` (warnings are errors)"
-                    ),
-                ),
-            },
-            ("fma", Value::Ident(fused)) => match fused.to_string().as_str() {
-                "true" => scene.fma = true,
-                "false" => scene.fma = false,
-                other => errors.push(
-                    fused.span(),
-                    format!("unknown fma `{other}`; expected `true` or `false`"),
-                ),
-            },
-            ("derivatives", Value::Ident(mode)) => match mode.to_string().as_str() {
-                "lanes" => scene.derivative_lanes = true,
-                "scalar" => scene.derivative_lanes = false,
-                other => errors.push(
-                    mode.span(),
+                    )
+                }),
+            ),
+            "fma" => set(
+                &mut scene.fma,
+                errors.pick(name, &[("true", true), ("false", false)], |other| {
+                    format!("unknown fma `{other}`; expected `true` or `false`")
+                }),
+            ),
+            _ => set(
+                &mut scene.derivative_lanes,
+                errors.pick(name, &[("lanes", true), ("scalar", false)], |other| {
                     format!(
                         "unknown derivatives `{other}`; expected `lanes` (four directions per \
                          vector instruction, needs rne-codegen's feature `simd`) or `scalar`"
-                    ),
-                ),
-            },
-            ("crate", Value::Path(path)) => scene.crate_path = quote::quote!(#path).to_string(),
-            (key, value) => errors.push(value_span(value), expected_shape(key)),
+                    )
+                }),
+            ),
         }
     }
-    if robot.is_none() && !seen.contains("robot") {
-        errors.push(input.name.span(), "missing `robot: \"path/to/robot.toml\"`");
-    }
-    match (errors.0, robot) {
-        (Some(e), _) => Err(e),
-        (None, Some(robot)) => Ok(CheckedModule {
-            attrs: input.attrs,
-            vis: input.vis,
-            name: input.name,
-            robot,
-            scene,
-            lock_spans,
-            output_spans,
-            frame_spans,
-        }),
-        (None, None) => Err(syn::Error::new(input.name.span(), "missing `robot`")),
+
+    /// The checked module, or every error found.
+    fn finish(mut self, input: DynamicsModule) -> syn::Result<CheckedModule> {
+        if self.robot.is_none() && !self.seen.contains("robot") {
+            self.errors
+                .push(input.name.span(), "missing `robot: \"path/to/robot.toml\"`");
+        }
+        match (self.errors.0, self.robot) {
+            (Some(e), _) => Err(e),
+            (None, Some(robot)) => Ok(CheckedModule {
+                attrs: input.attrs,
+                vis: input.vis,
+                name: input.name,
+                robot,
+                scene: self.scene,
+                lock_spans: self.lock_spans,
+                output_spans: self.output_spans,
+                frame_spans: self.frame_spans,
+            }),
+            (None, None) => Err(syn::Error::new(input.name.span(), "missing `robot`")),
+        }
     }
 }
 

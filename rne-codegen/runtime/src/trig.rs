@@ -231,8 +231,8 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// registers; elsewhere, and for more arguments, a branch-free loop the compiler
 /// vectorises. An argument out of the fast path's range sends the whole array to a cold
 /// scalar path. Always inlined: as a call, which LLVM chose for AVX2 targets, the results go
-/// through memory and the kernel's first link waits for the call to return — UR5's and the
-/// Panda arm's inverse dynamics ran 5–15 % slower (docs/performance.md).
+/// through memory and the kernel's first link waits for the call to return, which slowed the
+/// arms' inverse dynamics (docs/performance.md has the figures).
 #[inline(always)]
 pub fn sin_cos_array<const N: usize>(x: &[f64; N]) -> ([f64; N], [f64; N]) {
     #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]

@@ -2,12 +2,11 @@
 //!
 //! The scripts are separate processes, timed one after the other; on a shared machine whose
 //! speed changes over minutes, a ratio of two times taken minutes apart measures the machine
-//! as much as the code (on this project's host one run gave CppADCodeGen's UR5 inverse
-//! dynamics 401 ns, another 197–207 ns, with the same binary). So right after each run of the
-//! scripts on a robot, rne's generated `f64` kernels of [`COMPARISONS`] are timed together
-//! ([`time_compared`]), and each ratio is the median over runs of Pinocchio's time in the run
-//! over rne's time right after it ([`PairedTimes::ratio`]), as the harness pairs the rounds of
-//! implementations timed together ([`crate::timing::Timing::ratio_to`]).
+//! as much as the code (docs/performance.md, "Method", gives an example). So right after each
+//! run of the scripts on a robot, rne's generated `f64` kernels of [`COMPARISONS`] are timed
+//! together ([`time_compared`]), and each ratio is the median over runs of Pinocchio's time in
+//! the run over rne's time right after it ([`PairedTimes::ratio`]), as the harness pairs the
+//! rounds of implementations timed together ([`crate::timing::Timing::ratio_to`]).
 
 use std::collections::BTreeMap;
 

@@ -123,9 +123,9 @@ where
     let inputs = cases
         .sample(Case::Full)
         .inputs::<f64, N>()
-        .map_err(|source| BenchError::Evaluation {
+        .map_err(|cause| BenchError::Evaluation {
             robot: cases.robot.name.to_owned(),
-            source,
+            cause,
         })?;
     Ok(CONTROL
         .iter()

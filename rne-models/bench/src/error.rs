@@ -11,41 +11,37 @@ use rne_sim::RunError;
 #[derive(Debug, thiserror::Error)]
 pub enum BenchError {
     /// A built-in robot's spec was rejected by the reader.
-    #[error("{robot}: {source}")]
+    #[error("{robot}: {cause}")]
     Spec {
         /// The robot.
         robot: String,
         /// The reader's error.
-        #[source]
-        source: SpecError,
+        cause: SpecError,
     },
     /// A scene could not be applied or generated.
-    #[error("{robot}: {source}")]
+    #[error("{robot}: {cause}")]
     Codegen {
         /// The robot.
         robot: String,
         /// The generator's error.
-        #[source]
-        source: CodegenError,
+        cause: CodegenError,
     },
     /// The numeric reference rejected the model.
-    #[error("{robot}: {source}")]
+    #[error("{robot}: {cause}")]
     Reference {
         /// The robot.
         robot: String,
         /// The reference's error.
-        #[source]
-        source: ReferenceError,
+        cause: ReferenceError,
     },
     /// An implementation could not be set up on the sampled states (a variant with another
     /// number of joints, a model the reference cannot evaluate at run time).
-    #[error("{robot}: {source}")]
+    #[error("{robot}: {cause}")]
     Evaluation {
         /// The robot.
         robot: String,
         /// Why.
-        #[source]
-        source: rne_interpreted::Error,
+        cause: rne_interpreted::Error,
     },
     /// The benchmark has no generated variants for a built-in robot, or they do not match it.
     #[error("{robot}: {problem}")]

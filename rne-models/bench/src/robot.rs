@@ -172,9 +172,9 @@ pub fn bench_robot(
         )?;
         Ok(agreement.first().map_or(f64::NAN, |a| a.max_error))
     };
-    let evaluation = |source_: rne_interpreted::Error| BenchError::Evaluation {
+    let evaluation = |cause: rne_interpreted::Error| BenchError::Evaluation {
         robot: source.to_owned(),
-        source: source_,
+        cause,
     };
     let mut kernels = Vec::new();
     for &kernel in &settings.kernels {

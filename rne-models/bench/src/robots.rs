@@ -45,9 +45,9 @@ impl Cases {
         let name = robot.name.to_owned();
         let model = RobotSource::Builtin(robot)
             .load(&LoadOptions::default())
-            .map_err(|source| BenchError::Spec {
+            .map_err(|cause| BenchError::Spec {
                 robot: name.clone(),
-                source,
+                cause,
             })?;
         let locked_joint =
             model
@@ -59,9 +59,9 @@ impl Cases {
                     problem: "the robot has no joint to lock".into(),
                 })?;
         let scene_model = |scene: Scene| {
-            scene.apply(&model).map_err(|source| BenchError::Codegen {
+            scene.apply(&model).map_err(|cause| BenchError::Codegen {
                 robot: name.clone(),
-                source,
+                cause,
             })
         };
         let zero_gravity = scene_model(Scene {
@@ -127,9 +127,9 @@ impl Cases {
 
     /// The numeric reference of the robot.
     pub fn reference(&self) -> Result<Reference, BenchError> {
-        Reference::try_new(&self.model.to_numeric()).map_err(|source| BenchError::Reference {
+        Reference::try_new(&self.model.to_numeric()).map_err(|cause| BenchError::Reference {
             robot: self.robot.name.to_owned(),
-            source,
+            cause,
         })
     }
 }
@@ -201,9 +201,9 @@ impl<'a> Candidates<'a> {
             .cases
             .sample(implementation.case())
             .inputs::<D::Scalar, N>()
-            .map_err(|source| BenchError::Evaluation {
+            .map_err(|cause| BenchError::Evaluation {
                 robot: self.cases.robot.name.to_owned(),
-                source,
+                cause,
             })?;
         self.list.push(Candidate {
             implementation,
@@ -279,16 +279,16 @@ where
     c.add(Implementation::AtRest, modules.at_rest)?;
     let interpreted = RuntimeModel::<N>::interpreted(cases.program(Case::Full));
     let reference = cases.reference().and_then(|r| {
-        RuntimeModel::<N>::reference(r).map_err(|source| BenchError::Evaluation {
+        RuntimeModel::<N>::reference(r).map_err(|cause| BenchError::Evaluation {
             robot: robot.clone(),
-            source,
+            cause,
         })
     });
     c.add(
         Implementation::Interpreted,
-        interpreted.map_err(|source| BenchError::Evaluation {
+        interpreted.map_err(|cause| BenchError::Evaluation {
             robot: robot.clone(),
-            source,
+            cause,
         })?,
     )?;
     c.add(Implementation::Reference, reference?)?;

@@ -104,9 +104,9 @@ pub fn measure(cases: &Cases, plan: &Plan, pool: usize) -> Result<RobotScenes, B
     for scene in SceneKernel::ALL {
         let (kernel, settings) = scene.generation(&cases.locked_joint);
         let module =
-            generate(&cases.model, &settings, robot).map_err(|source| BenchError::Codegen {
+            generate(&cases.model, &settings, robot).map_err(|cause| BenchError::Codegen {
                 robot: robot.to_owned(),
-                source,
+                cause,
             })?;
         let count = module
             .kernels

@@ -32,13 +32,15 @@ pub struct CorpusArgs {
 
 /// Compares every robot and writes the report.
 pub fn run(args: &CorpusArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&args.values)?;
-    let values: PinocchioValues = serde_json::from_str(&text).map_err(|e| {
-        CliError::Argument(format!(
-            "{}: not Pinocchio's values: {e}",
-            args.values.display()
-        ))
+    let text = std::fs::read_to_string(&args.values).map_err(|cause| CliError::Read {
+        path: args.values.clone(),
+        cause,
     })?;
+    let values: PinocchioValues =
+        serde_json::from_str(&text).map_err(|cause| CliError::PinocchioValues {
+            path: args.values.clone(),
+            cause,
+        })?;
     let mut reports = Vec::new();
     let mut failures = Vec::new();
     for robot in &values.robots {
@@ -84,16 +86,19 @@ pub fn run(args: &CorpusArgs, out: &mut dyn Write) -> Result<(), CliError> {
     if let Some(path) = &args.out {
         let table = markdown_table(&values, &reports, args.tolerance);
         let document = std::fs::read_to_string(path).unwrap_or_default();
-        std::fs::write(path, replace_table(&document, &table))?;
+        std::fs::write(path, replace_table(&document, &table)).map_err(|cause| {
+            CliError::Write {
+                path: path.clone(),
+                cause,
+            }
+        })?;
     }
     if failures.is_empty() {
         Ok(())
     } else {
-        Err(CliError::Argument(format!(
-            "{} case(s) disagree with Pinocchio above {:e} or are refused: {}",
-            failures.len(),
-            args.tolerance,
-            failures.join(", ")
-        )))
+        Err(CliError::CorpusDisagreement {
+            tolerance: args.tolerance,
+            failures,
+        })
     }
 }

@@ -115,9 +115,9 @@ fn write_files(
     files: &[(String, String)],
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let failed = |path: &Path, source: std::io::Error| CodegenError::Io {
+    let failed = |path: &Path, cause: std::io::Error| CodegenError::Io {
         path: path.to_path_buf(),
-        source,
+        cause,
     };
     std::fs::create_dir_all(dir).map_err(|e| failed(dir, e))?;
     for (file, text) in files {

@@ -101,10 +101,6 @@ pub struct IdentifyArgs {
     pub criterion_states: usize,
 }
 
-fn failed(error: impl std::fmt::Display) -> CliError {
-    CliError::Argument(error.to_string())
-}
-
 /// Identifies, or writes an excitation.
 pub fn run(args: &IdentifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
@@ -122,10 +118,8 @@ pub fn run(args: &IdentifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
             link.armature = Some(0.0);
         }
     }
-    let mut reference = Reference::try_new(&numeric)
-        .map_err(failed)?
-        .with_friction(true);
-    let base = BaseSet::find(&mut reference).map_err(failed)?;
+    let mut reference = Reference::try_new(&numeric)?.with_friction(true);
+    let base = BaseSet::find(&mut reference)?;
     let name = source.display_name();
     match (&args.excite, &args.data) {
         (Some(path), _) => excite(args, &name, &mut reference, &base, path, out),
@@ -176,16 +170,15 @@ fn excite(
             criterion_states: args.criterion_states,
             seed: args.seed,
         },
-    )
-    .map_err(failed)?;
+    )?;
     let simulation = Simulation {
         duration: args.duration.unwrap_or(args.period),
         rate: args.rate,
         noise: args.noise,
         seed: args.seed,
     };
-    let data = simulate(reference, &excitation.trajectory, &simulation).map_err(failed)?;
-    data.write(path).map_err(failed)?;
+    let data = simulate(reference, &excitation.trajectory, &simulation)?;
+    data.write(path)?;
     let f = &excitation.trajectory;
     if args.json {
         let report = json!({
@@ -252,13 +245,12 @@ fn estimate(
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
     let (nq, n) = (reference.nq(), reference.nv());
-    let data = Measurements::read_sized(path, nq, n).map_err(failed)?;
-    let estimate = identify(reference, base, &data, !args.unweighted).map_err(failed)?;
+    let data = Measurements::read_sized(path, nq, n)?;
+    let estimate = identify(reference, base, &data, !args.unweighted)?;
     let validation = match &args.validate {
         Some(fresh) => {
-            let fresh_data = Measurements::read_sized(fresh, nq, n).map_err(failed)?;
-            let predicted =
-                predict(reference, base, &estimate.values, &fresh_data).map_err(failed)?;
+            let fresh_data = Measurements::read_sized(fresh, nq, n)?;
+            let predicted = predict(reference, base, &estimate.values, &fresh_data)?;
             Some((fresh.as_path(), fresh_data, predicted))
         }
         None => None,
@@ -268,7 +260,7 @@ fn estimate(
         let (shown, predicted, label) = match &validation {
             Some((fresh, fresh_data, predicted)) => (fresh_data, predicted, *fresh),
             None => {
-                own = predict(reference, base, &estimate.values, &data).map_err(failed)?;
+                own = predict(reference, base, &estimate.values, &data)?;
                 (&data, &own, path)
             }
         };
@@ -278,7 +270,7 @@ fn estimate(
         );
         let title =
             format!("{name}: measured torques ({file}) and the identified model's prediction");
-        torque_figure(figure, &title, shown, predicted).map_err(failed)?;
+        torque_figure(figure, &title, shown, predicted)?;
     }
     let fit_of = validation
         .as_ref()

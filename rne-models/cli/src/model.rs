@@ -105,15 +105,23 @@ impl ModelOptions {
         source: &RobotSource,
         mut model: RobotModel,
     ) -> Result<RobotModel, CliError> {
-        let in_model =
-            |e: &dyn std::fmt::Display| CliError::Model(format!("{}: {e}", source.display_name()));
         if self.floating_base {
             model.set_base(Base::Floating);
         }
         if self.mimic == MimicOption::Constrained {
-            model.constrain_mimic_joints().map_err(|e| in_model(&e))?;
+            model
+                .constrain_mimic_joints()
+                .map_err(|cause| CliError::Mimic {
+                    model: source.display_name(),
+                    cause,
+                })?;
         }
-        model.check_moves().map_err(|e| in_model(&e))?;
+        model
+            .check_moves()
+            .map_err(|cause| CliError::NothingMoves {
+                model: source.display_name(),
+                cause,
+            })?;
         Ok(model)
     }
 }

@@ -20,13 +20,12 @@ pub enum FigureError {
     #[error("{}: the figure's file name must end in .svg or .png", .0.display())]
     Extension(PathBuf),
     /// A file or directory could not be written.
-    #[error("cannot write {}: {source}", path.display())]
+    #[error("cannot write {}: {cause}", path.display())]
     Io {
         /// The file or directory.
         path: PathBuf,
         /// The system's error.
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
 }
 
@@ -34,6 +33,6 @@ impl FigureError {
     /// The error of writing `path`, for `map_err`.
     pub fn io(path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> FigureError {
         let path = path.into();
-        move |source| FigureError::Io { path, source }
+        move |cause| FigureError::Io { path, cause }
     }
 }

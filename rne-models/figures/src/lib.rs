@@ -21,6 +21,6 @@ pub mod work_precision;
 
 pub use error::FigureError;
 pub use format::{sci, ulps};
-pub use measure::{relative_error, ulp, Deviation, Format};
+pub use measure::{relative_error, relative_error_floor, ulp, Deviation, Format};
 pub use render::{register_font, render, render_file, Draw, Formats, Mark, PALETTE};
 pub use table::Table;

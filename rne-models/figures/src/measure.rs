@@ -76,17 +76,32 @@ fn exponent_of(x: f64) -> i32 {
 /// Normwise relative error ‖a − b‖∞ / ‖b‖∞ of `a` against `b` in `f64` (absolute when b is
 /// zero).
 pub fn relative_error(a: &[f64], b: &[f64]) -> f64 {
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(0.0, f64::max);
+    let (diff, scale) = (max_difference(a, b), max_magnitude(b));
     if scale > 0.0 {
         diff / scale
     } else {
         diff
     }
+}
+
+/// ‖a − b‖∞ / max(‖b‖∞, floor): [`relative_error`], absolute (in units of `floor`) where `b`
+/// is smaller than `floor`: for quantities that can vanish, where the reference holds only
+/// rounding noise.
+pub fn relative_error_floor(a: &[f64], b: &[f64], floor: f64) -> f64 {
+    max_difference(a, b) / max_magnitude(b).max(floor)
+}
+
+/// max |aᵢ − bᵢ|.
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// max |bᵢ|.
+fn max_magnitude(b: &[f64]) -> f64 {
+    b.iter().map(|y| y.abs()).fold(0.0, f64::max)
 }
 
 /// The error of one result against its double-double value.
@@ -189,5 +204,13 @@ mod tests {
     fn relative_error_is_normwise() {
         assert_eq!(relative_error(&[1.0, 2.5], &[1.0, 2.0]), 0.25);
         assert_eq!(relative_error(&[1e-3], &[0.0]), 1e-3);
+    }
+
+    /// Below the floor the error is measured against the floor.
+    #[test]
+    fn the_floor_bounds_the_scale_from_below() {
+        assert_eq!(relative_error_floor(&[1.0, 2.5], &[1.0, 2.0], 1.0), 0.25);
+        assert_eq!(relative_error_floor(&[1.0, 2.5], &[1.0, 2.0], 5.0), 0.1);
+        assert_eq!(relative_error_floor(&[1e-3], &[0.0], 1e-2), 0.1);
     }
 }

@@ -70,9 +70,9 @@ impl Measurements {
         positions: usize,
         joints: usize,
     ) -> Result<Measurements, IdentifyError> {
-        let text = std::fs::read_to_string(path).map_err(|source| IdentifyError::Io {
+        let text = std::fs::read_to_string(path).map_err(|cause| IdentifyError::Io {
             file: path.to_path_buf(),
-            source,
+            cause,
         })?;
         Measurements::parse_sized(&text, path, positions, joints)
     }
@@ -220,9 +220,9 @@ impl Measurements {
 
     /// Writes [`Measurements::to_csv`] to `path`, creating its directory.
     pub fn write(&self, path: &Path) -> Result<(), IdentifyError> {
-        let io = |source| IdentifyError::Io {
+        let io = |cause| IdentifyError::Io {
             file: path.to_path_buf(),
-            source,
+            cause,
         };
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(io)?;

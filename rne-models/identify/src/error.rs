@@ -19,12 +19,12 @@ pub enum IdentifyError {
         message: String,
     },
     /// Reading or writing a file failed.
-    #[error("{}: {source}", file.display())]
+    #[error("{}: {cause}", file.display())]
     Io {
         /// The file.
         file: PathBuf,
         /// The cause.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The model cannot be identified the way asked.
     #[error("{0}")]

@@ -53,5 +53,13 @@ pub enum Error {
     Jit(#[from] rne_jit::JitError),
     /// The numeric reference cannot evaluate the model.
     #[error("numeric reference: {0}")]
-    Reference(#[from] ReferenceError),
+    Reference(ReferenceError),
+}
+
+// By hand rather than `#[from]`, which would also return the cause from `source()`, so that a
+// printed chain would show it twice (docs/design.md §2.3).
+impl From<ReferenceError> for Error {
+    fn from(error: ReferenceError) -> Error {
+        Error::Reference(error)
+    }
 }

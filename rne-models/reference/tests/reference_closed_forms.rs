@@ -41,12 +41,7 @@ fn diagonal(x: f64, y: f64, z: f64) -> [[f64; 3]; 3] {
 /// `max |a − b| / max |b|`: the error relative to the size of the expected quantity.
 fn relative_error(actual: &[f64], expected: &[f64]) -> f64 {
     assert_eq!(actual.len(), expected.len());
-    let scale = expected.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let error = actual
-        .iter()
-        .zip(expected)
-        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-    error / scale
+    rne_figures::relative_error(actual, expected)
 }
 
 fn scientific(values: &[f64]) -> String {

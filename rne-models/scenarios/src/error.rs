@@ -23,13 +23,12 @@ pub enum ScenarioError {
         message: String,
     },
     /// The robot of a scenario file could not be read.
-    #[error("{}: model: {source}", path.display())]
+    #[error("{}: model: {cause}", path.display())]
     Model {
         /// The scenario file.
         path: PathBuf,
         /// The spec reader's error.
-        #[source]
-        source: rne_symbolic::spec::SpecError,
+        cause: rne_symbolic::spec::SpecError,
     },
     /// A simulation stopped early.
     #[error(transparent)]
@@ -38,12 +37,11 @@ pub enum ScenarioError {
     #[error(transparent)]
     Output(#[from] FigureError),
     /// A scenario file's robot could not be evaluated at run time.
-    #[error("{}: model: {source}", path.display())]
+    #[error("{}: model: {cause}", path.display())]
     Evaluation {
         /// The scenario file.
         path: PathBuf,
         /// Why.
-        #[source]
-        source: rne_interpreted::Error,
+        cause: rne_interpreted::Error,
     },
 }

@@ -173,13 +173,12 @@ impl UserScenario {
             }
             source => source,
         };
-        let model =
-            source
-                .load(&LoadOptions::default())
-                .map_err(|source| ScenarioError::Model {
-                    path: self.path.clone(),
-                    source,
-                })?;
+        let model = source
+            .load(&LoadOptions::default())
+            .map_err(|cause| ScenarioError::Model {
+                path: self.path.clone(),
+                cause,
+            })?;
         let run = Run {
             scenario: self,
             options,
@@ -197,9 +196,9 @@ impl UserScenario {
                             "model `{}` has {dof} joints; scenario files support 1 to {max}",
                             self.file.model
                         )),
-                        source => ScenarioError::Evaluation {
+                        cause => ScenarioError::Evaluation {
                             path: self.path.clone(),
-                            source,
+                            cause,
                         },
                     })?
             }

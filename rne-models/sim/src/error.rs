@@ -66,19 +66,18 @@ pub enum SimError {
 
 /// A named run that stopped early: the name says which simulation of a report failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{run}: {source}")]
+#[error("{run}: {cause}")]
 pub struct RunError {
     /// The run.
     pub run: String,
     /// Why it stopped.
-    #[source]
-    pub source: SimError,
+    pub cause: SimError,
 }
 
 impl SimError {
     /// The error of the run `run`, for `map_err`.
     pub fn in_run(run: impl Into<String>) -> impl FnOnce(SimError) -> RunError {
         let run = run.into();
-        move |source| RunError { run, source }
+        move |cause| RunError { run, cause }
     }
 }

@@ -9,25 +9,23 @@ use rne_sim::RunError;
 #[derive(Debug, thiserror::Error)]
 pub enum StressError {
     /// A stress robot's spec was rejected by the reader (a bug in the case's robot).
-    #[error("stress robot {robot}: {source}")]
+    #[error("stress robot {robot}: {cause}")]
     Robot {
         /// The robot.
         robot: String,
         /// The reader's error.
-        #[source]
-        source: SpecError,
+        cause: SpecError,
     },
     /// A built-in robot the case uses is missing.
     #[error("no built-in robot `{0}`")]
     MissingRobot(String),
     /// A robot's compiled kernels could not be evaluated at a state.
-    #[error("{robot}: {source}")]
+    #[error("{robot}: {cause}")]
     Evaluation {
         /// The robot.
         robot: String,
         /// Why.
-        #[source]
-        source: rne_interpreted::Error,
+        cause: rne_interpreted::Error,
     },
     /// A simulation stopped early.
     #[error(transparent)]

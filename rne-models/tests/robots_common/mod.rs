@@ -56,13 +56,7 @@ pub fn state(rng: &mut ChaCha8Rng, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 /// Normwise relative error ‖a − b‖∞ / max(‖b‖∞, floor).
 pub fn rel_err(a: &[f64], b: &[f64], floor: f64) -> f64 {
     assert_eq!(a.len(), b.len());
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(floor, f64::max);
-    diff / scale
+    rne_figures::relative_error_floor(a, b, floor)
 }
 
 /// One evaluation of everything the kernels compute, at one state.

@@ -37,13 +37,7 @@ pub fn rel_err(a: &[f64], b: &[f64]) -> f64 {
 /// ‖a − b‖∞ / max(‖b‖∞, floor): relative error, absolute below `floor` (for quantities that
 /// can vanish, where the reference holds only rounding noise).
 pub fn rel_err_floor(a: &[f64], b: &[f64], floor: f64) -> f64 {
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    let scale = b.iter().map(|y| y.abs()).fold(floor, f64::max);
-    diff / scale
+    rne_figures::relative_error_floor(a, b, floor)
 }
 
 /// Flattens a row-major matrix.

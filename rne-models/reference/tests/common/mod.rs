@@ -77,12 +77,7 @@ pub fn state(rng: &mut ChaCha8Rng, model: &NumericModel) -> (Vec<f64>, Vec<f64>,
 /// ‖a − b‖∞ / max(‖b‖∞, floor).
 pub fn rel_err(a: &[f64], b: &[f64], floor: f64) -> f64 {
     assert_eq!(a.len(), b.len());
-    let diff = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
-    diff / b.iter().map(|y| y.abs()).fold(floor, f64::max)
+    rne_figures::relative_error_floor(a, b, floor)
 }
 
 pub fn matrix_rel_err(a: &DMatrix<f64>, b: &DMatrix<f64>, floor: f64) -> f64 {

@@ -94,10 +94,10 @@ impl Visitor for Bitwise<'_> {
                 tau: uniform(&mut rng, N, taub),
             };
             for kernel in Kernel::DYNAMICS {
-                let compiled = evaluate(&model, kernel, state.as_ref()).map_err(|source| {
+                let compiled = evaluate(&model, kernel, state.as_ref()).map_err(|cause| {
                     StressError::Evaluation {
                         robot: self.robot.to_owned(),
-                        source,
+                        cause,
                     }
                 })?;
                 let program = self

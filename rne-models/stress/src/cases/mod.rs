@@ -30,17 +30,17 @@ pub fn builtin_model(name: &str) -> Result<RobotModel, StressError> {
     let robot = builtin(name).ok_or_else(|| StressError::MissingRobot(name.to_owned()))?;
     RobotSource::Builtin(robot)
         .load(&LoadOptions::default())
-        .map_err(|source| StressError::Robot {
+        .map_err(|cause| StressError::Robot {
             robot: name.to_owned(),
-            source,
+            cause,
         })
 }
 
 /// The model of a stress robot.
 pub fn chain_model(chain: &Chain) -> Result<RobotModel, StressError> {
-    chain.model().map_err(|source| StressError::Robot {
+    chain.model().map_err(|cause| StressError::Robot {
         robot: chain.name.clone(),
-        source,
+        cause,
     })
 }
 

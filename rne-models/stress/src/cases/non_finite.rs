@@ -102,9 +102,9 @@ pub fn check<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
         robot: name.to_owned(),
         ..NonFiniteCheck::default()
     };
-    let dimension = |source| StressError::Evaluation {
+    let dimension = |cause| StressError::Evaluation {
         robot: name.to_owned(),
-        source,
+        cause,
     };
     for _ in 0..states {
         let finite = [0; 4].map(|_| uniform(&mut rng, n, 2.0));
