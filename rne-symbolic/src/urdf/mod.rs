@@ -101,7 +101,7 @@ pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<Robo
 
 fn read(robot: &UrdfRobot, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let tree = tree::build(robot)?;
-    let input = assemble::input(robot, &tree, origin)?;
+    let input = assemble::input(robot, &tree, origin, options.exact_right_angles)?;
     let options = LoadOptions {
         symbolic_parameters: false,
         ..*options
