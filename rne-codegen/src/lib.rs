@@ -87,7 +87,7 @@ pub use rne_runtime::convert;
 pub use rne_codegen_core::{
     build_kernel, build_kernel_with, generate, generate_from_path, kernel_program, Builder,
     BuiltKernel, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule,
-    KernelReport, KernelSetup, MimicMode, ParameterMode, Program, ScalarType, Scene,
+    Instr, KernelReport, KernelSetup, MimicMode, Operand, ParameterMode, Program, ScalarType, Scene,
     KEEP_GENERATED_ENV,
 };
 

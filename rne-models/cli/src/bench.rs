@@ -51,6 +51,7 @@ pub struct BenchArgs {
 
 /// Runs the benchmarks, writes the report and prints it.
 pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    super::long_run::prepare_out(&args.out)?;
     let effort = if args.quick {
         Effort::Quick
     } else {

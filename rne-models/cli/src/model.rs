@@ -98,6 +98,11 @@ impl ModelOptions {
         source: &RobotSource,
         symbolic_parameters: bool,
     ) -> Result<RobotModel, CliError> {
+        if let RobotSource::File(path) = source {
+            if let Some(message) = rne_models::suggest::not_found(&path.to_string_lossy()) {
+                return Err(CliError::Argument(message));
+            }
+        }
         let model = source.load(&self.load_options(symbolic_parameters))?;
         for warning in &model.warnings {
             eprintln!("warning: {warning}");
