@@ -87,8 +87,8 @@ pub use rne_runtime::convert;
 pub use rne_codegen_core::{
     build_kernel, build_kernel_with, generate, generate_from_path, kernel_program, Builder,
     BuiltKernel, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule,
-    Instr, KernelReport, KernelSetup, MimicMode, Operand, ParameterMode, Program, ScalarType, Scene,
-    KEEP_GENERATED_ENV,
+    Instr, KernelReport, KernelSetup, MimicMode, Operand, ParameterMode, Program, ScalarType,
+    Scene, KEEP_GENERATED_ENV,
 };
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not

@@ -70,10 +70,17 @@ mod tests {
     #[test]
     fn the_message_names_the_model_rne_models_and_the_suggestion() {
         let e = not_found("pandaa").unwrap();
-        for part in ["'pandaa' is not a built-in robot", "rne models", "did you mean panda"] {
+        for part in [
+            "'pandaa' is not a built-in robot",
+            "rne models",
+            "did you mean panda",
+        ] {
             assert!(e.contains(part), "{part}: {e}");
         }
-        assert!(not_found("Cargo.toml").is_none(), "an existing file is read, not refused");
+        assert!(
+            not_found("Cargo.toml").is_none(),
+            "an existing file is read, not refused"
+        );
     }
 
     #[test]

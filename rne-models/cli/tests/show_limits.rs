@@ -44,7 +44,10 @@ fn literal_angles_keep_the_round_off_of_cos_half_pi_in_the_kernels() {
             .unwrap()
     };
     let (exact, literal) = (stats(&[]), stats(&["--literal-angles"]));
-    assert!(exact < literal, "exact right angles {exact}, literal {literal}");
+    assert!(
+        exact < literal,
+        "exact right angles {exact}, literal {literal}"
+    );
 }
 
 #[test]
@@ -53,7 +56,11 @@ fn a_limit_prints_the_entries_that_fit_and_lists_the_rest_by_size() {
     let note = out
         .find("entries printed")
         .unwrap_or_else(|| panic!("no note of what was left out:\n{out}"));
-    assert!(out[..note].len() <= 20_000 + 200, "{} bytes before the note", note);
+    assert!(
+        out[..note].len() <= 20_000 + 200,
+        "{} bytes before the note",
+        note
+    );
     assert!(out.contains("--entry \"M["), "{out}");
     assert!(out.contains("--compact"), "{out}");
 }
@@ -65,16 +72,33 @@ fn one_entry_is_printed_alone_and_a_missing_one_is_named() {
     assert_eq!(entries.len(), 1, "{out}");
     assert!(entries[0].starts_with("M[2,3] = "), "{out}");
     let missing = rne(&["show", "ur5", "--what", "M", "--entry", "M[9,9]"]).unwrap_err();
-    assert!(missing.contains("M[9,9]") && missing.contains("M[1,1]"), "{missing}");
+    assert!(
+        missing.contains("M[9,9]") && missing.contains("M[1,1]"),
+        "{missing}"
+    );
 }
 
 #[test]
 fn the_compact_program_computes_each_entry_once_from_named_quantities() {
     let out = rne(&["show", "planar-elbow", "--what", "M", "--compact"]).unwrap();
-    for name in ["s2 = ", "c2 = cos(q2)", "M[1,1] = ", "M[1,2] = ", "M[2,2] = "] {
+    for name in [
+        "s2 = ",
+        "c2 = cos(q2)",
+        "M[1,1] = ",
+        "M[1,2] = ",
+        "M[2,2] = ",
+    ] {
         assert!(out.contains(name), "{name} missing:\n{out}");
     }
-    let latex = rne(&["show", "planar-elbow", "--what", "M", "--compact", "--format", "latex"]);
+    let latex = rne(&[
+        "show",
+        "planar-elbow",
+        "--what",
+        "M",
+        "--compact",
+        "--format",
+        "latex",
+    ]);
     assert!(latex.unwrap().contains("c_{2} &= \\cos(q_{2}) \\\\"));
 }
 

@@ -16,9 +16,9 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
 use super::elements::{Dynamics, Inertial, JointType, UrdfJoint, UrdfLink, UrdfMimic, UrdfRobot};
+use super::MJCF_UNSUPPORTED;
 use crate::input::validate::finite;
 use crate::spec::{SpecError, SpecErrorKind};
-use super::MJCF_UNSUPPORTED;
 
 /// The deepest element nesting read. URDF elements nest five deep at most (`robot`, `link`,
 /// `visual`, `geometry`, `mesh`); the limit keeps absurd files from costing memory.

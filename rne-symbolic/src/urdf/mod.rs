@@ -79,7 +79,8 @@ use crate::input::{self, LoadOptions};
 
 /// What reading a MuJoCo model (MJCF: a `.xml` file, root element `<mujoco>`) says: rne reads
 /// URDF and its own TOML specs only.
-pub const MJCF_UNSUPPORTED: &str = "MJCF (a MuJoCo <mujoco> model) is not supported yet: rne reads \
+pub const MJCF_UNSUPPORTED: &str =
+    "MJCF (a MuJoCo <mujoco> model) is not supported yet: rne reads \
      URDF (.urdf) and its TOML robot specs (.toml); a URDF of the robot (most MuJoCo Menagerie \
      robots have one upstream) can be read instead";
 use crate::spec::{SpecError, SpecWarning};

@@ -37,7 +37,9 @@ pub fn print(
     let keys: Vec<_> = sections.iter().flat_map(|s| s.entries.iter()).collect();
     let roots: Vec<_> = keys.iter().map(|(_, id)| *id).collect();
     let program = Program::lower(graph, &roots);
-    let names = Names::new(&program, graph.symbols(), latex, |k| label(&keys[k].0, latex));
+    let names = Names::new(&program, graph.symbols(), latex, |k| {
+        label(&keys[k].0, latex)
+    });
     let comment = if latex { "%" } else { "#" };
     writeln!(
         out,
@@ -120,7 +122,11 @@ impl<'a> Names<'a> {
 
     /// Every line: one per instruction, then the entries no instruction is named after.
     fn lines(&self, program: &Program) -> Vec<String> {
-        let (equals, end) = if self.latex { (" &= ", " \\\\") } else { (" = ", "") };
+        let (equals, end) = if self.latex {
+            (" &= ", " \\\\")
+        } else {
+            (" = ", "")
+        };
         let mut lines: Vec<String> = program
             .instrs
             .iter()
@@ -130,7 +136,11 @@ impl<'a> Names<'a> {
         for (k, o) in program.outputs.iter().enumerate() {
             let named = matches!(o, Operand::Temp(t) if self.named_output[*t as usize] == Some(k));
             if !named {
-                lines.push(format!("{}{equals}{}{end}\n", self.outputs[k], self.operand(*o)));
+                lines.push(format!(
+                    "{}{equals}{}{end}\n",
+                    self.outputs[k],
+                    self.operand(*o)
+                ));
             }
         }
         lines
@@ -179,7 +189,11 @@ impl<'a> Names<'a> {
             Symbol::Force(j) => ("tau", "\\tau", j),
             Symbol::Parameter(_) | Symbol::Lane(_) => return self.symbols.name(symbol),
         };
-        subscript(if self.latex { tex } else { text }, &(j + 1).to_string(), self.latex)
+        subscript(
+            if self.latex { tex } else { text },
+            &(j + 1).to_string(),
+            self.latex,
+        )
     }
 }
 

@@ -13,9 +13,16 @@ use super::sections::label;
 use crate::progress::Progress;
 use crate::CliError;
 
-/// The fewest bytes a printed term takes (` + x`), which turns a size limit into a term
-/// budget that never refuses an entry that would fit.
-const MIN_TERM_BYTES: usize = 4;
+/// The bytes a printed term of a robot's equations takes, which turns a size limit into a term
+/// budget: a sign, a coefficient of six significant digits and a product of factors
+/// (` - 0.00134386 c23 s4 Dq1 Dq2`, about 24 bytes with single-digit joint labels; a robot's
+/// joint names make terms far longer, the Panda's about 400 bytes). An entry of more terms
+/// than the budget is not expanded further, so a robot whose equations run to megabytes costs
+/// seconds; an entry of short terms refused at the limit is printed by raising it.
+const MIN_TERM_BYTES: usize = 24;
+
+/// Bytes left below which the remaining sections are not expanded at all.
+const MIN_LINE_BYTES: usize = 64;
 
 /// An entry left out, and why.
 #[derive(Clone, Debug)]
@@ -35,8 +42,6 @@ pub struct Printed {
     pub entries: usize,
     /// Entries left out.
     pub omitted: Vec<Omitted>,
-    /// The term budget each entry had.
-    pub max_terms: usize,
 }
 
 /// How the entries are printed.
@@ -49,7 +54,9 @@ pub struct Style<'a> {
     pub max_size: usize,
 }
 
-/// Expands and prints `sections` within `style.max_size` bytes (the header excluded).
+/// Expands and prints `sections` within `style.max_size` bytes (the header excluded), one
+/// section at a time, each under the budget the bytes left allow; once the limit is reached,
+/// the remaining sections are not expanded at all.
 pub fn print(
     graph: &ExprGraph,
     sections: &[Section],
@@ -57,13 +64,43 @@ pub fn print(
     what: &str,
     out: &mut dyn Write,
 ) -> Result<Printed, CliError> {
-    let roots: Vec<_> = sections
-        .iter()
-        .flat_map(|s| s.entries.iter().map(|(_, id)| *id))
-        .collect();
-    let max_terms = style.max_size / MIN_TERM_BYTES + 1;
+    let mut printed = Printed::default();
+    for section in sections {
+        let left = style.max_size.saturating_sub(printed.bytes);
+        if left < MIN_LINE_BYTES {
+            let rest = section.entries.iter().map(|(key, _)| Omitted {
+                key: key.clone(),
+                bytes: None,
+            });
+            printed.omitted.extend(rest);
+            continue;
+        }
+        print_section(
+            graph,
+            section,
+            style,
+            left / MIN_TERM_BYTES + 1,
+            what,
+            out,
+            &mut printed,
+        )?;
+    }
+    Ok(printed)
+}
+
+/// Expands one section's entries under `max_terms` and prints those that fit.
+fn print_section(
+    graph: &ExprGraph,
+    section: &Section,
+    style: &Style<'_>,
+    max_terms: usize,
+    what: &str,
+    out: &mut dyn Write,
+    printed: &mut Printed,
+) -> Result<(), CliError> {
+    let roots: Vec<_> = section.entries.iter().map(|(_, id)| *id).collect();
     let forms = {
-        let _progress = Progress::start(&format!("expanding {what} ({} entries)", roots.len()));
+        let _progress = Progress::start(&format!("expanding {what}: {}", section.title));
         Polynomial::from_exprs_within(graph, &roots, max_terms).map_err(|e| {
             CliError::Argument(format!("cannot expand the dynamics for printing: {e}"))
         })?
@@ -72,44 +109,37 @@ pub fn print(
         true => ("%", " &= ", " \\\\"),
         false => ("#", " = ", ""),
     };
-    let mut printed = Printed {
-        max_terms,
-        ..Printed::default()
-    };
-    let mut forms = forms.into_iter();
-    for section in sections {
-        let mut title = Some(format!("\n{comment} {}\n", section.title));
-        for (key, _) in &section.entries {
-            let Some(form) = forms.next().flatten() else {
-                printed.omitted.push(Omitted {
-                    key: key.clone(),
-                    bytes: None,
-                });
-                continue;
-            };
-            let line = format!(
-                "{}{equals}{}{end}\n",
-                label(key, style.latex),
-                style.printer.print(&form)
-            );
-            let title_bytes = title.as_ref().map_or(0, String::len);
-            if printed.bytes + title_bytes + line.len() > style.max_size {
-                printed.omitted.push(Omitted {
-                    key: key.clone(),
-                    bytes: Some(line.len()),
-                });
-                continue;
-            }
-            if let Some(t) = title.take() {
-                out.write_all(t.as_bytes())?;
-                printed.bytes += t.len();
-            }
-            out.write_all(line.as_bytes())?;
-            printed.bytes += line.len();
-            printed.entries += 1;
+    let mut title = Some(format!("\n{comment} {}\n", section.title));
+    for ((key, _), form) in section.entries.iter().zip(forms) {
+        let Some(form) = form else {
+            printed.omitted.push(Omitted {
+                key: key.clone(),
+                bytes: None,
+            });
+            continue;
+        };
+        let line = format!(
+            "{}{equals}{}{end}\n",
+            label(key, style.latex),
+            style.printer.print(&form)
+        );
+        let title_bytes = title.as_ref().map_or(0, String::len);
+        if printed.bytes + title_bytes + line.len() > style.max_size {
+            printed.omitted.push(Omitted {
+                key: key.clone(),
+                bytes: Some(line.len()),
+            });
+            continue;
         }
+        if let Some(t) = title.take() {
+            out.write_all(t.as_bytes())?;
+            printed.bytes += t.len();
+        }
+        out.write_all(line.as_bytes())?;
+        printed.bytes += line.len();
+        printed.entries += 1;
     }
-    Ok(printed)
+    Ok(())
 }
 
 /// `12.3 KB`, `4.5 MB`, `812 bytes`.

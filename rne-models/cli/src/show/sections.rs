@@ -8,7 +8,8 @@ use super::Part;
 
 /// The sections `what` asks for, in print order.
 pub fn build(dynamics: &mut SymbolicDynamics, what: Part) -> Vec<Section> {
-    let want = |p: Part| what == p || (what == Part::All && !matches!(p, Part::Reactions | Part::Dtau));
+    let want =
+        |p: Part| what == p || (what == Part::All && !matches!(p, Part::Reactions | Part::Dtau));
     let n = dynamics.layout().nv();
     let mut sections = Vec::new();
     if want(Part::Tau) {
@@ -25,7 +26,10 @@ pub fn build(dynamics: &mut SymbolicDynamics, what: Part) -> Vec<Section> {
             .flat_map(|i| (i..n).map(move |j| (i, j)))
             .map(|(i, j)| (EntryKey::new("M", &[i + 1, j + 1]), m[i][j]))
             .collect();
-        sections.push(section("mass matrix M(q), symmetric: upper triangle", entries));
+        sections.push(section(
+            "mass matrix M(q), symmetric: upper triangle",
+            entries,
+        ));
     }
     if want(Part::C) {
         let c = dynamics.coriolis_matrix();
@@ -87,7 +91,12 @@ fn matrix(title: &str, name: &str, m: &[Vec<Id>]) -> Section {
 
 fn reactions(dynamics: &mut SymbolicDynamics) -> Section {
     let reactions = dynamics.joint_reactions();
-    let links: Vec<String> = dynamics.model.links.iter().map(|l| l.name.clone()).collect();
+    let links: Vec<String> = dynamics
+        .model
+        .links
+        .iter()
+        .map(|l| l.name.clone())
+        .collect();
     let mut entries = Vec::new();
     for (link, r) in links.iter().zip(&reactions) {
         for (axis, (f, t)) in ["x", "y", "z"].iter().zip(r.force.iter().zip(&r.torque)) {

@@ -14,7 +14,9 @@ pub fn parse(text: &str) -> Result<usize, String> {
         .parse::<usize>()
         .ok()
         .and_then(|n| n.checked_mul(scale))
-        .ok_or_else(|| format!("'{text}' is not a size: expected bytes, or a number with K, M or G"))
+        .ok_or_else(|| {
+            format!("'{text}' is not a size: expected bytes, or a number with K, M or G")
+        })
 }
 
 #[cfg(test)]

@@ -36,11 +36,7 @@ pub fn expanded(
     for o in omitted.iter().take(LISTED) {
         let size = match o.bytes {
             Some(bytes) => human_size(bytes),
-            None => format!(
-                "over {} terms (more than {} expanded)",
-                printed.max_terms - 1,
-                human_size(args.max_size)
-            ),
+            None => "not expanded: past the limit (or its expansion alone passes it)".to_owned(),
         };
         writeln!(out, "{comment}   {:<14} {size}", o.key.text())?;
     }
