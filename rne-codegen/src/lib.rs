@@ -88,8 +88,8 @@ pub use rne_codegen_core::{
     build_kernel, build_kernel_with, c_identifier, emit_c, generate, generate_c,
     generate_from_path, generate_programs, kernel_program, Builder, BuiltKernel, CModule,
     CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule, GeneratedPrograms,
-    KernelProgram, KernelReport, KernelSetup, MimicMode, ParameterMode, Program, ScalarType, Scene,
-    KEEP_GENERATED_ENV,
+    Instr, KernelProgram, KernelReport, KernelSetup, MimicMode, Operand, ParameterMode, Program,
+    ScalarType, Scene, KEEP_GENERATED_ENV,
 };
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not

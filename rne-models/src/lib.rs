@@ -11,6 +11,7 @@
 pub mod builtin;
 pub mod generated;
 mod robot_file;
+pub mod suggest;
 mod visit;
 
 pub use builtin::{builtin, BuiltinRobot, RobotSource, BUILTIN_ROBOTS};

@@ -12,6 +12,7 @@ const STRICT: LoadOptions = LoadOptions {
     symbolic_parameters: false,
     strict: true,
     free_mimic: false,
+    exact_right_angles: true,
 };
 
 /// Two revolute links; `{upper}` and `{fore}` are the `<inertia>` attributes of each.

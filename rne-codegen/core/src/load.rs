@@ -19,6 +19,7 @@ pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel
         symbolic_parameters: scene.parameters == ParameterMode::Runtime,
         strict: scene.strict,
         free_mimic: scene.mimic == MimicMode::Free,
+        ..LoadOptions::default()
     };
     let format = RobotFormat::from_path(Path::new(origin))?;
     let bytes = std::fs::read(path).map_err(|cause| CodegenError::Read {

@@ -85,6 +85,7 @@ pub fn run(args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     if let Some(model) = &args.model {
         return super::bench_robot::run(model, args, out);
     }
+    super::long_run::prepare_out(&args.out)?;
     let effort = if args.quick {
         Effort::Quick
     } else {

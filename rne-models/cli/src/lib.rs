@@ -17,6 +17,7 @@ mod list;
 mod long_run;
 mod model;
 mod options;
+mod progress;
 mod show;
 mod simulate;
 mod stats;

@@ -5,6 +5,23 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::CliError;
+
+/// Creates `dir` (`--out`) and checks that a file can be written in it, before any work: a
+/// run of minutes must not end in "cannot write".
+pub(crate) fn prepare_out(dir: &Path) -> Result<(), CliError> {
+    let refuse = |e: std::io::Error| {
+        CliError::Argument(format!(
+            "--out {}: cannot write there ({e}); give a directory that can be created and written",
+            dir.display()
+        ))
+    };
+    std::fs::create_dir_all(dir).map_err(refuse)?;
+    let probe = dir.join(".rne-write-check");
+    std::fs::write(&probe, b"").map_err(refuse)?;
+    std::fs::remove_file(&probe).map_err(refuse)
+}
+
 /// A run that reports its steps as it goes and its files at the end.
 pub(crate) struct LongRun {
     start: Instant,

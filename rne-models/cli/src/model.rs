@@ -37,6 +37,12 @@ pub struct ModelOptions {
     /// own (`free`).
     #[arg(long, value_enum, default_value_t = MimicOption::Constrained)]
     pub mimic: MimicOption,
+    /// Take every constant angle as written: `cos(1.5707963267948966)` is 6.1e-17 instead of
+    /// 0. By default, rotations by an angle within 4 ulps of a multiple of π/2 (URDF
+    /// `rpy="0 1.5707963267948966 0"`) have exact 0 and ±1 entries, so no round-off term
+    /// reaches the equations or the kernels (docs/cli.md).
+    #[arg(long)]
+    pub literal_angles: bool,
 }
 
 impl ModelOptions {
@@ -47,13 +53,14 @@ impl ModelOptions {
             symbolic_parameters,
             strict: self.strict,
             free_mimic: self.mimic == MimicOption::Free,
+            exact_right_angles: !self.literal_angles,
         }
     }
 
     /// Whether the model is the one the robot file describes, as the built-in robots' kernels
     /// were generated (no base override, mimic joints constrained).
     pub fn keeps_the_file_model(&self) -> bool {
-        !self.floating_base && self.mimic == MimicOption::Constrained
+        !self.floating_base && self.mimic == MimicOption::Constrained && !self.literal_angles
     }
 
     /// The codegen scene's mimic mode for these options.
@@ -91,6 +98,11 @@ impl ModelOptions {
         source: &RobotSource,
         symbolic_parameters: bool,
     ) -> Result<RobotModel, CliError> {
+        if let RobotSource::File(path) = source {
+            if let Some(message) = rne_models::suggest::not_found(&path.to_string_lossy()) {
+                return Err(CliError::Argument(message));
+            }
+        }
         let model = source.load(&self.load_options(symbolic_parameters))?;
         for warning in &model.warnings {
             eprintln!("warning: {warning}");

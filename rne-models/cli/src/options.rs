@@ -150,6 +150,25 @@ impl From<std::io::Error> for CliError {
     }
 }
 
+impl CliError {
+    /// Whether the output was a pipe its reader closed (`rne show panda | head`): an
+    /// [`std::io::ErrorKind::BrokenPipe`] here or among the error's causes. The command then
+    /// ends quietly with status 0, as `cat` or `grep` would (Rust ignores SIGPIPE, so the
+    /// write returns the error instead of ending the process).
+    pub fn is_broken_pipe(&self) -> bool {
+        let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(self);
+        while let Some(error) = cause {
+            if let Some(io) = error.downcast_ref::<std::io::Error>() {
+                if io.kind() == std::io::ErrorKind::BrokenPipe {
+                    return true;
+                }
+            }
+            cause = error.source();
+        }
+        false
+    }
+}
+
 /// Parses `1.5,-2,0` into numbers.
 pub fn parse_list(name: &str, text: &str) -> Result<Vec<f64>, CliError> {
     text.split(',')

@@ -26,6 +26,7 @@ pub struct StressArgs {
 
 /// Runs every stress case, writes the report and prints it.
 pub fn run(args: &StressArgs, out: &mut dyn Write) -> Result<(), CliError> {
+    super::long_run::prepare_out(&args.out)?;
     let effort = if args.quick {
         Effort::Quick
     } else {

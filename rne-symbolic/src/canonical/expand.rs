@@ -34,9 +34,28 @@ impl Polynomial {
     /// The canonical forms of several expressions, sharing the work on common
     /// subexpressions (e.g. all torques of a robot at once).
     pub fn from_exprs(graph: &ExprGraph, exprs: &[Id]) -> Result<Vec<Polynomial>, CanonicalError> {
-        Expansion::new(graph, exprs).run(exprs)
+        let forms = Expansion::new(graph, exprs, usize::MAX).run(exprs)?;
+        Ok(forms.into_iter().map(Option::unwrap_or_default).collect())
+    }
+
+    /// The canonical forms of several expressions, as [`Polynomial::from_exprs`], each `None`
+    /// where it would have more than `max_terms` terms: the expansion of a node stops as soon
+    /// as its form, or a product's pairs of terms ([`WORK_PER_TERM`] per allowed term), would
+    /// pass the bound, and every node using it is `None` too. The time and memory taken are
+    /// then bounded whatever the expressions: what `rne show` prints of a robot whose
+    /// equations run to megabytes.
+    pub fn from_exprs_within(
+        graph: &ExprGraph,
+        exprs: &[Id],
+        max_terms: usize,
+    ) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
+        Expansion::new(graph, exprs, max_terms).run(exprs)
     }
 }
+
+/// How many pairs of terms a product may multiply per term [`Polynomial::from_exprs_within`]
+/// allows: the work of a product whose result could still fit after its terms merge.
+pub const WORK_PER_TERM: usize = 64;
 
 /// `cos θ + i sin θ` as a pair of polynomials: products of phasors add angles.
 #[derive(Clone)]
@@ -146,10 +165,15 @@ struct Expansion<'g> {
     uses: Vec<u32>,
     /// Phasors of trigonometric arguments, shared by `sin a` and `cos a`.
     phasors: HashMap<Id, Phasor>,
+    /// The most terms a form may have ([`Polynomial::from_exprs_within`]).
+    max_terms: usize,
+    /// Whether each needed node's form passed `max_terms` (its value is then the zero
+    /// placeholder).
+    over: Vec<bool>,
 }
 
 impl<'g> Expansion<'g> {
-    fn new(graph: &'g ExprGraph, outputs: &[Id]) -> Expansion<'g> {
+    fn new(graph: &'g ExprGraph, outputs: &[Id], max_terms: usize) -> Expansion<'g> {
         let order = graph.reachable(outputs);
         let mut slot = vec![u32::MAX; order.last().map_or(0, |id| id.index() + 1)];
         for (k, id) in order.iter().enumerate() {
@@ -171,13 +195,24 @@ impl<'g> Expansion<'g> {
             values,
             uses,
             phasors: HashMap::new(),
+            max_terms,
+            over: vec![false; order.len()],
         }
     }
 
-    fn run(mut self, outputs: &[Id]) -> Result<Vec<Polynomial>, CanonicalError> {
+    fn run(mut self, outputs: &[Id]) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
         let order = self.graph.reachable(outputs);
         for id in order {
-            let value = self.expand(id)?;
+            let value = match self.within_budget(id) {
+                true => Some(self.expand(id)?),
+                false => None,
+            };
+            let over = value.as_ref().map_or(true, |v| v.len() > self.max_terms);
+            let value = if over {
+                Polynomial::zero()
+            } else {
+                value.unwrap_or_default()
+            };
             for c in self.graph.node(id).children() {
                 let k = self.slot[c.index()] as usize;
                 self.uses[k] -= 1;
@@ -187,8 +222,31 @@ impl<'g> Expansion<'g> {
             }
             let k = self.slot[id.index()] as usize;
             self.values[k] = Some(value);
+            self.over[k] = over;
         }
-        Ok(outputs.iter().map(|o| self.get(*o).clone()).collect())
+        Ok(outputs
+            .iter()
+            .map(|o| (!self.over[self.slot[o.index()] as usize]).then(|| self.get(*o).clone()))
+            .collect())
+    }
+
+    /// Whether `id` may be expanded: none of its children passed the bound, and a product
+    /// multiplies at most [`WORK_PER_TERM`] pairs of terms per allowed term.
+    fn within_budget(&self, id: Id) -> bool {
+        let node = self.graph.node(id);
+        if node
+            .children()
+            .any(|c| self.over[self.slot[c.index()] as usize])
+        {
+            return false;
+        }
+        match node {
+            Node::Mul(a, b) => {
+                let pairs = self.get(a).len().saturating_mul(self.get(b).len());
+                pairs <= self.max_terms.saturating_mul(WORK_PER_TERM)
+            }
+            _ => true,
+        }
     }
 
     fn get(&self, id: Id) -> &Polynomial {

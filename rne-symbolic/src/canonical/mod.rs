@@ -23,7 +23,9 @@
 //! non-symbol x, or `sqrt(a) sqrt(b)` and `sqrt(a b)`, are not related); equality is exact on
 //! the `f64` coefficients, which is exact arithmetic for symbolic parameters (small integer
 //! and dyadic coefficients) but not for folded numeric ones, which
-//! [`Polynomial::approx_eq`] is for.
+//! [`Polynomial::approx_eq`] is for. A sum of coefficients that cancels to within
+//! [`CANCELLATION_ULPS`] ulps of its operands is zero: the residue of two roundings of one
+//! product, not a term.
 //!
 //! # Printing
 //!
@@ -66,6 +68,7 @@
 mod atom;
 mod error;
 mod expand;
+pub use expand::WORK_PER_TERM;
 mod harmonic;
 mod layout;
 mod monomial;
@@ -78,5 +81,5 @@ mod testing;
 pub use atom::{Angle, Atom};
 pub use error::CanonicalError;
 pub use monomial::Monomial;
-pub use polynomial::Polynomial;
+pub use polynomial::{Polynomial, CANCELLATION_ULPS};
 pub use print::{format_polynomial, PrintFormat, Printer};

@@ -15,7 +15,8 @@ use crate::Real;
 ///
 /// Invariants, kept by every operation:
 /// - terms are stored in a `BTreeMap` keyed by [`Monomial`], so iteration order is fixed;
-/// - no coefficient is zero (exact cancellation removes the term);
+/// - no coefficient is zero (a sum that cancels, exactly or to round-off, removes the term:
+///   [`CANCELLATION_ULPS`]);
 /// - every `sin` atom has exponent 0 or 1, because `sin²(x)` is rewritten as `1 − cos²(x)`,
 ///   and every square root has a positive exponent of at most 1, because `sqrt(p)² = p`.
 ///
@@ -270,7 +271,25 @@ impl Polynomial {
     }
 }
 
-/// Adds `c` to the coefficient of `m`, removing the term when it becomes zero.
+/// How far below its operands, in units of `f64::EPSILON` times the larger of them, a sum of
+/// two coefficients must be for the term to cancel ([`add_term`]).
+///
+/// Folded numeric coefficients are products of the robot file's numbers rounded in whatever
+/// order the recursion met them, so a term that cancels in real arithmetic (the UR5's first
+/// gravity torque, which is identically 0 because its axis is vertical) can leave a residue of
+/// an ulp or so of the coefficients it came from: `0.17446825035 − 0.17446825035000002` is
+/// 2.8·10⁻¹⁷. A sum that small has lost every significant digit (its relative error is 100 %),
+/// so it is the zero it stands for. Coefficients of symbolic parameters are small integers and
+/// dyadic fractions, whose sums are exact: their cancellations are exact zeros either way.
+pub const CANCELLATION_ULPS: f64 = 16.0;
+
+/// Whether `a + b` is zero or lost every digit to cancellation ([`CANCELLATION_ULPS`]).
+fn cancels(a: f64, b: f64) -> bool {
+    let sum = a + b;
+    sum == 0.0 || sum.abs() <= CANCELLATION_ULPS * f64::EPSILON * a.abs().max(b.abs())
+}
+
+/// Adds `c` to the coefficient of `m`, removing the term when it cancels ([`cancels`]).
 fn add_term(terms: &mut BTreeMap<Monomial, f64>, m: Monomial, c: f64) {
     if c == 0.0 {
         return;
@@ -280,11 +299,10 @@ fn add_term(terms: &mut BTreeMap<Monomial, f64>, m: Monomial, c: f64) {
             e.insert(c);
         }
         Entry::Occupied(mut e) => {
-            let sum = *e.get() + c;
-            if sum == 0.0 {
+            if cancels(*e.get(), c) {
                 e.remove();
             } else {
-                *e.get_mut() = sum;
+                *e.get_mut() += c;
             }
         }
     }

@@ -36,7 +36,17 @@ pub struct ExprGraph {
     limit: usize,
     /// Whether a node was refused for the limit.
     limit_reached: bool,
+    /// Whether `sin` and `cos` of a constant within a few ulps of a multiple of π/2 are
+    /// exactly 0 or ±1 ([`ExprGraph::set_exact_right_angles`]).
+    exact_right_angles: bool,
 }
+
+/// How close, in units of `f64::EPSILON` times max(|x|, 1), a constant angle x must be to a
+/// multiple of π/2 for its sine and cosine to be taken as exactly 0 and ±1: the nearest `f64`
+/// to π/2 (1.5707963267948966, as URDF files write it) is within one, `3 * 1.5707963267948966`
+/// within two, so four covers every multiple a robot file writes while an angle meant to differ
+/// from a right angle (by 10⁻¹² rad, say) keeps its sine and cosine.
+pub const RIGHT_ANGLE_ULPS: f64 = 4.0;
 
 /// The constant 0, which a graph at its node limit gives for every new node.
 const ZERO: Node = Node::Const(Constant::ZERO);
@@ -80,7 +90,21 @@ impl ExprGraph {
             symbols,
             limit: NODE_LIMIT,
             limit_reached: false,
+            exact_right_angles: true,
         }
+    }
+
+    /// Whether `sin` and `cos` of a constant angle within [`RIGHT_ANGLE_ULPS`] ulps of a
+    /// multiple of π/2 are exactly 0 or ±1 (the default), or the `f64` sine and cosine of the
+    /// number as written (`cos(1.5707963267948966)` = 6.1e-17).
+    pub fn exact_right_angles(&self) -> bool {
+        self.exact_right_angles
+    }
+
+    /// Sets [`ExprGraph::exact_right_angles`] for the nodes built from now on
+    /// ([`LoadOptions::exact_right_angles`](crate::spec::LoadOptions::exact_right_angles)).
+    pub fn set_exact_right_angles(&mut self, exact: bool) {
+        self.exact_right_angles = exact;
     }
 
     /// The most nodes this graph takes (type docs).
@@ -400,10 +424,12 @@ impl ExprGraph {
         value.is_finite().then(|| self.constant(value))
     }
 
-    /// sin (phase 0) or cos (phase 1) of a constant; exact at multiples of π/2.
+    /// sin (phase 0) or cos (phase 1) of a constant; exact at multiples of π/2 (within
+    /// [`RIGHT_ANGLE_ULPS`]) unless [`ExprGraph::exact_right_angles`] is off.
     fn trig_constant(&mut self, x: f64, phase: i64) -> Id {
         let k = (x / FRAC_PI_2).round();
-        if k.abs() < 1e15 && (k * FRAC_PI_2 - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) {
+        let tolerance = RIGHT_ANGLE_ULPS * f64::EPSILON * x.abs().max(1.0);
+        if self.exact_right_angles && k.abs() < 1e15 && (k * FRAC_PI_2 - x).abs() <= tolerance {
             let exact = [0.0, 1.0, 0.0, -1.0][((k as i64 + phase).rem_euclid(4)) as usize];
             return self.constant(exact);
         }

@@ -15,7 +15,7 @@ mod symbols;
 pub use count::OpCount;
 pub use derivative::Differentiator;
 pub use eval::Evaluator;
-pub use graph::{ExprGraph, NODE_LIMIT};
+pub use graph::{ExprGraph, NODE_LIMIT, RIGHT_ANGLE_ULPS};
 pub use linalg::{transpose, Mat3, Vec3};
 pub use node::{Constant, Id, Node, Symbol};
 pub use sexpr::SexprError;

@@ -27,6 +27,11 @@ impl RobotFormat {
         match extension.as_deref() {
             Some("toml") => Ok(RobotFormat::Toml),
             Some("urdf") => Ok(RobotFormat::Urdf),
+            Some("xml" | "mjcf") => Err(SpecError::new(
+                SpecErrorKind::UnknownFormat,
+                crate::urdf::MJCF_UNSUPPORTED,
+            )
+            .locate(&path.display().to_string(), "")),
             other => {
                 let hint = if other == Some("xacro") {
                     " (expand a .xacro file with xacro into a .urdf first)"

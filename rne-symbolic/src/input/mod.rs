@@ -162,6 +162,7 @@ pub(crate) fn assemble(
 
     let names: Vec<String> = input.joints.iter().map(|j| j.name.clone()).collect();
     let mut graph = ExprGraph::new(SymbolTable::with_joints(names));
+    graph.set_exact_right_angles(options.exact_right_angles);
     if symbolic_parameters {
         for p in &input.parameters {
             graph.symbols_mut().push_parameter(p.name.clone());

@@ -157,6 +157,7 @@ fn read(root: &Table, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let space = Namespace::new(&spec.parameters, &tree.joints, &link_names)?;
 
     let mut scratch = ExprGraph::new(SymbolTable::with_joints(tree.joint_names()));
+    scratch.set_exact_right_angles(options.exact_right_angles);
     let parameters = parameters::define(&mut scratch, &spec.parameters, &space)?;
     let gravity = gravity(&mut scratch, &spec, &space)?;
     let built = assemble_links(&mut scratch, &tree, &links, &space)?;

@@ -39,7 +39,12 @@ const FIELDS: Fields = Fields {
 
 /// Builds the input of `robot` whose links `tree` ordered; `origin` (the file) names a robot
 /// whose `<robot>` has no name.
-pub(crate) fn input(robot: &UrdfRobot, tree: &Tree, origin: &str) -> Result<RobotInput, SpecError> {
+pub(crate) fn input(
+    robot: &UrdfRobot,
+    tree: &Tree,
+    origin: &str,
+    exact_right_angles: bool,
+) -> Result<RobotInput, SpecError> {
     // The kind of each model link and the index of its joint variable.
     let mut motions: Vec<(JointKind, Option<usize>)> = Vec::with_capacity(tree.links.len());
     let mut joints = Vec::new();
@@ -65,6 +70,7 @@ pub(crate) fn input(robot: &UrdfRobot, tree: &Tree, origin: &str) -> Result<Robo
     }
     let names: Vec<String> = joints.iter().map(|j| j.name.clone()).collect();
     let mut graph = ExprGraph::new(SymbolTable::with_joints(names));
+    graph.set_exact_right_angles(exact_right_angles);
     let gravity = graph.const_vec(GRAVITY);
     let links = tree
         .links

@@ -16,6 +16,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
 use super::elements::{Dynamics, Inertial, JointType, UrdfJoint, UrdfLink, UrdfMimic, UrdfRobot};
+use super::MJCF_UNSUPPORTED;
 use crate::input::validate::finite;
 use crate::spec::{SpecError, SpecErrorKind};
 
@@ -95,6 +96,9 @@ pub(crate) fn read(text: &str) -> Result<UrdfRobot, SpecError> {
         let opened = match open.last_mut() {
             None if seen_robot => Open::Skipped,
             None => {
+                if element.name().as_ref() == b"mujoco" {
+                    return Err(urdf_error(MJCF_UNSUPPORTED.to_owned()).at_span(Some(span)));
+                }
                 if element.name().as_ref() != b"robot" {
                     return Err(urdf_error(format!(
                         "cannot read the URDF: the root element is <{}>, not <robot>",

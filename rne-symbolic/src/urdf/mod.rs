@@ -80,6 +80,13 @@ use std::ops::Range;
 
 use crate::input::{self, LoadOptions};
 use crate::spec::location::Lines;
+
+/// What reading a MuJoCo model (MJCF: a `.xml` file, root element `<mujoco>`) says: rne reads
+/// URDF and its own TOML specs only.
+pub const MJCF_UNSUPPORTED: &str =
+    "MJCF (a MuJoCo <mujoco> model) is not supported yet: rne reads \
+     URDF (.urdf) and its TOML robot specs (.toml); a URDF of the robot (most MuJoCo Menagerie \
+     robots have one upstream) can be read instead";
 use crate::spec::{SpecError, SpecWarning};
 use crate::RobotModel;
 
@@ -106,7 +113,7 @@ pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<Robo
 
 fn read(robot: &UrdfRobot, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
     let tree = tree::build(robot)?;
-    let input = assemble::input(robot, &tree, origin)?;
+    let input = assemble::input(robot, &tree, origin, options.exact_right_angles)?;
     let options = LoadOptions {
         symbolic_parameters: false,
         ..*options

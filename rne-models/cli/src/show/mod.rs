@@ -1,17 +1,28 @@
-//! `rne show MODEL`: the dynamics printed for people, in the thesis's notation.
+//! `rne show MODEL`: the dynamics printed for people, in the thesis's notation — expanded
+//! (`expanded`) within a size limit, one entry (`--entry`), or as a program with named
+//! intermediate quantities (`compact`).
+
+mod compact;
+mod entries;
+mod expanded;
+mod sections;
+mod size;
+mod summary;
 
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
-use rne_symbolic::canonical::{Polynomial, PrintFormat, Printer};
-use rne_symbolic::{Id, SymbolicDynamics};
+use rne_symbolic::canonical::{PrintFormat, Printer};
+use rne_symbolic::SymbolicDynamics;
 
 use rne_identify::BaseSet;
 use rne_reference::Reference;
 use rne_symbolic::RobotModel;
 
-use super::model::ModelOptions;
-use super::CliError;
+use self::entries::EntryKey;
+use crate::model::ModelOptions;
+use crate::progress::Progress;
+use crate::CliError;
 use rne_models::RobotSource;
 
 /// Which part of the dynamics to print.
@@ -72,6 +83,18 @@ pub struct ShowArgs {
     /// Keep the spec's parameters as symbols (m1, l1, ...) instead of numbers.
     #[arg(long)]
     pub symbolic_params: bool,
+    /// The most bytes of equations to print (`300K`, `2M`, or bytes): the entries that fit are
+    /// printed, the others listed with their size. An entry's expansion also stops once it
+    /// could no longer fit, so a large robot costs seconds.
+    #[arg(long, default_value = "300K", value_parser = size::parse)]
+    pub max_size: usize,
+    /// Print only this entry: `M[2,3]`, `g[1]`, `tau[4]`, `C[1,2]`, `dtau_dq[1,2]`, `T`, `V`.
+    #[arg(long)]
+    pub entry: Option<String>,
+    /// The compact form: a program, one operation a line, every quantity used more than once
+    /// computed once and named (s1 = sin q1, t12 = ...), as for models too large to expand.
+    #[arg(long)]
+    pub compact: bool,
 }
 
 /// Prints the requested parts of the dynamics.
@@ -86,122 +109,33 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     }
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, args.symbolic_params)?;
-    let mut dynamics = SymbolicDynamics::new(&model);
-    let n = dynamics.layout().nv();
     if args.what == Part::BaseParameters {
         return base_parameters(&source, &model, args.format, out);
     }
-    let want = |p: Part| {
-        args.what == p || (args.what == Part::All && !matches!(p, Part::Reactions | Part::Dtau))
+    let mut dynamics = SymbolicDynamics::new(&model);
+    let sections = {
+        let _progress = Progress::start("building the equations");
+        sections::build(&mut dynamics, args.what)
     };
-    let mut sections: Vec<(&str, Vec<(String, Id)>)> = Vec::new();
+    let sections = match &args.entry {
+        Some(entry) => entries::select(sections, &EntryKey::parse(entry)?)?,
+        None => sections,
+    };
     let latex = args.format == Format::Latex;
-    let sub = |a: usize, b: Option<usize>| match (latex, b) {
-        (false, Some(b)) => format!("[{a},{b}]"),
-        (false, None) => format!("{a}"),
-        (true, Some(b)) => format!("_{{{a}{b}}}"),
-        (true, None) => format!("_{{{a}}}"),
-    };
-    let name = |text: &str, tex: &str| {
-        if latex {
-            tex.to_owned()
-        } else {
-            text.to_owned()
-        }
-    };
-    if want(Part::Tau) {
-        let tau = dynamics.inverse_dynamics();
-        let entries = (0..n)
-            .map(|i| {
-                (
-                    format!("{}{}", name("tau", "\\tau"), sub(i + 1, None)),
-                    tau[i],
-                )
-            })
-            .collect();
-        sections.push((
-            "joint torques, M(q) qdd + C(q, qd) qd + g(q) = tau (3.1)",
-            entries,
-        ));
-    }
-    if want(Part::M) {
-        let m = dynamics.mass_matrix();
-        let entries = (0..n)
-            .flat_map(|i| (i..n).map(move |j| (i, j)))
-            .map(|(i, j)| (format!("M{}", sub(i + 1, Some(j + 1))), m[i][j]))
-            .collect();
-        sections.push(("mass matrix M(q), symmetric: upper triangle", entries));
-    }
-    if want(Part::C) {
-        let c = dynamics.coriolis_matrix();
-        let entries = (0..n)
-            .flat_map(|i| (0..n).map(move |j| (i, j)))
-            .map(|(i, j)| (format!("C{}", sub(i + 1, Some(j + 1))), c[i][j]))
-            .collect();
-        sections.push((
-            "Coriolis matrix C(q, qd) from Christoffel symbols (Mdot - 2C skew)",
-            entries,
-        ));
-    }
-    if want(Part::G) {
-        let g = dynamics.gravity_torques();
-        let entries = (0..n)
-            .map(|i| (format!("g{}", sub(i + 1, None)), g[i]))
-            .collect();
-        sections.push(("gravity torques g(q)", entries));
-    }
-    if want(Part::Energy) {
-        let t = dynamics.kinetic_energy();
-        let v = dynamics.potential_energy();
-        sections.push(("energy", vec![("T".to_owned(), t), ("V".to_owned(), v)]));
-    }
-
-    if want(Part::Dtau) {
-        let (dq, dv) = dynamics.inverse_dynamics_derivatives();
-        for (matrix, title, text, tex) in [
-            (dq, "dtau/dq", "dtau_dq", "\\partial\\tau/\\partial q"),
-            (
-                dv,
-                "dtau/dqd",
-                "dtau_dqd",
-                "\\partial\\tau/\\partial\\dot{q}",
-            ),
-        ] {
-            let entries = (0..n)
-                .flat_map(|i| (0..n).map(move |j| (i, j)))
-                .map(|(i, j)| {
-                    (
-                        format!("{}{}", name(text, tex), sub(i + 1, Some(j + 1))),
-                        matrix[i][j],
-                    )
-                })
-                .collect();
-            sections.push((title, entries));
-        }
-    }
-
-    if want(Part::Reactions) {
-        let reactions = dynamics.joint_reactions();
-        let links: Vec<String> = dynamics
-            .model
-            .links
-            .iter()
-            .map(|l| l.name.clone())
-            .collect();
-        let mut entries = Vec::new();
-        for (link, r) in links.iter().zip(&reactions) {
-            for (axis, (f, t)) in ["x", "y", "z"].iter().zip(r.force.iter().zip(&r.torque)) {
-                entries.push((format!("f_{link}.{axis}"), *f));
-                entries.push((format!("tau_{link}.{axis}"), *t));
-            }
-        }
-        sections.push((
-            "joint reactions f_i, tau_i in each link's body frame (3.21), (3.24)",
-            entries,
-        ));
-    }
-
+    let comment = if latex { "%" } else { "#" };
+    let n = dynamics.layout().nv();
+    writeln!(
+        out,
+        "{comment} {} ({} joints: {})",
+        source.display_name(),
+        n,
+        model.joint_names().join(", ")
+    )?;
     let graph = &dynamics.model.graph;
+    if args.compact {
+        let printed = compact::print(graph, &sections, latex, args.max_size, out)?;
+        return summary::compact(args, comment, printed, out);
+    }
     let format = if latex {
         PrintFormat::Latex
     } else {
@@ -213,31 +147,14 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
     } else {
         printer.significant_digits(6)
     };
-    let roots: Vec<Id> = sections
-        .iter()
-        .flat_map(|(_, entries)| entries.iter().map(|(_, id)| *id))
-        .collect();
-    let polynomials = Polynomial::from_exprs(graph, &roots)
-        .map_err(|e| CliError::Argument(format!("cannot expand the dynamics for printing: {e}")))?;
-    let mut polynomials = polynomials.into_iter();
-    let comment = if latex { "%" } else { "#" };
-    let equals = if latex { " &= " } else { " = " };
-    let end = if latex { " \\\\" } else { "" };
-    writeln!(
-        out,
-        "{comment} {} ({} joints: {})",
-        source.display_name(),
-        n,
-        model.joint_names().join(", ")
-    )?;
-    for (title, entries) in &sections {
-        writeln!(out, "\n{comment} {title}")?;
-        for (label, _) in entries {
-            let p = polynomials.next().expect("one polynomial per entry");
-            writeln!(out, "{label}{equals}{}{end}", printer.print(&p))?;
-        }
-    }
-    Ok(())
+    let style = expanded::Style {
+        printer,
+        latex,
+        max_size: args.max_size,
+    };
+    let what = format!("the equations of {}", source.display_name());
+    let printed = expanded::print(graph, &sections, &style, &what, out)?;
+    summary::expanded(args, comment, &printed, out)
 }
 
 /// Prints each base parameter as a combination of standard ones, with its value.

@@ -1,0 +1,152 @@
+//! The expanded equations within a size limit: every entry brought into canonical form under
+//! a term budget (so a robot whose equations run to megabytes costs seconds, not minutes), then
+//! printed in order while the output stays within the limit; what does not fit is listed with
+//! its size.
+
+use std::io::Write;
+
+use rne_symbolic::canonical::{Polynomial, Printer};
+use rne_symbolic::ExprGraph;
+
+use super::entries::{EntryKey, Section};
+use super::sections::label;
+use crate::progress::Progress;
+use crate::CliError;
+
+/// The bytes a printed term of a robot's equations takes, which turns a size limit into a term
+/// budget: a sign, a coefficient of six significant digits and a product of factors
+/// (` - 0.00134386 c23 s4 Dq1 Dq2`, about 24 bytes with single-digit joint labels; a robot's
+/// joint names make terms far longer, the Panda's about 400 bytes). An entry of more terms
+/// than the budget is not expanded further, so a robot whose equations run to megabytes costs
+/// seconds; an entry of short terms refused at the limit is printed by raising it.
+const MIN_TERM_BYTES: usize = 24;
+
+/// Bytes left below which the remaining sections are not expanded at all.
+const MIN_LINE_BYTES: usize = 64;
+
+/// An entry left out, and why.
+#[derive(Clone, Debug)]
+pub struct Omitted {
+    /// The entry.
+    pub key: EntryKey,
+    /// Its printed size in bytes, or `None` when its expansion passed the budget.
+    pub bytes: Option<usize>,
+}
+
+/// What was printed.
+#[derive(Clone, Debug, Default)]
+pub struct Printed {
+    /// Bytes written.
+    pub bytes: usize,
+    /// Entries written.
+    pub entries: usize,
+    /// Entries left out.
+    pub omitted: Vec<Omitted>,
+}
+
+/// How the entries are printed.
+pub struct Style<'a> {
+    /// The polynomial printer (text or LaTeX, digits).
+    pub printer: Printer<'a>,
+    /// LaTeX labels and line ends.
+    pub latex: bool,
+    /// The most bytes to write.
+    pub max_size: usize,
+}
+
+/// Expands and prints `sections` within `style.max_size` bytes (the header excluded), one
+/// section at a time, each under the budget the bytes left allow; once the limit is reached,
+/// the remaining sections are not expanded at all.
+pub fn print(
+    graph: &ExprGraph,
+    sections: &[Section],
+    style: &Style<'_>,
+    what: &str,
+    out: &mut dyn Write,
+) -> Result<Printed, CliError> {
+    let mut printed = Printed::default();
+    for section in sections {
+        let left = style.max_size.saturating_sub(printed.bytes);
+        if left < MIN_LINE_BYTES {
+            let rest = section.entries.iter().map(|(key, _)| Omitted {
+                key: key.clone(),
+                bytes: None,
+            });
+            printed.omitted.extend(rest);
+            continue;
+        }
+        print_section(
+            graph,
+            section,
+            style,
+            left / MIN_TERM_BYTES + 1,
+            what,
+            out,
+            &mut printed,
+        )?;
+    }
+    Ok(printed)
+}
+
+/// Expands one section's entries under `max_terms` and prints those that fit.
+fn print_section(
+    graph: &ExprGraph,
+    section: &Section,
+    style: &Style<'_>,
+    max_terms: usize,
+    what: &str,
+    out: &mut dyn Write,
+    printed: &mut Printed,
+) -> Result<(), CliError> {
+    let roots: Vec<_> = section.entries.iter().map(|(_, id)| *id).collect();
+    let forms = {
+        let _progress = Progress::start(&format!("expanding {what}: {}", section.title));
+        Polynomial::from_exprs_within(graph, &roots, max_terms).map_err(|e| {
+            CliError::Argument(format!("cannot expand the dynamics for printing: {e}"))
+        })?
+    };
+    let (comment, equals, end) = match style.latex {
+        true => ("%", " &= ", " \\\\"),
+        false => ("#", " = ", ""),
+    };
+    let mut title = Some(format!("\n{comment} {}\n", section.title));
+    for ((key, _), form) in section.entries.iter().zip(forms) {
+        let Some(form) = form else {
+            printed.omitted.push(Omitted {
+                key: key.clone(),
+                bytes: None,
+            });
+            continue;
+        };
+        let line = format!(
+            "{}{equals}{}{end}\n",
+            label(key, style.latex),
+            style.printer.print(&form)
+        );
+        let title_bytes = title.as_ref().map_or(0, String::len);
+        if printed.bytes + title_bytes + line.len() > style.max_size {
+            printed.omitted.push(Omitted {
+                key: key.clone(),
+                bytes: Some(line.len()),
+            });
+            continue;
+        }
+        if let Some(t) = title.take() {
+            out.write_all(t.as_bytes())?;
+            printed.bytes += t.len();
+        }
+        out.write_all(line.as_bytes())?;
+        printed.bytes += line.len();
+        printed.entries += 1;
+    }
+    Ok(())
+}
+
+/// `12.3 KB`, `4.5 MB`, `812 bytes`.
+pub fn human_size(bytes: usize) -> String {
+    match bytes {
+        b if b >= 1_000_000 => format!("{:.1} MB", b as f64 / 1e6),
+        b if b >= 1_000 => format!("{:.1} KB", b as f64 / 1e3),
+        b => format!("{b} bytes"),
+    }
+}
