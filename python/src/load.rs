@@ -60,6 +60,7 @@ pub(crate) fn read_and_compile(
             symbolic_parameters,
             strict: scene.strict,
             free_mimic: scene.mimic == MimicMode::Free,
+            ..LoadOptions::default()
         };
         let format = RobotFormat::from_path(Path::new(&origin))
             .map_err(|e| PyValueError::new_err(e.to_string()))?;

@@ -132,6 +132,7 @@ pub fn input(target: Target, corpus: &Corpus, config: &Config, iteration: u64) -
         symbolic_parameters: rng.gen_bool(0.3),
         strict: rng.gen_bool(0.2),
         free_mimic: rng.gen_bool(0.2),
+        exact_right_angles: rng.gen_bool(0.8),
     };
     let mut input = match target {
         Target::Urdf => mutant(&mut rng, corpus, RobotFormat::Urdf, true, longest),
