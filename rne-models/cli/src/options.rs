@@ -156,6 +156,10 @@ impl CliError {
     /// ends quietly with status 0, as `cat` or `grep` would (Rust ignores SIGPIPE, so the
     /// write returns the error instead of ending the process).
     pub fn is_broken_pipe(&self) -> bool {
+        // `Io` prints its cause in its message, so it does not return it from `source()`.
+        if let CliError::Io(io) = self {
+            return io.kind() == std::io::ErrorKind::BrokenPipe;
+        }
         let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(self);
         while let Some(error) = cause {
             if let Some(io) = error.downcast_ref::<std::io::Error>() {
