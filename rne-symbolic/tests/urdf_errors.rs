@@ -437,11 +437,11 @@ fn missing_element() {
 
 #[test]
 fn unknown_file_extension() {
-    let error = spec::load_robot(Path::new("robots/arm.xml"), &LoadOptions::default()).unwrap_err();
+    let error = spec::load_robot(Path::new("robots/arm.obj"), &LoadOptions::default()).unwrap_err();
     check_file(
         error,
         SpecErrorKind::UnknownFormat,
-        "robots/arm.xml: cannot tell the robot format from the file name: expected a .toml or \
+        "robots/arm.obj: cannot tell the robot format from the file name: expected a .toml or \
          .urdf extension",
     );
 }
