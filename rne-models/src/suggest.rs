@@ -26,7 +26,7 @@ pub fn not_found(model: &str) -> Option<String> {
     ))
 }
 
-/// The built-in names within [`MAX_EDITS`] of `typed` (case-insensitive), nearest first, or
+/// The built-in names within `MAX_EDITS` edits of `typed` (case-insensitive), nearest first, or
 /// those that start with it.
 pub fn closest_builtins(typed: &str) -> Vec<&'static str> {
     let typed = typed.to_ascii_lowercase();

@@ -8,7 +8,7 @@
 //! linear combinations are rewritten ([`distribute_constants`]); it is lowered to a
 //! straight-line [`Program`] (dead code removed, negations absorbed); the program is emitted
 //! with `quote` as a function, next to the module's constants and its `Model` type.
-//! [`generate_c`] writes the same programs ([`module_programs`]) as a C99 header and source
+//! [`generate_c`] writes the same programs ([`generate_programs`]) as a C99 header and source
 //! for C and C++ programs, bit for bit the Rust kernels (`emit_c.rs`).
 //!
 //! # Optimisations and their limits

@@ -272,7 +272,7 @@ impl Polynomial {
 }
 
 /// How far below its operands, in units of `f64::EPSILON` times the larger of them, a sum of
-/// two coefficients must be for the term to cancel ([`add_term`]).
+/// two coefficients must be for the term to cancel (`add_term`).
 ///
 /// Folded numeric coefficients are products of the robot file's numbers rounded in whatever
 /// order the recursion met them, so a term that cancels in real arithmetic (the UR5's first
