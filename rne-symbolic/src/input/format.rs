@@ -90,13 +90,16 @@ mod tests {
         assert_eq!(format("robots/arm.toml"), Ok(RobotFormat::Toml));
         assert_eq!(format("robots/arm.urdf"), Ok(RobotFormat::Urdf));
         assert_eq!(format("ARM.URDF"), Ok(RobotFormat::Urdf));
-        let error = format("robots/arm.xml").unwrap_err();
+        let error = format("robots/arm.stl").unwrap_err();
         assert_eq!(error.kind(), SpecErrorKind::UnknownFormat);
         assert_eq!(
             error.to_string(),
-            "robots/arm.xml: cannot tell the robot format from the file name: expected a .toml \
+            "robots/arm.stl: cannot tell the robot format from the file name: expected a .toml \
              or .urdf extension"
         );
+        let mjcf = format("robots/arm.xml").unwrap_err();
+        assert_eq!(mjcf.kind(), SpecErrorKind::UnknownFormat);
+        assert!(mjcf.to_string().contains("MJCF"), "{mjcf}");
         assert!(format("arm.urdf.xacro")
             .unwrap_err()
             .message()
