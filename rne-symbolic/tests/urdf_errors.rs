@@ -446,6 +446,21 @@ fn unknown_file_extension() {
     );
 }
 
+/// A MuJoCo model is named as such, by its extension or its root element.
+#[test]
+fn mjcf_is_not_supported_yet() {
+    let error = spec::load_robot(Path::new("robots/arm.xml"), &LoadOptions::default()).unwrap_err();
+    assert_eq!(error.kind(), SpecErrorKind::UnknownFormat);
+    assert!(error.to_string().contains("MJCF"), "{error}");
+    let error = read("<mujoco model=\"arm\"><worldbody/></mujoco>").unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .contains("MJCF (a MuJoCo <mujoco> model) is not supported yet"),
+        "{error}"
+    );
+}
+
 #[test]
 fn missing_file() {
     let error =

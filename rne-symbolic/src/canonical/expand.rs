@@ -374,6 +374,41 @@ mod tests {
         assert_eq!(pa, pb, "{a}  vs  {b}");
     }
 
+    /// A product that rounds differently in two orders cancels: `(0.1·0.2)·0.3·s1 −
+    /// 0.1·(0.2·0.3)·s1` differs by an ulp in `f64`, and is 0 in the canonical form.
+    #[test]
+    fn products_rounded_in_two_orders_cancel() {
+        let (a, b) = ((0.1 * 0.2) * 0.3, 0.1 * (0.2 * 0.3));
+        assert_ne!(a, b, "the example must round differently");
+        let text = format!("(- (* {a} (sin q1)) (* {b} (sin q1)))");
+        let mut g = graph();
+        assert!(canonical(&mut g, &text).unwrap().is_empty());
+        let kept = format!("(- (* {a} (sin q1)) (* 0.0061 (sin q1)))");
+        assert_eq!(
+            canonical(&mut g, &kept).unwrap().len(),
+            1,
+            "a real difference stays"
+        );
+    }
+
+    /// Past the term budget a form is `None`, and so is every form built from it; what stays
+    /// within is the full canonical form.
+    #[test]
+    fn forms_past_the_budget_are_none_and_the_others_complete() {
+        let mut g = graph();
+        let small = g.parse_sexpr("(* m1 (cos q1))").unwrap();
+        let big = g
+            .parse_sexpr("(* (* (+ (+ m1 m2) (+ l1 alpha)) (+ (+ m1 m2) (+ l1 alpha))) (+ (+ m1 m2) (+ l1 alpha)))")
+            .unwrap();
+        let bigger = g.add(big, small);
+        let forms = Polynomial::from_exprs_within(&g, &[small, big, bigger], 10).unwrap();
+        assert_eq!(forms[0], Some(Polynomial::from_expr(&g, small).unwrap()));
+        assert_eq!(forms[1], None, "(a + b + c + d)^3 has 20 terms");
+        assert_eq!(forms[2], None);
+        let all = Polynomial::from_exprs_within(&g, &[big], 20).unwrap();
+        assert_eq!(all[0].as_ref().map(Polynomial::len), Some(20));
+    }
+
     #[test]
     fn pythagoras_reduces_to_one() {
         assert_same("(+ (* (sin q1) (sin q1)) (* (cos q1) (cos q1)))", "1");

@@ -543,6 +543,20 @@ mod tests {
     }
 
     #[test]
+    fn literal_angles_keep_the_f64_sine_and_cosine_of_a_right_angle() {
+        let (mut g, _, _) = graph();
+        g.set_exact_right_angles(false);
+        let a = g.constant(FRAC_PI_2);
+        let c = g.cos(a);
+        assert_eq!(g.as_const(c), Some(FRAC_PI_2.cos()));
+        assert!(g.as_const(c).unwrap() != 0.0);
+        g.set_exact_right_angles(true);
+        let b = g.constant(3.0 * FRAC_PI_2);
+        let s = g.sin(b);
+        assert_eq!(g.as_const(s), Some(-1.0));
+    }
+
+    #[test]
     fn constants_fold_and_division_by_powers_of_two_is_multiplication() {
         let (mut g, x, _) = graph();
         let two = g.constant(2.0);

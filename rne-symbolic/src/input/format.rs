@@ -128,6 +128,9 @@ mod tests {
             "robots/arm.obj: cannot tell the robot format from the file name: expected a .toml \
              or .urdf extension"
         );
+        let mjcf = format("robots/arm.xml").unwrap_err();
+        assert_eq!(mjcf.kind(), SpecErrorKind::UnknownFormat);
+        assert!(mjcf.to_string().contains("MJCF"), "{mjcf}");
         assert!(format("arm.urdf.xacro")
             .unwrap_err()
             .message()
