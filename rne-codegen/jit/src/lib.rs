@@ -43,4 +43,4 @@ mod model;
 
 pub use batch::Batch;
 pub use error::JitError;
-pub use model::{JitModel, State, Tier, Timings};
+pub use model::{host_support, JitModel, State, Tier, Timings};

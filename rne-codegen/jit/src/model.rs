@@ -398,6 +398,12 @@ fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitE
     }
 }
 
+/// Whether this processor has a JIT backend: `Err(`[`JitError::UnsupportedHost`]`)` saying why
+/// not, where callers fall back to the interpreter.
+pub fn host_support() -> Result<(), JitError> {
+    host_module(false, Tier::Fast).map(|_| ())
+}
+
 /// A JIT module for this processor, its features detected at run time, with the runtime's
 /// sines and cosines linked in; and whether multiply-adds are fused there (`fma` asked for and
 /// the processor has FMA).

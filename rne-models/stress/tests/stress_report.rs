@@ -1,15 +1,22 @@
 //! What `rne stress --quick --out DIR` writes: every case runs, the report has a section, a
-//! table and an explanation per case, and the figures are written as SVG and PNG.
+//! table and an explanation per case, and the figures are written as SVG and PNG; the kernels
+//! compiled in memory give the interpreter's report.
 
-use rne_stress::Effort;
+use rne_stress::{Effort, Engine, Settings};
 
 #[test]
 fn quick_stress_report_is_written() {
     let dir = std::env::temp_dir().join(format!("rne-stress-{}", std::process::id()));
-    let written = rne_stress::run(Effort::Quick, |_| {})
-        .unwrap()
-        .write(&dir)
-        .unwrap();
+    let quick = |engine| Settings {
+        effort: Effort::Quick,
+        engine,
+    };
+    let report = rne_stress::run(quick(Engine::Jit), |_| {}).unwrap();
+    // The compiled programs perform the interpreter's operations in its order: the same bits,
+    // so the same report, every figure included.
+    let interpreted = rne_stress::run(quick(Engine::Interpreted), |_| {}).unwrap();
+    assert_eq!(report.markdown(), interpreted.markdown());
+    let written = report.write(&dir).unwrap();
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(written.contains(&dir.join("report.md")));
     for section in 0..=8 {
