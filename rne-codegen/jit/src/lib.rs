@@ -37,6 +37,7 @@
 
 mod batch;
 mod code;
+mod compile;
 mod error;
 mod lower;
 mod model;
