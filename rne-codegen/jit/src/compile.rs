@@ -24,7 +24,7 @@ struct Machine {
     relocs: Vec<ModuleReloc>,
 }
 
-/// Compiles `functions` on up to the machine's number of cores and defines them in `module`,
+/// Compiles `functions` on up to [`threads`] threads and defines them in `module`,
 /// in order. An error names the function that failed.
 pub(crate) fn define(module: &mut JITModule, functions: &[Lowered]) -> Result<(), String> {
     let compiled = compile_all(module.isa(), functions);
@@ -42,12 +42,19 @@ pub(crate) fn define(module: &mut JITModule, functions: &[Lowered]) -> Result<()
     Ok(())
 }
 
+/// How many threads compile: `RNE_JIT_THREADS` if set to a positive number, else the number
+/// of cores.
+fn threads() -> usize {
+    std::env::var("RNE_JIT_THREADS")
+        .ok()
+        .and_then(|n| n.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
 /// Every function compiled, in order; threads take the next function as they finish one.
 fn compile_all(isa: &dyn TargetIsa, functions: &[Lowered]) -> Vec<Result<Machine, String>> {
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(functions.len())
-        .max(1);
+    let threads = threads().min(functions.len()).max(1);
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<Machine, String>>>> =
         Mutex::new((0..functions.len()).map(|_| None).collect());

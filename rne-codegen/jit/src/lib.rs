@@ -27,6 +27,11 @@
 //! macro's kernel compiled for it (`-C target-cpu=native`) fuses them; the sines and cosines
 //! are those of the runtime as this program was compiled (fused only in a build with FMA).
 //!
+//! # Threads
+//! The functions of all kernels are compiled on one thread per core (`RNE_JIT_THREADS=n`
+//! sets the number), and defined in the order they were lowered: the code does not depend on
+//! the number of threads.
+//!
 //! # Limits
 //! - `f64` only, and the derivative kernels in scalars (lanes are the Rust emitter's).
 //! - Processors Cranelift has no backend for (other than x86-64, AArch64, RISC-V 64, s390x)
