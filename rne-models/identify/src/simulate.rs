@@ -57,7 +57,7 @@ pub fn simulate<R: Regressors + ?Sized>(
             let tau = reference.inverse_dynamics(&q, &qd, &qdd)?;
             Ok(Sample {
                 t: Some(t),
-                tau: tau.iter().copied().collect(),
+                tau,
                 q,
                 qd,
                 qdd,
