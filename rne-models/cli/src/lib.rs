@@ -3,7 +3,6 @@
 //! `rne-bench`, `rne-stress`) and their errors into one [`CliError`] that keeps every cause.
 #![deny(missing_docs)]
 
-mod accuracy;
 mod bench;
 mod bench_robot;
 mod check;
