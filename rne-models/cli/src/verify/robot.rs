@@ -111,3 +111,103 @@ pub fn rows(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rne_interpreted::agreement::Engine;
+    use rne_interpreted::{Error, StateRef};
+
+    /// The JIT's kernels with one of them off by a relative `by` in every entry: a broken
+    /// kernel.
+    struct Perturbed<'a> {
+        jit: &'a JitModel,
+        kernel: Kernel,
+        by: f64,
+    }
+
+    impl Engine for Perturbed<'_> {
+        fn has(&self, kernel: Kernel) -> bool {
+            Engine::has(self.jit, kernel)
+        }
+
+        fn evaluate(&self, kernel: Kernel, state: StateRef<'_>) -> Result<Vec<f64>, Error> {
+            let mut values = Engine::evaluate(self.jit, kernel, state)?;
+            if kernel == self.kernel {
+                values.iter_mut().for_each(|v| *v *= 1.0 + self.by);
+            }
+            Ok(values)
+        }
+
+        fn base_parameters(&self, standard: &[f64]) -> Result<Vec<f64>, Error> {
+            Engine::base_parameters(self.jit, standard)
+        }
+
+        fn frames(&self) -> Vec<String> {
+            Engine::frames(self.jit)
+        }
+    }
+
+    /// The rows of the planar elbow's kernels with `kernel` perturbed by `by`.
+    fn rows_with(kernel: Kernel, by: f64) -> Vec<KernelRow> {
+        let robot = rne_models::builtin("planar-elbow").unwrap();
+        let model = RobotSource::Builtin(robot)
+            .load(&LoadOptions::default())
+            .unwrap();
+        let scene = Scene {
+            outputs: Kernel::ALL.to_vec(),
+            ..Scene::default()
+        };
+        let jit = JitModel::compile(&model, &scene, robot.file).unwrap();
+        let states = random_states(jit.nq(), jit.nv(), 50, 7);
+        let engine = Perturbed {
+            jit: &jit,
+            kernel,
+            by,
+        };
+        let model = &jit.programs().model;
+        let errors = check_kernels(model, false, &engine, &Kernel::ALL, &states).unwrap();
+        rows(&errors, &[], |_| 0, None)
+    }
+
+    #[test]
+    fn a_kernel_off_by_a_little_more_than_its_tolerance_fails_and_only_it() {
+        for kernel in [
+            Kernel::InverseDynamics,
+            Kernel::FrameJacobians,
+            Kernel::BaseRegressor,
+        ] {
+            let by = 10.0 * tolerance::of(kernel);
+            let rows = rows_with(kernel, by);
+            assert_eq!(rows.len(), Kernel::ALL.len());
+            // The base regressor and base parameters are checked together, as Y_b π_b.
+            let base = [Kernel::BaseRegressor, Kernel::BaseParameters];
+            let shares = |k| k == kernel || (base.contains(&k) && base.contains(&kernel));
+            for row in &rows {
+                assert_eq!(row.passes(), !shares(row.kernel), "{kernel} perturbed: {row:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_kernel_within_its_tolerance_passes() {
+        let rows = rows_with(Kernel::MassMatrixInverse, 1e-15);
+        assert!(rows.iter().all(KernelRow::passes), "{rows:?}");
+    }
+
+    #[test]
+    fn a_missing_or_nan_error_fails() {
+        let agreement = |kernel, max_error| KernelAgreement { kernel, max_error };
+        let jit = vec![agreement(Kernel::MassMatrix, f64::NAN)];
+        let compiled = vec![agreement(Kernel::InverseDynamics, 0.0)];
+        let rows = rows(&jit, &compiled, |_| 1, Some(1.0));
+        let row = |k| rows.iter().find(|r| r.kernel == k).unwrap();
+        assert!(!row(Kernel::MassMatrix).passes(), "NaN error");
+        assert!(
+            !row(Kernel::InverseDynamics).passes(),
+            "no JIT kernel, though the compiled one agrees"
+        );
+        assert_eq!(row(Kernel::InverseDynamics).compiled, Some(0.0));
+        assert!(rows.iter().all(|r| r.tolerance == 1.0), "--tolerance for all");
+    }
+}
