@@ -40,10 +40,17 @@ fn verify_lists_all_18_kernels_of_every_builtin_robot_with_error_and_tolerance()
             assert!(jit <= tolerance, "{row}");
             assert_eq!(fields[5], "ok", "{row}");
             let compiled = Kernel::DYNAMICS.contains(&kernel);
-            assert_eq!(fields[2] != "-", compiled, "compiled module's kernels: {row}");
+            assert_eq!(
+                fields[2] != "-",
+                compiled,
+                "compiled module's kernels: {row}"
+            );
         }
     }
-    assert!(stdout.contains("all 18 kernels of 7 robots agree"), "{stdout}");
+    assert!(
+        stdout.contains("all 18 kernels of 7 robots agree"),
+        "{stdout}"
+    );
 }
 
 #[test]
@@ -68,13 +75,23 @@ fn verify_refuses_bad_arguments_in_one_line() {
 #[test]
 fn a_tolerance_below_the_errors_fails_the_run_naming_the_kernels() {
     let output = Command::new(env!("CARGO_BIN_EXE_rne"))
-        .args(["verify", "planar-elbow", "--samples", "20", "--tolerance", "1e-30"])
+        .args([
+            "verify",
+            "planar-elbow",
+            "--samples",
+            "20",
+            "--tolerance",
+            "1e-30",
+        ])
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&output.stdout);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1), "{stderr}");
-    assert!(stdout.contains("FAIL"), "the report is printed first: {stdout}");
+    assert!(
+        stdout.contains("FAIL"),
+        "the report is printed first: {stdout}"
+    );
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("kernels disagree"), "{stderr}");
     assert!(stderr.contains("planar-elbow inverse_dynamics"), "{stderr}");

@@ -197,11 +197,17 @@ fn provide(words: &[String], dir: &Path) {
 /// Runs `words` (starting with `rne`) with the binary in `dir`; the error says what failed.
 fn run(words: &[String], dir: &Path) -> Result<(), String> {
     provide(words, dir);
+    let start = std::time::Instant::now();
     let output = Command::new(env!("CARGO_BIN_EXE_rne"))
         .args(&words[1..])
         .current_dir(dir)
         .output()
         .map_err(|e| e.to_string())?;
+    eprintln!(
+        "{:>6.1} s  {}",
+        start.elapsed().as_secs_f64(),
+        words.join(" ")
+    );
     if output.status.success() {
         Ok(())
     } else {
@@ -282,11 +288,26 @@ fn check_cargo(words: &[String]) -> Result<(), String> {
         Some(i) => (&words[..i], &words[i + 1..]),
         None => (words, &[][..]),
     };
-    if !matches!(
-        args.get(1).map(String::as_str),
-        Some("run" | "test" | "build")
-    ) {
-        return Err(format!("unknown cargo subcommand in {args:?}"));
+    match args.get(1).map(String::as_str) {
+        Some("run" | "test" | "build") => {}
+        Some("install") => {
+            let path = value("--path").ok_or("`cargo install` without --path")?;
+            let dir = root()
+                .join(&path)
+                .canonicalize()
+                .map_err(|e| format!("{path}: {e}"))?;
+            let member = members
+                .iter()
+                .find(|(m, _)| m.canonicalize().ok().as_ref() == Some(&dir));
+            return match member {
+                Some((m, text)) if text.contains("[[bin]]") || m.join("src/main.rs").exists() => {
+                    Ok(())
+                }
+                Some(_) => Err(format!("{path} has no binary to install")),
+                None => Err(format!("{path} is not a workspace package")),
+            };
+        }
+        _ => return Err(format!("unknown cargo subcommand in {args:?}")),
     }
     let Some(package) = value("-p") else {
         return Ok(());
@@ -379,4 +400,30 @@ fn the_readme_parser_splits_words_options_and_comments_as_a_reader_does() {
         ]
     );
     assert_eq!(alternatives(&nested), 2);
+}
+
+#[test]
+fn the_cargo_check_refuses_names_that_do_not_exist() {
+    let check = |command: &str| check_cargo(&form(&tokens(command), false, 0));
+    assert_eq!(
+        check("cargo run --release -p rne-cli --bin rne -- verify"),
+        Ok(())
+    );
+    assert_eq!(check("cargo install --path rne-models/cli"), Ok(()));
+    assert_eq!(
+        check("cargo run -p rne-examples --example first_steps"),
+        Ok(())
+    );
+    for wrong in [
+        "cargo run -p rne-cli --bin rne -- verifyy",
+        "cargo run -p rne-cli --bin rne -- verify --samples",
+        "cargo run -p rne-cli --bin rnee -- verify",
+        "cargo run -p rne-clii --bin rne -- verify",
+        "cargo run -p rne-examples --example no_such_example",
+        "cargo install --path rne-models",
+        "cargo install --path no/such/dir",
+        "cargo bench-everything",
+    ] {
+        assert!(check(wrong).is_err(), "{wrong}");
+    }
 }

@@ -184,7 +184,11 @@ mod tests {
             let base = [Kernel::BaseRegressor, Kernel::BaseParameters];
             let shares = |k| k == kernel || (base.contains(&k) && base.contains(&kernel));
             for row in &rows {
-                assert_eq!(row.passes(), !shares(row.kernel), "{kernel} perturbed: {row:?}");
+                assert_eq!(
+                    row.passes(),
+                    !shares(row.kernel),
+                    "{kernel} perturbed: {row:?}"
+                );
             }
         }
     }
@@ -208,6 +212,9 @@ mod tests {
             "no JIT kernel, though the compiled one agrees"
         );
         assert_eq!(row(Kernel::InverseDynamics).compiled, Some(0.0));
-        assert!(rows.iter().all(|r| r.tolerance == 1.0), "--tolerance for all");
+        assert!(
+            rows.iter().all(|r| r.tolerance == 1.0),
+            "--tolerance for all"
+        );
     }
 }
