@@ -217,6 +217,58 @@ fn every_kernel_of_the_committed_robot_files_on_both_bases() {
     }
 }
 
+/// Every URDF under the directory `RNE_JIT_URDF_DIR` (searched recursively; skipped when the
+/// variable is unset) that rne loads, on its own base, every kernel at 20 states, compiled at
+/// the fast tier (both tiers give the same bits: `both_tiers_compute_the_same_bits`). The run
+/// on example-robot-data is docs/performance.md's:
+/// `RNE_JIT_URDF_DIR=DIR cargo test --release -p rne-tests --test jit -- --nocapture urdfs_of`.
+#[test]
+fn every_kernel_of_the_urdfs_of_a_directory() {
+    let Some(dir) = std::env::var_os("RNE_JIT_URDF_DIR") else {
+        eprintln!("RNE_JIT_URDF_DIR is not set: no directory of URDFs to check");
+        return;
+    };
+    let mut files = Vec::new();
+    let mut folders = vec![PathBuf::from(dir)];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).unwrap().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                folders.push(path);
+            } else if path.extension().is_some_and(|e| e == "urdf") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    let (mut checked, mut refused) = (0, Vec::new());
+    for path in &files {
+        let what = path.display().to_string();
+        let compiled = read_robot(path, &what, &all_kernels())
+            .map_err(|e| e.to_string())
+            .and_then(|model| {
+                JitModel::compile_at(&model, &all_kernels(), &what, rne_jit::Tier::Fast)
+                    .map_err(|e| e.to_string())
+            });
+        match compiled {
+            Ok(jit) => {
+                check_against_programs(&jit, &States::new(&jit, 20, 0x5eed), &what);
+                checked += 1;
+            }
+            Err(why) => refused.push(format!("{what}: {why}")),
+        }
+    }
+    eprintln!(
+        "{} URDF files: {checked} checked bit for bit, {} not loaded:",
+        files.len(),
+        refused.len()
+    );
+    for why in &refused {
+        eprintln!("  {why}");
+    }
+    assert!(checked > 0, "no URDF under the directory loads");
+}
+
 /// Fused multiply-adds: with `fma` on, each kernel is its fused program, rounded once per
 /// multiply-add where the processor fuses (as the macro's kernel compiled for it) and twice
 /// where it does not (as the runtime's `mul_add` there).

@@ -37,10 +37,11 @@
 
 mod batch;
 mod code;
+mod compile;
 mod error;
 mod lower;
 mod model;
 
 pub use batch::Batch;
 pub use error::JitError;
-pub use model::{JitModel, State, Tier, Timings};
+pub use model::{host_support, JitModel, State, Tier, Timings};

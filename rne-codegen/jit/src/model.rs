@@ -10,6 +10,7 @@ use rne_codegen_core::{generate_programs, read_robot, GeneratedPrograms, Input, 
 use rne_symbolic::RobotModel;
 
 use crate::code::{self, Arrays, Code, Entry};
+use crate::compile;
 use crate::error::JitError;
 use crate::lower::{Lowering, SIN_COS};
 
@@ -117,7 +118,7 @@ impl JitModel {
                     .map_or(Kernel::InverseDynamics, |k| k.kernel),
                 message,
             })?;
-        let mut declared = Vec::with_capacity(programs.kernels.len());
+        let mut lowered = Vec::with_capacity(programs.kernels.len());
         for k in &programs.kernels {
             let parts = lowering
                 .lower(&mut module, k.kernel.name(), &k.program)
@@ -125,7 +126,13 @@ impl JitModel {
                     kernel: k.kernel,
                     message,
                 })?;
-            declared.push((k.kernel, k.program.outputs.len(), parts));
+            lowered.push((k.kernel, k.program.outputs.len(), parts));
+        }
+        for (kernel, _, parts) in &lowered {
+            compile::define(&mut module, parts).map_err(|message| JitError::Compile {
+                kernel: *kernel,
+                message,
+            })?;
         }
         module
             .finalize_definitions()
@@ -133,18 +140,18 @@ impl JitModel {
                 kernel: Kernel::InverseDynamics,
                 message: e.to_string(),
             })?;
-        let kernels = declared
+        let kernels = lowered
             .into_iter()
             .map(|(kernel, outputs, parts)| {
-                let scratch = parts.iter().map(|(_, e)| e.scratch).max().unwrap_or(0);
+                let scratch = parts.iter().map(|p| p.extents.scratch).max().unwrap_or(0);
                 let parts = parts
                     .into_iter()
-                    .map(|(id, extents)| {
-                        let address = module.get_finalized_function(id);
-                        // SAFETY: `id` was defined with the kernels' signature by `Lowering`,
-                        // which recorded `extents`; `module` becomes the model's `Code`, which
-                        // outlives the entries (code.rs).
-                        unsafe { Entry::new(address, extents) }
+                    .map(|part| {
+                        let address = module.get_finalized_function(part.id);
+                        // SAFETY: `part.id` was defined with the kernels' signature from the
+                        // IR `Lowering` built, which recorded `part.extents`; `module` becomes
+                        // the model's `Code`, which outlives the entries (code.rs).
+                        unsafe { Entry::new(address, part.extents) }
                     })
                     .collect();
                 Compiled {
@@ -396,6 +403,12 @@ fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitE
             value: values[index],
         }),
     }
+}
+
+/// Whether this processor has a JIT backend: `Err(`[`JitError::UnsupportedHost`]`)` saying why
+/// not, where callers fall back to the interpreter.
+pub fn host_support() -> Result<(), JitError> {
+    host_module(false, Tier::Fast).map(|_| ())
 }
 
 /// A JIT module for this processor, its features detected at run time, with the runtime's

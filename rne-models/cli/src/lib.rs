@@ -11,6 +11,7 @@ mod emit;
 mod eval;
 mod eval_kernels;
 mod identify;
+mod identify_engine;
 mod internal;
 mod list;
 mod long_run;
