@@ -35,11 +35,12 @@ pub enum CliError {
     #[error(transparent)]
     Bench(Box<rne_bench::BenchError>),
     /// A built-in robot's kernels disagree with the numeric reference.
-    #[error("errors above {tolerance:e}: {}", failures.join(", "))]
+    #[error(
+        "kernels disagree with the numeric reference beyond their tolerance: {}",
+        failures.join(", ")
+    )]
     Disagreement {
-        /// The largest relative error accepted.
-        tolerance: f64,
-        /// The robot and quantity of each error above it.
+        /// The robot, kernel, errors and tolerance of each kernel above its tolerance.
         failures: Vec<String>,
     },
     /// The model's mimic joints cannot be constrained (a loop, a missing leader).
@@ -49,6 +50,13 @@ pub enum CliError {
         model: String,
         /// Why.
         cause: rne_symbolic::model::MimicError,
+    },
+    /// The model cannot be read or built with its mimic joints constrained, and it can with
+    /// them free: the error, and that suggestion.
+    #[error("{cause} (load it with `--mimic free` to treat mimic joints as independent)")]
+    MimicFreeLoads {
+        /// The error with the mimic joints constrained.
+        cause: Box<CliError>,
     },
     /// Nothing in the model moves on the base the options give it.
     #[error("{model}: {cause}")]
