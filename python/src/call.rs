@@ -8,9 +8,10 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyTuple};
 use rne_codegen_core::{Input, Kernel};
-use rne_jit::{Batch, JitError, JitModel, State};
+use rne_jit::{Batch, JitModel, State};
 
 use crate::arrays::Array;
+use crate::batch::Job;
 use crate::errors;
 use crate::layout::{self, Part, Sizes};
 
@@ -236,12 +237,17 @@ unsafe fn new_array<'py>(
     shape: &[usize],
     lead: Option<usize>,
 ) -> Bound<'py, PyArrayDyn<f64>> {
-    // Kernels' results have at most three axes; a batch adds one. (`IxDyn` keeps up to four
-    // axes without allocating.)
+    // Kernels' results have at most three axes and a batch adds one: `IxDyn` keeps up to
+    // four without allocating.
     let mut dims = [0; 4];
+    let axes = lead.into_iter().chain(shape.iter().copied());
+    if shape.len() + usize::from(lead.is_some()) > dims.len() {
+        // SAFETY: as the function's contract says.
+        return unsafe { PyArrayDyn::<f64>::new(py, IxDyn(&axes.collect::<Vec<_>>()), false) };
+    }
     let mut n = 0;
-    for d in lead.into_iter().chain(shape.iter().copied()) {
-        dims[n] = d;
+    for (slot, d) in dims.iter_mut().zip(axes) {
+        *slot = d;
         n += 1;
     }
     // SAFETY: as the function's contract says.
@@ -341,7 +347,7 @@ fn single<'py>(
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
     let mut outs = unsafe { slices(&arrays)? };
     let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
-    layout::gather(&values, per, parts, &mut outs);
+    layout::gather(&values, per, parts, &mut outs, 0);
     drop(outs);
     result(py, arrays, None)
 }
@@ -362,30 +368,20 @@ fn batch<'py>(
         qdd: inputs.values(Input::Qdd),
         tau: inputs.values(Input::Tau),
     };
-    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
     // SAFETY: the kernel (a whole part) or `gather` writes every value before the arrays are
     // returned; on an error they are dropped unseen.
-    let arrays = unsafe { new_arrays(py, parts, Some(n)) };
+    let arrays = unsafe { new_arrays(py, &plan.parts, Some(n)) };
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
-    let mut outs = unsafe { slices(&arrays)? };
-    let whole = plan.whole;
-    py.detach(|| -> Result<(), JitError> {
-        if n == 0 {
-            return Ok(());
-        }
-        let run = |out: &mut [f64]| match threads {
-            1 => model.evaluate_batch(kernel, states, out),
-            t => model.evaluate_batch_threaded(kernel, states, out, t),
-        };
-        if whole {
-            return run(outs[0]);
-        }
-        let mut values = vec![0.0; n * per];
-        run(&mut values)?;
-        layout::gather(&values, per, parts, &mut outs);
-        Ok(())
-    })
-    .map_err(errors::jit)?;
-    drop(outs);
+    let outs = unsafe { slices(&arrays)? };
+    let job = Job {
+        model,
+        kernel: plan.kernel,
+        states,
+        per: plan.per,
+        parts: &plan.parts,
+        whole: plan.whole,
+    };
+    py.detach(|| job.run(n, outs, threads))
+        .map_err(errors::jit)?;
     result(py, arrays, None)
 }
