@@ -12,6 +12,7 @@
 //! errors become Python exceptions (`errors`).
 
 mod arrays;
+mod batch;
 mod builtin;
 mod call;
 mod errors;
