@@ -339,6 +339,20 @@ impl JitModel {
         parameters: &[f64],
         out: &mut [f64],
     ) {
+        let mut scratch = compiled.scratch();
+        self.run_in(compiled, state, parameters, out, &mut scratch);
+    }
+
+    /// [`JitModel::run`] with the kernel's scratch array given (`compiled.scratch()`), so that
+    /// a batch allocates it once.
+    pub(crate) fn run_in(
+        &self,
+        compiled: &Compiled,
+        state: State<'_>,
+        parameters: &[f64],
+        out: &mut [f64],
+        scratch: &mut [f64],
+    ) {
         let arrays = Arrays {
             q: state.q,
             qd: state.qd,
@@ -346,9 +360,8 @@ impl JitModel {
             tau: state.tau,
             parameters,
         };
-        let mut scratch = vec![0.0; compiled.scratch];
         for part in &compiled.parts {
-            part.call(arrays, out, &mut scratch)
+            part.call(arrays, out, scratch)
                 .expect("the arrays were checked against the kernel's inputs");
         }
     }
@@ -389,6 +402,11 @@ impl Compiled {
     /// Values per call.
     pub(crate) fn outputs(&self) -> usize {
         self.outputs
+    }
+
+    /// A scratch array for one call at a time (empty for a kernel of one part).
+    pub(crate) fn scratch(&self) -> Vec<f64> {
+        vec![0.0; self.scratch]
     }
 }
 
