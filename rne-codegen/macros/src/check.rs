@@ -1,11 +1,12 @@
-//! Checks the meaning of every setting and turns the syntax into a `Scene`, collecting all
-//! errors (each spanned on the offending token) before reporting them.
+//! Checks the meaning of every setting and turns the syntax into a `Scene` (the physical
+//! settings) and `GenerationOptions` (the others), collecting all errors (each spanned on the
+//! offending token) before reporting them.
 
 use std::collections::BTreeSet;
 
 use proc_macro2::Span;
 use rne_codegen_core::{
-    ForwardDynamicsMethod, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
+    ForwardDynamicsMethod, GenerationOptions, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
 };
 use rne_symbolic::model::Base;
 use syn::{Attribute, Ident, LitStr, Visibility};
@@ -19,6 +20,10 @@ pub struct CheckedModule {
     pub name: Ident,
     pub robot: LitStr,
     pub scene: Scene,
+    pub options: GenerationOptions,
+    /// The key of each setting given by a deprecated spelling, and its current spelling, for
+    /// a deprecation warning spanned on it.
+    pub deprecated: Vec<(Ident, &'static str)>,
     /// The span of each locked joint's name, for errors about joints the robot lacks.
     pub lock_spans: Vec<Span>,
     /// The span of each listed output (empty when `outputs` is left to its default), for
@@ -28,12 +33,13 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
+/// The settings, as the error about an unknown one lists them.
 const KEYS: [&str; 16] = [
     "robot",
     "outputs",
     "gravity",
     "lock",
-    "velocities",
+    "at_rest",
     "base",
     "mimic",
     "friction",
@@ -46,6 +52,15 @@ const KEYS: [&str; 16] = [
     "derivatives",
     "crate",
 ];
+
+/// Settings kept under an old spelling: (old key, the key it is an alias of, how to write it
+/// now). Accepted with a deprecation warning; giving both spellings is giving a key twice.
+const DEPRECATED_KEYS: [(&str, &str, &str); 1] = [(
+    "velocities",
+    "at_rest",
+    "`velocities: zero` is deprecated: write `at_rest: true` (and `velocities: free`, \
+     `at_rest: false`)",
+)];
 
 #[derive(Default)]
 struct Errors(Option<syn::Error>);
@@ -83,7 +98,8 @@ fn set<T>(place: &mut T, value: Option<T>) {
     }
 }
 
-/// Checks the settings in order, each key at most once, and builds the module's scene.
+/// Checks the settings in order, each key at most once, and builds the module's scene and
+/// generation options.
 pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
     let mut checker = Checker::default();
     for setting in &input.settings {
@@ -101,16 +117,24 @@ struct Checker {
     seen: BTreeSet<&'static str>,
     robot: Option<LitStr>,
     scene: Scene,
+    options: GenerationOptions,
+    deprecated: Vec<(Ident, &'static str)>,
     lock_spans: Vec<Span>,
     output_spans: Vec<Span>,
     frame_spans: Vec<Span>,
 }
 
 impl Checker {
-    /// The setting's key if it is one of [`KEYS`] not given before; an error otherwise.
+    /// The setting's key if it is one of [`KEYS`] (or a deprecated spelling of one, noted for
+    /// a warning) not given before; an error otherwise.
     fn key(&mut self, key: &Ident) -> Option<&'static str> {
         let name = key.to_string();
-        let Some(&known) = KEYS.iter().find(|&&k| k == name) else {
+        let old = DEPRECATED_KEYS.iter().find(|(old, _, _)| *old == name);
+        if let Some(&(_, _, note)) = old {
+            self.deprecated.push((key.clone(), note));
+        }
+        let current = old.map_or(name.as_str(), |(_, current, _)| current);
+        let Some(&known) = KEYS.iter().find(|&&k| k == current) else {
             let message = format!(
                 "unknown setting `{name}`; expected one of: {}",
                 KEYS.join(", ")
@@ -119,11 +143,19 @@ impl Checker {
             return None;
         };
         if !self.seen.insert(known) {
-            self.errors
-                .push(key.span(), format!("`{name}` is given twice"));
+            let message = match old {
+                Some((old, current, _)) => {
+                    format!("`{old}` is given twice (it is the old spelling of `{current}`)")
+                }
+                None => format!("`{name}` is given twice"),
+            };
+            self.errors.push(key.span(), message);
             return None;
         }
-        Some(known)
+        Some(match old {
+            Some(&(old, _, _)) => old,
+            None => known,
+        })
     }
 
     /// One setting, by its key and the shape of its value.
@@ -134,7 +166,7 @@ impl Checker {
             ("gravity", Value::List(bracket, elements)) => self.gravity(bracket, elements),
             ("lock", Value::Map(_, entries)) => self.lock(entries),
             ("frames", Value::List(bracket, elements)) => self.frames(bracket, elements),
-            ("velocities" | "base" | "mimic" | "friction", Value::Ident(name)) => {
+            ("at_rest" | "velocities" | "base" | "mimic" | "friction", Value::Ident(name)) => {
                 self.scene_choice(key, name)
             }
             (
@@ -142,7 +174,7 @@ impl Checker {
                 Value::Ident(name),
             ) => self.generation_choice(key, name),
             ("crate", Value::Path(path)) => {
-                self.scene.crate_path = quote::quote!(#path).to_string()
+                self.options.crate_path = quote::quote!(#path).to_string()
             }
             (key, value) => self.errors.push(value_span(value), expected_shape(key)),
         }
@@ -182,7 +214,7 @@ impl Checker {
                 "`outputs` must name at least one function",
             );
         }
-        self.scene.outputs = outputs;
+        self.options.outputs = outputs;
     }
 
     /// `gravity: [x, y, z]`: three finite numbers.
@@ -251,15 +283,23 @@ impl Checker {
             self.errors
                 .push(bracket.span.join(), "`frames` must name at least one frame");
         }
-        self.scene.frames = Some(frames);
+        self.options.frames = Some(frames);
     }
 
     /// The scene's settings given by a name: what moves and what acts on it.
     fn scene_choice(&mut self, key: &str, name: &Ident) {
         let (errors, scene) = (&mut self.errors, &mut self.scene);
         match key {
+            "at_rest" => set(
+                &mut scene.at_rest,
+                errors.pick(name, &[("true", true), ("false", false)], |other| {
+                    format!(
+                        "unknown at_rest `{other}`; expected `true` (a static scene) or `false`"
+                    )
+                }),
+            ),
             "velocities" => set(
-                &mut scene.zero_velocities,
+                &mut scene.at_rest,
                 errors.pick(name, &[("zero", true), ("free", false)], |other| {
                     format!(
                         "unknown velocities `{other}`; expected `zero` (a static scene) or `free`"
@@ -301,10 +341,10 @@ impl Checker {
 
     /// The settings given by a name that choose how the module is generated.
     fn generation_choice(&mut self, key: &str, name: &Ident) {
-        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        let (errors, options) = (&mut self.errors, &mut self.options);
         match key {
             "forward_dynamics" => set(
-                &mut scene.forward_dynamics,
+                &mut options.forward_dynamics,
                 errors.pick(
                     name,
                     &[
@@ -320,7 +360,7 @@ impl Checker {
                 ),
             ),
             "parameters" => set(
-                &mut scene.parameters,
+                &mut options.parameters,
                 errors.pick(
                     name,
                     &[
@@ -337,7 +377,7 @@ impl Checker {
                 ),
             ),
             "scalar" => set(
-                &mut scene.scalar,
+                &mut options.scalar,
                 errors.pick(
                     name,
                     &[
@@ -354,10 +394,10 @@ impl Checker {
 
     /// The generation settings that turn something on or off.
     fn switch(&mut self, key: &str, name: &Ident) {
-        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        let (errors, options) = (&mut self.errors, &mut self.options);
         match key {
             "validation" => set(
-                &mut scene.strict,
+                &mut options.strict,
                 errors.pick(name, &[("strict", true), ("warn", false)], |other| {
                     format!(
                         "unknown validation `{other}`; expected `warn` (warnings in the module's \
@@ -366,13 +406,13 @@ impl Checker {
                 }),
             ),
             "fma" => set(
-                &mut scene.fma,
+                &mut options.fma,
                 errors.pick(name, &[("true", true), ("false", false)], |other| {
                     format!("unknown fma `{other}`; expected `true` or `false`")
                 }),
             ),
             _ => set(
-                &mut scene.derivative_lanes,
+                &mut options.derivative_lanes,
                 errors.pick(name, &[("lanes", true), ("scalar", false)], |other| {
                     format!(
                         "unknown derivatives `{other}`; expected `lanes` (four directions per \
@@ -397,6 +437,8 @@ impl Checker {
                 name: input.name,
                 robot,
                 scene: self.scene,
+                options: self.options,
+                deprecated: self.deprecated,
                 lock_spans: self.lock_spans,
                 output_spans: self.output_spans,
                 frame_spans: self.frame_spans,
@@ -424,6 +466,7 @@ fn expected_shape(key: &str) -> String {
         }
         "gravity" => "expected three numbers: `gravity: [0.0, 0.0, -9.81]`".into(),
         "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
+        "at_rest" => "expected `true` or `false`".into(),
         "velocities" => "expected `zero` or `free`".into(),
         "base" => "expected `fixed` or `floating`".into(),
         "mimic" => "expected `constrained` or `free`".into(),

@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use clap::Args;
-use rne_codegen::{generate, Scene};
+use rne_codegen::{generate, GenerationOptions, Scene};
 use rne_symbolic::spec::LoadOptions;
 
 use super::accuracy::Compare;
@@ -57,7 +57,12 @@ pub fn run(args: &VerifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let mut failures = Vec::new();
     for robot in robots {
         let model = RobotSource::Builtin(robot).load(&LoadOptions::default())?;
-        let module = generate(&model, &Scene::default(), robot.file)?;
+        let module = generate(
+            &model,
+            &Scene::default(),
+            &GenerationOptions::default(),
+            robot.file,
+        )?;
         writeln!(
             out,
             "{} ({} joints): every kernel generated in {:.1} ms",
