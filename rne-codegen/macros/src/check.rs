@@ -2,7 +2,7 @@
 //! settings) and `GenerationOptions` (the others), collecting all errors (each spanned on the
 //! offending token) before reporting them.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use proc_macro2::Span;
 use rne_codegen_core::{
@@ -114,7 +114,8 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
 #[derive(Default)]
 struct Checker {
     errors: Errors,
-    seen: BTreeSet<&'static str>,
+    /// The settings given so far, by their current key, as they were spelled.
+    seen: BTreeMap<&'static str, String>,
     robot: Option<LitStr>,
     scene: Scene,
     options: GenerationOptions,
@@ -142,12 +143,13 @@ impl Checker {
             self.errors.push(key.span(), message);
             return None;
         };
-        if !self.seen.insert(known) {
-            let message = match old {
-                Some((old, current, _)) => {
-                    format!("`{old}` is given twice (it is the old spelling of `{current}`)")
-                }
-                None => format!("`{name}` is given twice"),
+        if let Some(earlier) = self.seen.insert(known, name.clone()) {
+            let message = match earlier == name {
+                true => format!("`{name}` is given twice"),
+                false => format!(
+                    "`{name}` is given already as `{earlier}` (one is the deprecated spelling \
+                     of the other); give it once"
+                ),
             };
             self.errors.push(key.span(), message);
             return None;
@@ -425,7 +427,7 @@ impl Checker {
 
     /// The checked module, or every error found.
     fn finish(mut self, input: DynamicsModule) -> syn::Result<CheckedModule> {
-        if self.robot.is_none() && !self.seen.contains("robot") {
+        if self.robot.is_none() && !self.seen.contains_key("robot") {
             self.errors
                 .push(input.name.span(), "missing `robot: \"path/to/robot.toml\"`");
         }
@@ -481,5 +483,67 @@ fn expected_shape(key: &str) -> String {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }
         _ => "expected `f64`, `f32` or `generic`".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The checked module of `settings` (after `robot: "r.toml",`).
+    fn checked(settings: &str) -> syn::Result<CheckedModule> {
+        let input = format!("mod m {{ robot: \"r.toml\", {settings} }}");
+        check(syn::parse_str(&input).expect("the settings parse"))
+    }
+
+    #[test]
+    fn at_rest_true_makes_a_static_scene_without_a_deprecation() {
+        let module = checked("at_rest: true,").unwrap();
+        assert!(module.scene.at_rest);
+        assert!(module.deprecated.is_empty());
+        assert!(!checked("at_rest: false,").unwrap().scene.at_rest);
+        assert!(!checked("").unwrap().scene.at_rest, "moving by default");
+    }
+
+    #[test]
+    fn velocities_zero_is_at_rest_noted_as_deprecated_on_its_key() {
+        let module = checked("velocities: zero,").unwrap();
+        assert!(module.scene.at_rest);
+        let [(key, note)] = &module.deprecated[..] else {
+            panic!("one deprecation: {:?}", module.deprecated.len())
+        };
+        assert_eq!(key.to_string(), "velocities");
+        assert!(note.contains("at_rest: true"), "{note}");
+        assert!(!checked("velocities: free,").unwrap().scene.at_rest);
+    }
+
+    #[test]
+    fn both_spellings_are_one_setting_given_twice() {
+        for settings in [
+            "at_rest: true, velocities: zero,",
+            "velocities: zero, at_rest: true,",
+        ] {
+            let error = checked(settings).err().expect("an error").to_string();
+            assert!(
+                error.contains("is given already as") && error.contains("deprecated spelling"),
+                "{settings}: {error}"
+            );
+        }
+    }
+
+    #[test]
+    fn physical_settings_go_to_the_scene_and_the_others_to_the_options() {
+        let module = checked(
+            "gravity: [0.0, 0.0, 0.0], lock: { q1: 0.5 }, friction: include, \
+             outputs: [mass_matrix], scalar: f32, fma: true, parameters: runtime,",
+        )
+        .unwrap();
+        assert_eq!(module.scene.gravity, Some([0.0; 3]));
+        assert_eq!(module.scene.lock, [("q1".to_owned(), 0.5)]);
+        assert!(module.scene.friction);
+        assert_eq!(module.options.outputs, [Kernel::MassMatrix]);
+        assert_eq!(module.options.scalar, ScalarType::F32);
+        assert!(module.options.fma);
+        assert_eq!(module.options.parameters, ParameterMode::Runtime);
     }
 }
