@@ -32,7 +32,7 @@
 //! a `Model` type implementing [`Dynamics`]. The module is regenerated when the robot file
 //! changes. Scene settings generate only what the application needs:
 //! `gravity: [0.0, 0.0, 0.0]` removes every gravity term, `lock: { q1: 0.0, "joint 8": 0.0 }`
-//! turns joints into constants, `velocities: zero` makes a static scene (q̇ = 0: no Coriolis
+//! turns joints into constants, `at_rest: true` makes a static scene (q̇ = 0: no Coriolis
 //! or centrifugal terms), `parameters: runtime` reads the model parameters from a `Params`
 //! struct at run time (`parameters: base`: the base parameters, the identifiable combinations
 //! of masses and inertias, with `Params::from_standard`), `scalar: f32 | generic` changes the scalar type (generic functions
@@ -88,8 +88,8 @@ pub use rne_codegen_core::{
     build_kernel, build_kernel_with, c_identifier, emit_c, generate, generate_c,
     generate_from_path, generate_programs, kernel_program, Builder, BuiltKernel, CModule,
     CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule, GeneratedPrograms,
-    Instr, KernelProgram, KernelReport, KernelSetup, MimicMode, Operand, ParameterMode, Program,
-    ScalarType, Scene, KEEP_GENERATED_ENV,
+    GenerationOptions, Instr, KernelProgram, KernelReport, KernelSetup, MimicMode, Operand,
+    ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
 };
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not

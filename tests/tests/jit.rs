@@ -8,7 +8,7 @@
 use std::path::PathBuf;
 
 use rne_codegen::{Dynamics, Kernel};
-use rne_codegen_core::{read_robot, ParameterMode, Program, Scene};
+use rne_codegen_core::{read_robot, GenerationOptions, ParameterMode, Program, Scene};
 use rne_interpreted::StateRef;
 use rne_jit::{Batch, JitError, JitModel, State};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
@@ -106,10 +106,10 @@ fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
     }
 }
 
-fn all_kernels() -> Scene {
-    Scene {
+fn all_kernels() -> GenerationOptions {
+    GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
-        ..Scene::default()
+        ..GenerationOptions::default()
     }
 }
 
@@ -132,7 +132,13 @@ fn builtin_states() -> usize {
 #[test]
 fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &all_kernels(), robot.name).unwrap();
+        let jit = JitModel::compile(
+            &builtin(robot),
+            &Scene::default(),
+            &all_kernels(),
+            robot.name,
+        )
+        .unwrap();
         assert_eq!(jit.kernels().len(), Kernel::ALL.len());
         check_against_programs(
             &jit,
@@ -147,7 +153,13 @@ fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
 #[test]
 fn the_dynamics_kernels_are_the_compiled_modules_bit_for_bit() {
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+        let jit = JitModel::compile(
+            &builtin(robot),
+            &Scene::default(),
+            &GenerationOptions::default(),
+            robot.name,
+        )
+        .unwrap();
         let states = States::new(&jit, 1_000, 0x718);
         robot.visit(AgainstCompiled {
             jit: &jit,
@@ -207,11 +219,12 @@ fn every_kernel_of_the_committed_robot_files_on_both_bases() {
         for base in [Base::Fixed, Base::Floating] {
             let scene = Scene {
                 base: Some(base),
-                ..all_kernels()
+                ..Scene::default()
             };
             let what = format!("{} {base:?}", path.display());
-            let model = read_robot(&path, &path.display().to_string(), &scene).unwrap();
-            let jit = JitModel::compile(&model, &scene, &what).unwrap();
+            let file = path.display().to_string();
+            let model = read_robot(&path, &file, &scene, &all_kernels()).unwrap();
+            let jit = JitModel::compile(&model, &scene, &all_kernels(), &what).unwrap();
             check_against_programs(&jit, &States::new(&jit, 50, 0x719), &what);
         }
     }
@@ -244,10 +257,11 @@ fn every_kernel_of_the_urdfs_of_a_directory() {
     let (mut checked, mut refused) = (0, Vec::new());
     for path in &files {
         let what = path.display().to_string();
-        let compiled = read_robot(path, &what, &all_kernels())
+        let scene = Scene::default();
+        let compiled = read_robot(path, &what, &scene, &all_kernels())
             .map_err(|e| e.to_string())
             .and_then(|model| {
-                JitModel::compile_at(&model, &all_kernels(), &what, rne_jit::Tier::Fast)
+                JitModel::compile_at(&model, &scene, &all_kernels(), &what, rne_jit::Tier::Fast)
                     .map_err(|e| e.to_string())
             });
         match compiled {
@@ -274,12 +288,13 @@ fn every_kernel_of_the_urdfs_of_a_directory() {
 /// where it does not (as the runtime's `mul_add` there).
 #[test]
 fn with_fma_every_kernel_is_its_fused_program() {
-    let scene = Scene {
+    let options = GenerationOptions {
         fma: true,
         ..all_kernels()
     };
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+        let jit =
+            JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
         let fuses = cfg!(target_arch = "aarch64") || std::is_x86_feature_detected!("fma");
         assert_eq!(
             jit.fused(),
@@ -294,7 +309,7 @@ fn with_fma_every_kernel_is_its_fused_program() {
 #[test]
 fn runtime_parameters_are_read_at_every_call() {
     let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         parameters: ParameterMode::Runtime,
         ..all_kernels()
     };
@@ -304,7 +319,7 @@ fn runtime_parameters_are_read_at_every_call() {
             ..LoadOptions::default()
         })
         .unwrap();
-    let mut jit = JitModel::compile(&model, &scene, robot.name).unwrap();
+    let mut jit = JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap();
     assert!(!jit.parameter_symbols().is_empty());
     let states = States::new(&jit, 200, 0x71b);
     check_against_programs(&jit, &states, "spec values");
@@ -330,11 +345,11 @@ fn runtime_parameters_are_read_at_every_call() {
 #[test]
 fn bad_calls_are_errors() {
     let robot = rne_models::builtin::builtin("ur5").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
     let (q, v) = (vec![0.1; 6], vec![0.2; 6]);
     let state = State {
         q: &q,
@@ -407,11 +422,11 @@ fn bad_calls_are_errors() {
 #[test]
 fn batches_and_threads_give_the_single_calls() {
     let robot = rne_models::builtin::builtin("panda-arm").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::ForwardDynamics, Kernel::InverseDynamicsDerivatives],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
     let states = States::new(&jit, 333, 0x71c);
     let flat = |v: &[Vec<f64>]| v.concat();
     let (q, qd, qdd, tau) = (
@@ -448,7 +463,13 @@ fn batches_and_threads_give_the_single_calls() {
 fn a_model_is_shared_between_threads() {
     fn shared<T: Send + Sync>(_: &T) {}
     let robot = rne_models::builtin::builtin("puma560").unwrap();
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+    let jit = JitModel::compile(
+        &builtin(robot),
+        &Scene::default(),
+        &GenerationOptions::default(),
+        robot.name,
+    )
+    .unwrap();
     shared(&jit);
     let states = States::new(&jit, 64, 0x71d);
     let expected: Vec<Vec<f64>> = (0..states.len())
@@ -494,14 +515,14 @@ fn dropped_models_free_their_code() {
     }
     let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
     let model = builtin(robot);
-    let scene = Scene::default();
+    let options = GenerationOptions::default();
     let resident = || -> usize {
         let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
         let pages: usize = statm.split_whitespace().nth(1).unwrap().parse().unwrap();
         pages * 4096
     };
     for _ in 0..50 {
-        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+        drop(JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap());
     }
     let before = resident();
     // RNE_JIT_DROPS=10000 for the figure of docs/performance.md.
@@ -510,7 +531,7 @@ fn dropped_models_free_their_code() {
         .and_then(|n| n.parse().ok())
         .unwrap_or(500);
     for _ in 0..drops {
-        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+        drop(JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap());
     }
     let grown = resident().saturating_sub(before);
     eprintln!("resident memory grew by {grown} bytes over {drops} models");
@@ -594,7 +615,13 @@ impl RuntimeTrig for f64 {
 fn both_tiers_compute_the_same_bits() {
     let robot = rne_models::builtin::builtin("ur5").unwrap();
     let model = builtin(robot);
-    let fast =
-        JitModel::compile_at(&model, &all_kernels(), robot.name, rne_jit::Tier::Fast).unwrap();
+    let fast = JitModel::compile_at(
+        &model,
+        &Scene::default(),
+        &all_kernels(),
+        robot.name,
+        rne_jit::Tier::Fast,
+    )
+    .unwrap();
     check_against_programs(&fast, &States::new(&fast, 200, 0x71e), "ur5, fast tier");
 }

@@ -1,5 +1,6 @@
-//! The code generator behind `rne-codegen`: from a robot model and a scene to a module of
-//! flat Rust functions.
+//! The code generator behind `rne-codegen`: from a robot model, its [`Scene`] (the physical
+//! world: gravity, locked joints, rest, base, mimic, friction) and the [`GenerationOptions`]
+//! (which functions, scalar, parameters, arithmetic) to a module of flat Rust functions.
 //!
 //! Pipeline: the scene is applied to the model (gravity, locked joints); each requested
 //! kernel is built by the symbolic dynamics into an expression graph of its own
@@ -53,6 +54,7 @@ mod dispatch;
 mod emit;
 mod emit_c;
 mod error;
+mod generation_options;
 mod kernel;
 mod latency;
 mod linear;
@@ -74,6 +76,9 @@ pub use dispatch::DISPATCH_FROM;
 pub use emit::{argument, emit_kernel, return_type, EmitContext};
 pub use emit_c::{c_identifier, emit_c, generate_c, CModule};
 pub use error::CodegenError;
+pub use generation_options::{
+    ForwardDynamicsMethod, GenerationOptions, ParameterMode, ScalarType, DEFAULT_CRATE_PATH,
+};
 pub use kernel::{
     articulated_applies, build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel,
 };
@@ -82,8 +87,6 @@ pub use load::{generate_from_path, read_robot};
 pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
-pub use scene::{
-    ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene, DEFAULT_CRATE_PATH,
-};
+pub use scene::{MimicMode, Scene};
 pub use shape::{Layout, Size};
 pub use split::{PART_LEN, SPLIT_ABOVE};

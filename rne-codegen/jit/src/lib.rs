@@ -3,11 +3,12 @@
 //! processor by Cranelift (the Wasmtime project's code generator), with no Rust build.
 //!
 //! ```no_run
-//! use rne_codegen_core::{Kernel, Scene};
+//! use rne_codegen_core::{GenerationOptions, Kernel, Scene};
 //! use rne_jit::{JitModel, State};
 //!
-//! let scene = Scene { outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix], ..Scene::default() };
-//! let model = JitModel::load("robots/ur5.urdf".as_ref(), &scene)?;
+//! let outputs = vec![Kernel::InverseDynamics, Kernel::MassMatrix];
+//! let options = GenerationOptions { outputs, ..GenerationOptions::default() };
+//! let model = JitModel::load("robots/ur5.urdf".as_ref(), &Scene::default(), &options)?;
 //! let (q, qd, qdd) = (vec![0.1; 6], vec![0.0; 6], vec![0.0; 6]);
 //! let tau = model.evaluate_vec(Kernel::InverseDynamics, State { q: &q, qd: &qd, qdd: &qdd, ..State::default() })?;
 //! # Ok::<(), rne_jit::JitError>(())

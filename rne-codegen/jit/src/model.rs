@@ -6,7 +6,9 @@ use std::time::{Duration, Instant};
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::default_libcall_names;
-use rne_codegen_core::{generate_programs, read_robot, GeneratedPrograms, Input, Kernel, Scene};
+use rne_codegen_core::{
+    generate_programs, read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel, Scene,
+};
 use rne_symbolic::RobotModel;
 
 use crate::code::{self, Arrays, Code, Entry};
@@ -86,30 +88,40 @@ pub struct JitModel {
 }
 
 impl JitModel {
-    /// Reads the robot file `path` (TOML spec or URDF) as `scene` says and compiles the
-    /// kernels the scene asks for.
-    pub fn load(path: &Path, scene: &Scene) -> Result<JitModel, JitError> {
+    /// Reads the robot file `path` (TOML spec or URDF) as `scene` and `options` say and
+    /// compiles the kernels the options ask for.
+    pub fn load(
+        path: &Path,
+        scene: &Scene,
+        options: &GenerationOptions,
+    ) -> Result<JitModel, JitError> {
         let origin = path.display().to_string();
-        let model = read_robot(path, &origin, scene)?;
-        JitModel::compile(&model, scene, &origin)
+        let model = read_robot(path, &origin, scene, options)?;
+        JitModel::compile(&model, scene, options, &origin)
     }
 
-    /// Compiles the kernels `scene` asks for, for `model`, at [`Tier::Optimized`]; `source`
-    /// names the robot file in errors.
-    pub fn compile(model: &RobotModel, scene: &Scene, source: &str) -> Result<JitModel, JitError> {
-        JitModel::compile_at(model, scene, source, Tier::Optimized)
+    /// Compiles the kernels `options` ask for, for `model` in `scene`, at [`Tier::Optimized`];
+    /// `source` names the robot file in errors.
+    pub fn compile(
+        model: &RobotModel,
+        scene: &Scene,
+        options: &GenerationOptions,
+        source: &str,
+    ) -> Result<JitModel, JitError> {
+        JitModel::compile_at(model, scene, options, source, Tier::Optimized)
     }
 
-    /// Compiles the kernels `scene` asks for, for `model`, at `tier`.
+    /// Compiles the kernels `options` ask for, for `model` in `scene`, at `tier`.
     pub fn compile_at(
         model: &RobotModel,
         scene: &Scene,
+        options: &GenerationOptions,
         source: &str,
         tier: Tier,
     ) -> Result<JitModel, JitError> {
-        let programs = generate_programs(model, scene, source)?;
+        let programs = generate_programs(model, scene, options, source)?;
         let start = Instant::now();
-        let (mut module, fused) = host_module(scene.fma, tier)?;
+        let (mut module, fused) = host_module(options.fma, tier)?;
         let mut lowering =
             Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
                 kernel: programs
@@ -219,7 +231,7 @@ impl JitModel {
         &self.base_parameter_names
     }
 
-    /// The kernels compiled, in the scene's order.
+    /// The kernels compiled, in the options' order.
     pub fn kernels(&self) -> Vec<Kernel> {
         self.kernels.iter().map(|k| k.kernel).collect()
     }
@@ -234,7 +246,7 @@ impl JitModel {
         self.compiled(kernel).map(|k| k.outputs)
     }
 
-    /// Whether multiply-adds are fused: the scene's `fma` on a processor with FMA.
+    /// Whether multiply-adds are fused: the options' `fma` on a processor with FMA.
     pub fn fused(&self) -> bool {
         self.fused
     }

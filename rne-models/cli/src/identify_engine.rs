@@ -6,7 +6,7 @@
 
 use clap::ValueEnum;
 use nalgebra::DMatrix;
-use rne_codegen::{Kernel, Scene};
+use rne_codegen::{GenerationOptions, Kernel, Scene};
 use rne_identify::{IdentifyError, Regressors};
 use rne_jit::{JitError, JitModel, State};
 use rne_reference::Reference;
@@ -41,11 +41,14 @@ impl JitRegressors {
         reference: &Reference,
     ) -> Result<JitRegressors, CliError> {
         let scene = Scene {
-            outputs: vec![Kernel::InverseDynamics, Kernel::Regressor],
             friction: true,
             ..scene
         };
-        let model = JitModel::compile(model, &scene, source)?;
+        let options = GenerationOptions {
+            outputs: vec![Kernel::InverseDynamics, Kernel::Regressor],
+            ..GenerationOptions::default()
+        };
+        let model = JitModel::compile(model, &scene, &options, source)?;
         let columns = model.output_len(Kernel::Regressor).unwrap_or(0) / model.nv().max(1);
         if columns != reference.parameter_count() {
             return Err(CliError::Argument(format!(

@@ -1,6 +1,6 @@
 //! Argument parsing shared by the subcommands, and the command's error type.
 
-use rne_codegen::{Kernel, Scene};
+use rne_codegen::{GenerationOptions, Kernel, Scene};
 
 /// Why a command failed; printed as `error: ...` with a non-zero exit code. Every library
 /// error is kept whole in a variant of its own, so that the message says what failed (a bad
@@ -208,15 +208,16 @@ pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
         .collect()
 }
 
-/// The scene described by the `--outputs`, `--gravity` and `--lock` options.
-pub fn scene(
+/// The scene described by the `--gravity` and `--lock` options, and the generation options
+/// described by `--outputs`.
+pub fn scene_and_options(
     outputs: Option<&str>,
     gravity: Option<&str>,
     lock: Option<&str>,
-) -> Result<Scene, CliError> {
-    let mut scene = Scene::default();
+) -> Result<(Scene, GenerationOptions), CliError> {
+    let (mut scene, mut options) = (Scene::default(), GenerationOptions::default());
     if let Some(outputs) = outputs {
-        scene.outputs = outputs
+        options.outputs = outputs
             .split(',')
             .map(|name| {
                 let name = name.trim();
@@ -234,5 +235,5 @@ pub fn scene(
     if let Some(lock) = lock {
         scene.lock = parse_locks(lock)?;
     }
-    Ok(scene)
+    Ok((scene, options))
 }

@@ -6,7 +6,7 @@
 
 use std::ops::Deref;
 
-use rne_codegen::{Kernel, Scene};
+use rne_codegen::{GenerationOptions, Kernel, Scene};
 use rne_interpreted::{Interpreted, JointState};
 use rne_jit::{JitModel, State};
 use rne_symbolic::RobotModel;
@@ -40,16 +40,18 @@ impl Probe {
         let compiled = match engine {
             Engine::Interpreted => None,
             Engine::Jit => {
-                let scene = Scene {
+                let options = GenerationOptions {
                     outputs: kernels.to_vec(),
-                    ..Scene::default()
+                    ..GenerationOptions::default()
                 };
-                let compiled = JitModel::compile(model, &scene, robot).map_err(|cause| {
-                    StressError::Compile {
-                        robot: robot.to_owned(),
-                        cause,
-                    }
-                })?;
+                let scene = Scene::default();
+                let compiled =
+                    JitModel::compile(model, &scene, &options, robot).map_err(|cause| {
+                        StressError::Compile {
+                            robot: robot.to_owned(),
+                            cause,
+                        }
+                    })?;
                 Some(compiled)
             }
         };

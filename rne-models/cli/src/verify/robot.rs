@@ -4,7 +4,7 @@
 
 use std::time::Duration;
 
-use rne_codegen::{Kernel, Scene};
+use rne_codegen::{GenerationOptions, Kernel, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, KernelAgreement};
 use rne_jit::JitModel;
 use rne_models::{BuiltinRobot, RobotSource};
@@ -58,11 +58,11 @@ pub fn check(
     tolerance: Option<f64>,
 ) -> Result<RobotCheck, CliError> {
     let model = RobotSource::Builtin(robot).load(&LoadOptions::default())?;
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(&model, &scene, robot.file)?;
+    let jit = JitModel::compile(&model, &Scene::default(), &options, robot.file)?;
     let programs = jit.programs();
     let states = random_states(jit.nq(), jit.nv(), samples, seed);
     let jit_errors = check_kernels(&programs.model, false, &jit, &Kernel::ALL, &states)?;
@@ -154,11 +154,11 @@ mod tests {
         let model = RobotSource::Builtin(robot)
             .load(&LoadOptions::default())
             .unwrap();
-        let scene = Scene {
+        let options = GenerationOptions {
             outputs: Kernel::ALL.to_vec(),
-            ..Scene::default()
+            ..GenerationOptions::default()
         };
-        let jit = JitModel::compile(&model, &scene, robot.file).unwrap();
+        let jit = JitModel::compile(&model, &Scene::default(), &options, robot.file).unwrap();
         let states = random_states(jit.nq(), jit.nv(), 50, 7);
         let engine = Perturbed {
             jit: &jit,
