@@ -40,7 +40,10 @@ fn m_label(i: usize, j: usize) -> String {
 fn the_page_holds_every_entry_as_mathml_in_a_collapsible_block() {
     let dir = scratch("entries");
     let html = page(&dir, &[]);
-    assert!(html.contains("<title>Equations of planar-elbow</title>"), "{html}");
+    assert!(
+        html.contains("<title>Equations of planar-elbow</title>"),
+        "{html}"
+    );
     for joint in ["<code>q1</code>", "<code>q2</code>"] {
         assert!(html.contains(joint), "{joint} missing");
     }
@@ -52,13 +55,19 @@ fn the_page_holds_every_entry_as_mathml_in_a_collapsible_block() {
         assert!(html.contains(&block), "no block for M[{i},{j}]:\n{html}");
     }
     for entry in ["tau[1]", "tau[2]", "C[2,1]", "g[1]", "g[2]", "T", "V"] {
-        assert!(html.contains(&format!("<summary>{entry}</summary>")), "{entry}");
+        assert!(
+            html.contains(&format!("<summary>{entry}</summary>")),
+            "{entry}"
+        );
     }
     // M[1,1] = a + b c2: the cosine of the elbow angle as the thesis abbreviates it.
     assert!(html.contains("<msub><mi>c</mi><mn>2</mn></msub>"), "{html}");
     assert!(html.contains("<section id=\"program\">"), "{html}");
     assert!(html.contains("<msub><mi>c</mi><mn>2</mn></msub><mo>=</mo><mi>cos</mi>"));
-    assert!(!html.contains("http"), "the page must not reach the network");
+    assert!(
+        !html.contains("http"),
+        "the page must not reach the network"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -107,7 +116,10 @@ fn chromium() -> Option<PathBuf> {
         .find(|p| p.is_file());
     if found.is_none() {
         let ci = std::env::var("CI").is_ok_and(|v| v == "true");
-        assert!(!ci, "chromium is not installed, and CI=true needs it (.ci/run installs it)");
+        assert!(
+            !ci,
+            "chromium is not installed, and CI=true needs it (.ci/run installs it)"
+        );
         println!("skipped: chromium is not installed (CI installs it)");
     }
     found
@@ -168,6 +180,9 @@ fn chromium_renders_the_equations_as_mathematics() {
     let height: f64 = attribute("height").parse().unwrap();
     assert!(height > 0.0, "the first formula has height {height}");
     let lowered: f64 = attribute("lowered").parse().unwrap();
-    assert!(lowered > 0.0, "a subscript is not set below its base ({lowered})");
+    assert!(
+        lowered > 0.0,
+        "a subscript is not set below its base ({lowered})"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

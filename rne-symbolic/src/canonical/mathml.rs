@@ -133,7 +133,12 @@ pub fn number(text: &str) -> String {
                 Some(magnitude) => format!("{}{}", minus(), mn(magnitude)),
                 None => mn(exponent),
             };
-            mrow(&format!("{}{}{}", mn(mantissa), mo("·"), msup(&mn("10"), &power)))
+            mrow(&format!(
+                "{}{}{}",
+                mn(mantissa),
+                mo("·"),
+                msup(&mn("10"), &power)
+            ))
         }
         None => mn(text),
     }
@@ -178,7 +183,12 @@ pub(super) fn joint_label(symbols: &SymbolTable, joint: u16) -> String {
 
 /// A joint variable with an accent (`None`, `Some('˙')` for q̇, `Some('¨')` for q̈) or
 /// another letter (`τ`): `q` with the joint's label as subscript.
-pub(super) fn joint(symbols: &SymbolTable, joint: u16, letter: &str, accent: Option<char>) -> String {
+pub(super) fn joint(
+    symbols: &SymbolTable,
+    joint: u16,
+    letter: &str,
+    accent: Option<char>,
+) -> String {
     let base = match accent {
         Some(dots) => accented(letter, dots),
         None => mi(letter),

@@ -241,7 +241,11 @@ impl<'a> Printer<'a> {
             (e, PrintFormat::Latex) => format!("{base}^{{{e}}}"),
             (e, PrintFormat::MathMl) if e < 0 => mathml::msup(
                 &base,
-                &format!("{}{}", mathml::minus(), mathml::mn(&e.unsigned_abs().to_string())),
+                &format!(
+                    "{}{}",
+                    mathml::minus(),
+                    mathml::mn(&e.unsigned_abs().to_string())
+                ),
             ),
             (e, PrintFormat::MathMl) => mathml::msup(&base, &mathml::mn(&e.to_string())),
         }
@@ -320,7 +324,10 @@ impl<'a> Printer<'a> {
             };
             match n.abs() {
                 1 => (n < 0, joint),
-                m => (n < 0, format!("{} {joint}", number(f64::from(m), None, self.format))),
+                m => (
+                    n < 0,
+                    format!("{} {joint}", number(f64::from(m), None, self.format)),
+                ),
             }
         });
         let argument = self.join(chunks.collect());
@@ -564,6 +571,75 @@ mod tests {
         assert_eq!(text(&g, &Polynomial::zero()), "0");
         let quotient = parse(&mut g, "(/ (* 2 q1) m1)");
         assert_eq!(text(&g, &quotient), "2 m1^-1 q1");
+    }
+
+    /// Whether every opened tag of `markup` closes, in order.
+    fn balanced(markup: &str) -> bool {
+        let mut open = Vec::new();
+        for tag in markup.split('<').skip(1) {
+            let name = tag.split(['>', ' ']).next().unwrap_or("");
+            match name.strip_prefix('/') {
+                Some(closed) if open.pop() != Some(closed) => return false,
+                Some(_) => {}
+                None => open.push(name),
+            }
+        }
+        open.is_empty()
+    }
+
+    #[test]
+    fn mathml_writes_the_thesis_terms_as_elements() {
+        let mut g = elbow_graph();
+        let m11 = parse(&mut g, THESIS_M[0][0]);
+        let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&m11);
+        let sub = |a: &str, b: &str| format!("<msub>{a}{b}</msub>");
+        let (i1, i2) = (
+            sub("<mi>I</mi>", "<mn>1</mn>"),
+            sub("<mi>I</mi>", "<mn>2</mn>"),
+        );
+        let (l1, lc1) = (
+            sub("<mi>l</mi>", "<mn>1</mn>"),
+            sub("<mi>l</mi>", "<mi>c1</mi>"),
+        );
+        let (m1, m2) = (
+            sub("<mi>m</mi>", "<mn>1</mn>"),
+            sub("<mi>m</mi>", "<mn>2</mn>"),
+        );
+        let (lc2, c2) = (
+            sub("<mi>l</mi>", "<mi>c2</mi>"),
+            sub("<mi>c</mi>", "<mn>2</mn>"),
+        );
+        let square = |x: &str| format!("<msup>{x}<mn>2</mn></msup>");
+        let plus = "<mo>+</mo>";
+        let expected = format!(
+            "{i1}{plus}{i2}{plus}{} {m1}{plus}{m2} <mrow><mo>(</mo>{}{plus}{}{plus}<mn>2</mn> \
+             {l1} {lc2} {c2}<mo>)</mo></mrow>",
+            square(&lc1),
+            square(&l1),
+            square(&lc2)
+        );
+        assert_eq!(printed, expected);
+        let tau = planar_elbow(&mut g);
+        for t in Polynomial::from_exprs(&g, &tau).unwrap() {
+            let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&t);
+            assert!(balanced(&printed), "{printed}");
+            assert!(printed.contains("<mover accent=\"true\"><mi>q</mi><mo>\u{a8}</mo></mover>"));
+        }
+    }
+
+    #[test]
+    fn mathml_writes_longhand_harmonics_powers_and_zero() {
+        let mut g = graph(&["q1", "q2", "q3"], &["m1"]);
+        let p = parse(&mut g, "(+ (sin (+ (* 2 q2) (- q3))) (/ 3 m1))");
+        let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&p);
+        assert_eq!(
+            printed,
+            "<mn>3</mn> <msup><msub><mi>m</mi><mn>1</mn></msub><mrow><mo>\u{2212}</mo><mn>1</mn></mrow></msup>\
+             <mo>+</mo><mi>sin</mi><mo>&#x2061;</mo><mrow><mo>(</mo><mn>2</mn> \
+             <msub><mi>q</mi><mn>2</mn></msub><mo>\u{2212}</mo><msub><mi>q</mi><mn>3</mn></msub><mo>)</mo></mrow>"
+        );
+        let zero = Printer::new(g.symbols(), PrintFormat::MathMl).print(&Polynomial::zero());
+        assert_eq!(zero, "<mn>0</mn>");
     }
 
     #[test]

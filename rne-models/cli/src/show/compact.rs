@@ -194,7 +194,11 @@ impl<'a> Names<'a> {
             Instr::Add(a, b) => format!("{}{plus}{}", o(a), o(b)),
             Instr::Sub(a, b) => format!("{}{minus}{}", o(a), o(b)),
             Instr::Mul(a, b) => format!("{}{times}{}", o(a), o(b)),
-            Instr::Div(a, b) => format!("<mfrac>{}{}</mfrac>", mathml::mrow(&o(a)), mathml::mrow(&o(b))),
+            Instr::Div(a, b) => format!(
+                "<mfrac>{}{}</mfrac>",
+                mathml::mrow(&o(a)),
+                mathml::mrow(&o(b))
+            ),
             Instr::Neg(a) => format!("{minus}{}", o(a)),
             Instr::Sin(a) => mathml::function("sin", &o(a)),
             Instr::Cos(a) => mathml::function("cos", &o(a)),
@@ -209,9 +213,9 @@ impl<'a> Names<'a> {
     fn operand(&self, operand: Operand) -> String {
         match operand {
             Operand::Temp(t) | Operand::Lane { temp: t, .. } => self.temps[t as usize].clone(),
-            Operand::Const(c) if self.format == Format::Html && c < 0.0 => {
-                mathml::parenthesised(&format!("{}{}", mathml::minus(), mathml::number(&format!("{}", -c))))
-            }
+            Operand::Const(c) if self.format == Format::Html && c < 0.0 => mathml::parenthesised(
+                &format!("{}{}", mathml::minus(), mathml::number(&format!("{}", -c))),
+            ),
             Operand::Const(c) if self.format == Format::Html => mathml::number(&format!("{c}")),
             Operand::Const(c) if c < 0.0 => format!("({c})"),
             Operand::Const(c) => format!("{c}"),

@@ -152,10 +152,7 @@ fn frame(format: Format, title: &str) -> (Option<String>, &'static str) {
         Format::Text => (Some(format!("\n# {title}\n")), ""),
         Format::Latex => (Some(format!("\n% {title}\n")), ""),
         Format::Html => (
-            Some(format!(
-                "<section>\n<h2>{}</h2>\n",
-                mathml::escape(title)
-            )),
+            Some(format!("<section>\n<h2>{}</h2>\n", mathml::escape(title))),
             "</section>\n",
         ),
     }
@@ -169,7 +166,11 @@ fn entry(format: Format, key: &EntryKey, printed: &str) -> String {
         Format::Html => format!(
             "<details open><summary>{}</summary>{}</details>\n",
             mathml::escape(&key.text()),
-            mathml::math(&format!("{}{}{printed}", mathml_label(key), mathml::mo("=")))
+            mathml::math(&format!(
+                "{}{}{printed}",
+                mathml_label(key),
+                mathml::mo("=")
+            ))
         ),
     }
 }

@@ -56,9 +56,8 @@ pub fn write(
     summary::compact(args, program, &mut page)?;
     writeln!(page, "</section>\n</body>\n</html>")?;
     let path = dir.join("index.html");
-    std::fs::write(&path, &page).map_err(|e| {
-        CliError::Argument(format!("--out: cannot write {}: {e}", path.display()))
-    })?;
+    std::fs::write(&path, &page)
+        .map_err(|e| CliError::Argument(format!("--out: cannot write {}: {e}", path.display())))?;
     writeln!(
         out,
         "wrote {} ({}: {shown}{} of {} program lines)",

@@ -130,14 +130,16 @@ pub fn label(key: &EntryKey, latex: bool) -> String {
     }
 }
 
-/// The label in MathML: `M` with subscript `1,2`, `τ₁`, `∂τ/∂q` with subscript, `T`.
+/// The label in MathML: `M` with subscript `1,2`, `τ₁`, `∂τ/∂q` with subscript, `T`, a
+/// reaction `f` or `τ` with its link and axis as subscript.
 pub fn mathml_label(key: &EntryKey) -> String {
     let name = match key.name.as_str() {
         "tau" => mathml::mi("τ"),
         "dtau_dq" => mathml::mi("∂τ/∂q"),
         "dtau_dqd" => format!("{}{}", mathml::mi("∂τ/∂"), mathml::mi("q̇")),
         name => match name.split_once('_') {
-            Some((letter, rest)) => mathml::msub(&mathml::mi(letter), &mathml::mi(rest)),
+            Some(("tau", link)) => mathml::msub(&mathml::mi("τ"), &mathml::mi(link)),
+            Some((letter, link)) => mathml::msub(&mathml::mi(letter), &mathml::mi(link)),
             None => mathml::mi(name),
         },
     };

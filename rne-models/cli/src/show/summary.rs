@@ -55,7 +55,11 @@ fn write_note(format: Format, lines: &[String], out: &mut dyn Write) -> Result<(
         Format::Text => "#",
         Format::Latex => "%",
         Format::Html => {
-            writeln!(out, "<pre class=\"note\">{}</pre>", escape(&lines.join("\n")))?;
+            writeln!(
+                out,
+                "<pre class=\"note\">{}</pre>",
+                escape(&lines.join("\n"))
+            )?;
             return Ok(());
         }
     };
