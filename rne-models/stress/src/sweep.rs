@@ -1,10 +1,11 @@
-//! A robot's kernels measured at a set of states: each evaluated twice by its
-//! [`Interpreted`] programs — in `f64` exactly as the generated code computes it
-//! ([`Interpreted::eval`], bit for bit the compiled kernel, checked on every built-in robot by
+//! A robot's kernels measured at a set of states: each evaluated twice — in `f64` exactly as
+//! the generated code computes it ([`Probe::eval_f64`]: the programs interpreted or compiled
+//! in memory, bit for bit the compiled kernel, checked on every built-in robot by
 //! [`crate::cases::compiled`]) and in double-double through the graph before optimisation
-//! ([`Interpreted::exact`], the value of the `f64` model to about 10⁻³¹ relative). Their
-//! difference is the error of the generated kernel alone: the rounding of its operations and
-//! of the constants the optimiser folds anew, not an error of the model or of the inputs.
+//! ([`Interpreted::exact`](rne_interpreted::Interpreted::exact), the value of the `f64` model
+//! to about 10⁻³¹ relative). Their difference is the error of the generated kernel alone: the
+//! rounding of its operations and of the constants the optimiser folds anew, not an error of
+//! the model or of the inputs.
 
 use rne_codegen::{DoubleDouble, Kernel};
 use rne_figures::{Deviation, Format};
