@@ -1,18 +1,11 @@
 //! The `rne` command: printed equations (snapshots), evaluation, emission and errors.
 
+mod common;
+use common::rne;
+
 use std::process::Command;
 
-use clap::Parser;
-use rne_cli::{run, Cli};
 use rne_scenarios::SCENARIOS;
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
 
 #[test]
 fn show_prints_the_planar_elbow_like_the_thesis() {

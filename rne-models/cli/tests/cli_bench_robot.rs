@@ -1,17 +1,10 @@
 //! `rne bench MODEL`: a robot chosen at run time timed kernel by kernel on every engine, with
 //! each engine's error against the numeric reference and the time to obtain the kernels.
 
-use clap::Parser;
-use rne_cli::{run, Cli};
-use serde_json::Value;
+mod common;
+use common::rne;
 
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
+use serde_json::Value;
 
 fn bench_json(args: &[&str]) -> Value {
     let mut all = vec!["bench"];

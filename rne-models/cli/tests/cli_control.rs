@@ -2,17 +2,10 @@
 //! of docs/design.md §5, the generator's programs against the independent reference, and the
 //! planar elbow's torque derivatives in the thesis's notation.
 
-use clap::Parser;
-use rne_cli::{run, Cli};
-use serde_json::Value;
+mod common;
+use common::rne;
 
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
+use serde_json::Value;
 
 /// Every number in a JSON value, in order.
 fn numbers(value: &Value, out: &mut Vec<f64>) {

@@ -3,19 +3,11 @@
 //! says) printing the Rust kernel's torques. The compilers are `$CC` (else `cc`) and `$CXX`
 //! (else `c++`); without them the tests that need them say so and pass.
 
+mod common;
+use common::rne;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-use clap::Parser;
-use rne_cli::{run, Cli};
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
 
 /// `$var`, else `default`, if it runs.
 fn compiler(var: &str, default: &str) -> Option<String> {

@@ -2,15 +2,10 @@
 //! code sums products through `Real::mul_add`, the operation counts stay and the critical
 //! path shortens.
 
-use clap::Parser;
-use rne_cli::{run, Cli};
+mod common;
 
 fn rne(args: &[&str]) -> String {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .unwrap_or_else(|e| panic!("{args:?}: {e}"));
-    let mut out = Vec::new();
-    run(cli, &mut out).unwrap_or_else(|e| panic!("{args:?}: {e}"));
-    String::from_utf8(out).expect("utf-8 output")
+    common::rne(args).unwrap_or_else(|e| panic!("{args:?}: {e}"))
 }
 
 /// The `rne stats --json` entry of `kernel`.

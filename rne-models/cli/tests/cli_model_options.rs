@@ -1,16 +1,8 @@
 //! The model options every command taking a MODEL has (docs/design.md §5): `--mimic free` and
 //! `--floating-base`, on `check`, `eval`, `emit` and `stats`, and a robot without moving joints.
 
-use clap::Parser;
-use rne_cli::{run, Cli};
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
+mod common;
+use common::rne;
 
 fn json(args: &[&str]) -> serde_json::Value {
     serde_json::from_str(&rne(args).unwrap_or_else(|e| panic!("{args:?}: {e}"))).unwrap()

@@ -2,20 +2,12 @@
 //! be written, a pipe closed by `head` — each a clear line, or silence, never a long wait or a
 //! wrong message.
 
+mod common;
+use common::rne;
+
 use std::io::Read;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-use clap::Parser;
-use rne_cli::{run, Cli};
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
 
 fn scratch(name: &str, text: &str) -> String {
     let dir = std::env::temp_dir().join(format!("rne-cli-trust-{}", std::process::id()));

@@ -3,8 +3,9 @@
 //! identified model predicts the torques of a fresh trajectory to 2 % RMS; and the command's
 //! interface (CSV errors, `--excite`, `--json`, `show --what base-parameters`).
 
-use clap::Parser;
-use rne_cli::{run, Cli};
+mod common;
+use common::rne;
+
 use rne_identify::{
     design, fit, identify, predict, simulate, BaseSet, Design, Limits, Measurements, Simulation,
 };
@@ -12,14 +13,6 @@ use rne_models::builtin::RobotSource;
 use rne_models::QUADRUPED;
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
 
 fn irb140() -> Reference {
     let model = RobotSource::resolve("irb140")

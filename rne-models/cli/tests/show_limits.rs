@@ -1,18 +1,10 @@
 //! `rne show` on robots whose equations run to megabytes: the size limit, one entry, the
 //! compact program, and the round-off that cancels (the UR5's g1, identically 0).
 
+mod common;
+use common::rne;
+
 use std::time::{Duration, Instant};
-
-use clap::Parser;
-use rne_cli::{run, Cli};
-
-fn rne(args: &[&str]) -> Result<String, String> {
-    let cli = Cli::try_parse_from(std::iter::once("rne").chain(args.iter().copied()))
-        .map_err(|e| e.to_string())?;
-    let mut out = Vec::new();
-    run(cli, &mut out).map_err(|e| e.to_string())?;
-    Ok(String::from_utf8(out).expect("utf-8 output"))
-}
 
 /// The line `label = ...` of an output.
 fn line<'a>(out: &'a str, label: &str) -> &'a str {
