@@ -2,15 +2,16 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{decode, parse_robot, LoadOptions, RobotFormat};
-use rne_symbolic::RobotModel;
+use rne_symbolic::spec::{LoadOptions, RobotFormat};
+use rne_symbolic::{Description, RobotModel};
 
 use crate::error::CodegenError;
 use crate::module::{generate, GeneratedModule};
 use crate::scene::{MimicMode, ParameterMode, Scene};
 
-/// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension), naming it
-/// `origin` in error messages, with parameters kept symbolic when `scene` wants them at run
+/// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension) through
+/// rne-symbolic's one entry point ([`rne_symbolic::read_robot`]), naming it `origin` in error
+/// messages, with parameters kept symbolic when `scene` wants them at run
 /// time, warnings made errors when it asks for strict validation and mimic tags without a
 /// leader dropped when its mimic joints are free. The model's
 /// [`warnings`](RobotModel::warnings) are what the Builder prints and the macro documents.
@@ -26,8 +27,8 @@ pub fn read_robot(path: &Path, origin: &str, scene: &Scene) -> Result<RobotModel
         file: origin.to_owned(),
         cause,
     })?;
-    let text = decode(bytes, origin)?;
-    Ok(parse_robot(&text, origin, format, &options)?)
+    let description = Description::bytes(&bytes, format, origin);
+    Ok(rne_symbolic::read_robot(description, &options)?)
 }
 
 /// Reads a robot file and generates the module `scene` asks for.

@@ -4,7 +4,7 @@
 use std::io::Write;
 
 use clap::Args;
-use rne_codegen::{generate, Scene};
+use rne_codegen_core::{generate, Scene};
 use rne_symbolic::spec::LoadOptions;
 
 use super::accuracy::Compare;
