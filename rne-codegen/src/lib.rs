@@ -59,7 +59,11 @@
 //!
 //! # Build scripts
 //! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module
-//! to `OUT_DIR`:
+//! to `OUT_DIR`. The feature adds the build-script API and nothing of the generator behind it:
+//! `Builder` and `generate_from_path`, their settings (`Scene`, `ScalarType`, `ParameterMode`,
+//! `MimicMode`, `ForwardDynamicsMethod`, `Base`), what they return (`GeneratedModule`,
+//! `KernelReport`, `ForwardDynamicsChoice`, `SpecWarning`) and their error (`CodegenError`).
+//! The generator's own API (kernels, programs, the C emitter) is `rne-codegen-core`'s.
 //! ```toml
 //! [build-dependencies]
 //! rne-codegen = { version = "0.1", features = ["builder"] }
