@@ -83,7 +83,13 @@ fn exported_names(lib: &str) -> BTreeSet<String> {
         };
         let item = &item[start..];
         if let Some(module) = item.strip_prefix("pub mod ") {
-            names.insert(module.split([' ', '{']).next().unwrap_or_default().to_owned());
+            names.insert(
+                module
+                    .split([' ', '{'])
+                    .next()
+                    .unwrap_or_default()
+                    .to_owned(),
+            );
             continue;
         }
         let path = &item["pub use ".len()..];
@@ -144,12 +150,16 @@ fn a_build_script_needs_nothing_but_the_facade() {
         .forward_dynamics(ForwardDynamicsMethod::Auto)
         .parameters(ParameterMode::Constant)
         .scalar(ScalarType::F64);
-    let (module, warnings): (GeneratedModule, Vec<SpecWarning>) =
-        builder.generate_with_warnings().expect("the robot generates");
+    let (module, warnings): (GeneratedModule, Vec<SpecWarning>) = builder
+        .generate_with_warnings()
+        .expect("the robot generates");
     let reports: &[KernelReport] = &module.kernels;
     assert_eq!(reports.len(), 2);
     let choice: Option<&ForwardDynamicsChoice> = module.forward_dynamics_choice.as_ref();
-    assert!(choice.is_some(), "both algorithms apply to a fixed 3-joint arm");
+    assert!(
+        choice.is_some(),
+        "both algorithms apply to a fixed 3-joint arm"
+    );
     assert!(warnings.is_empty(), "{warnings:?}");
     let scene: &Scene = builder.scene();
     let again = generate_from_path(robot.as_ref(), scene).expect("the same module");
