@@ -8,10 +8,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rne_codegen_core::{Kernel, MimicMode, ParameterMode, Scene};
 use rne_jit::JitModel;
-use rne_symbolic::{read_robot, Description};
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::{LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 use crate::builtin::builtin;
 use crate::errors;
