@@ -8,7 +8,7 @@
 
 use std::path::PathBuf;
 
-use rne_codegen::{Kernel, Scene};
+use rne_codegen::{GenerationOptions, Kernel, Scene};
 use rne_jit::{JitModel, State};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -16,15 +16,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .nth(1)
         .map(PathBuf::from)
         .ok_or("usage: robot_at_run_time ROBOT.urdf|ROBOT.toml")?;
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![
             Kernel::InverseDynamics,
             Kernel::MassMatrix,
             Kernel::ForwardDynamics,
         ],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let model = JitModel::load(&path, &scene)?;
+    let model = JitModel::load(&path, &Scene::default(), &options)?;
     let t = model.timings();
     println!(
         "{}: {} joints, kernels in {:.1} ms (generation {:.1} ms, JIT {:.1} ms)",

@@ -3,6 +3,9 @@
 //! float32 converted exactly; every other type, shape or length, and every NaN or infinity, a
 //! Python exception that names the argument.
 
+use std::ffi::c_int;
+
+use numpy::npyffi::NPY_TYPES;
 use numpy::{
     PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
@@ -27,17 +30,9 @@ impl<'py> Array<'py> {
         let states = states(array.shape(), name, width)?;
         // One C-contiguous state is read in place; every other array is copied in row order
         // (`as_array` iterates in logical order; `as_slice` would also accept Fortran order).
-        let copy = match states.is_none() && array.is_c_contiguous() {
-            true => None,
-            false => Some(
-                array
-                    .try_readonly()
-                    .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?
-                    .as_array()
-                    .iter()
-                    .copied()
-                    .collect(),
-            ),
+        let copy = match (states.is_none(), array.is_c_contiguous()) {
+            (true, true) => None,
+            (_, c_order) => Some(copy(&array, name, c_order)?),
         };
         let read = Array {
             array,
@@ -95,12 +90,33 @@ fn states(shape: &[usize], name: &str, width: usize) -> PyResult<Option<usize>> 
     }
 }
 
-/// `object` as a float64 array: itself when it is one, else converted by numpy when its
-/// values are integers or floats (a list, a float32 or integer array); a `TypeError` for
-/// anything else (booleans, complex numbers, strings, objects).
+/// The values of `array` in row order: one copy of its memory when it is C-contiguous
+/// (`contiguous`), else element by element in logical order.
+fn copy(array: &Bound<'_, PyArrayDyn<f64>>, name: &str, contiguous: bool) -> PyResult<Vec<f64>> {
+    let read = array
+        .try_readonly()
+        .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?;
+    Ok(match read.as_slice() {
+        Ok(values) if contiguous => values.to_vec(),
+        _ => read.as_array().iter().copied().collect(),
+    })
+}
+
+/// `object` as a float64 array: itself when it is an aligned float64 array in this machine's
+/// byte order (checked by its dtype's number, without numpy's general dtype comparison: the
+/// path of every call), else converted by numpy when its values are integers or floats (a
+/// list, a float32, integer, big-endian or unaligned array); a `TypeError` for anything else
+/// (booleans, complex numbers, strings, objects).
 fn float64<'py>(object: &Bound<'py, PyAny>, name: &str) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    if let Ok(array) = object.cast::<PyArrayDyn<f64>>() {
-        return Ok(array.clone());
+    if let Ok(array) = object.cast::<PyUntypedArray>() {
+        let dtype = array.dtype();
+        let native = dtype.is_native_byteorder() != Some(false);
+        if dtype.num() == NPY_TYPES::NPY_DOUBLE as c_int && native && array.is_aligned() {
+            // SAFETY: a numpy array whose elements are aligned native float64 values, which is
+            // what `PyArrayDyn<f64>` stands for (rust-numpy's own check compares the dtype
+            // with float64's through numpy).
+            return Ok(unsafe { array.cast_unchecked::<PyArrayDyn<f64>>() }.clone());
+        }
     }
     let py = object.py();
     let numpy = py.import("numpy")?;

@@ -8,9 +8,10 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyTuple};
 use rne_codegen_core::{Input, Kernel};
-use rne_jit::{Batch, JitError, JitModel, State};
+use rne_jit::{Batch, JitModel, State};
 
 use crate::arrays::Array;
+use crate::batch::Job;
 use crate::errors;
 use crate::layout::{self, Part, Sizes};
 
@@ -110,33 +111,68 @@ fn sizes(model: &JitModel) -> Sizes {
     }
 }
 
+/// A kernel's inputs as read, one slot per kind of input (no allocation per call).
+pub(crate) struct Inputs<'py> {
+    /// The kernel's inputs in order.
+    order: &'static [Input],
+    /// The arrays, at `slot(input)`.
+    arrays: [Option<Array<'py>>; 5],
+}
+
+/// The slot of `input` in `Inputs::arrays`.
+fn slot(input: Input) -> usize {
+    match input {
+        Input::Q => 0,
+        Input::Qd => 1,
+        Input::Qdd => 2,
+        Input::Tau => 3,
+        Input::Standard => 4,
+    }
+}
+
+impl<'py> Inputs<'py> {
+    /// The array of `input`, when the kernel takes it.
+    fn get(&self, input: Input) -> Option<&Array<'py>> {
+        self.arrays[slot(input)].as_ref()
+    }
+
+    /// The values of `input` (empty when the kernel does not take it).
+    fn values(&self, input: Input) -> &[f64] {
+        self.get(input).map_or(&[], Array::values)
+    }
+}
+
 /// The kernel's inputs read from `args`.
 fn read_inputs<'py>(
     model: &JitModel,
     kernel: Kernel,
     args: &[&Bound<'py, PyAny>],
-) -> PyResult<Vec<(Input, Array<'py>)>> {
-    kernel
-        .inputs()
-        .iter()
-        .zip(args)
-        .map(|(&input, arg)| {
-            let width = match input {
-                Input::Q => model.nq(),
-                Input::Standard => model.parameter_names().len(),
-                _ => model.nv(),
-            };
-            Ok((input, Array::read(arg, input_name(input), width)?))
-        })
-        .collect()
+) -> PyResult<Inputs<'py>> {
+    let mut inputs = Inputs {
+        order: kernel.inputs(),
+        arrays: Default::default(),
+    };
+    for (&input, arg) in kernel.inputs().iter().zip(args) {
+        let width = match input {
+            Input::Q => model.nq(),
+            Input::Standard => model.parameter_names().len(),
+            _ => model.nv(),
+        };
+        inputs.arrays[slot(input)] = Some(Array::read(arg, input_name(input), width)?);
+    }
+    Ok(inputs)
 }
 
 /// `None` when every input is one state, `Some(N)` when every input holds N states.
-fn batch_states(inputs: &[(Input, Array<'_>)]) -> PyResult<Option<usize>> {
-    let Some((first_input, first)) = inputs.first() else {
+fn batch_states(inputs: &Inputs<'_>) -> PyResult<Option<usize>> {
+    let mut read = inputs
+        .order
+        .iter()
+        .filter_map(|&i| Some((i, inputs.get(i)?)));
+    let Some((first_input, first)) = read.next() else {
         return Ok(None);
     };
-    for (input, array) in &inputs[1..] {
+    for (input, array) in read {
         if array.states != first.states {
             let describe = |s: Option<usize>| match s {
                 None => "one state (1-D)".to_owned(),
@@ -144,9 +180,9 @@ fn batch_states(inputs: &[(Input, Array<'_>)]) -> PyResult<Option<usize>> {
             };
             return Err(PyValueError::new_err(format!(
                 "`{}` holds {} but `{}` holds {}: give every argument as one state or every one as N states",
-                input_name(*first_input),
+                input_name(first_input),
                 describe(first.states),
-                input_name(*input),
+                input_name(input),
                 describe(array.states)
             )));
         }
@@ -156,11 +192,11 @@ fn batch_states(inputs: &[(Input, Array<'_>)]) -> PyResult<Option<usize>> {
 
 /// On a floating base, every configuration's quaternion [qx, qy, qz, qw] (q[3..7]) must have
 /// unit norm: the kernels assume it.
-fn check_quaternions(model: &JitModel, inputs: &[(Input, Array<'_>)]) -> PyResult<()> {
+fn check_quaternions(model: &JitModel, inputs: &Inputs<'_>) -> PyResult<()> {
     if !model.programs().floating_base {
         return Ok(());
     }
-    let Some((_, q)) = inputs.iter().find(|(i, _)| *i == Input::Q) else {
+    let Some(q) = inputs.get(Input::Q) else {
         return Ok(());
     };
     for (k, state) in q.values().chunks_exact(model.nq()).enumerate() {
@@ -191,26 +227,46 @@ fn thread_count(threads: Option<isize>) -> PyResult<usize> {
     }
 }
 
-/// The slice of `input` among `inputs` (empty when the kernel does not take it).
-fn values<'a>(inputs: &'a [(Input, Array<'_>)], input: Input) -> &'a [f64] {
-    inputs
-        .iter()
-        .find(|(i, _)| *i == input)
-        .map_or(&[], |(_, a)| a.values())
+/// A new C-contiguous array of `shape`, with `lead` (the batch size) first when given; its
+/// values are not initialised.
+///
+/// # Safety
+/// Every value must be written before the array is handed to Python.
+unsafe fn new_array<'py>(
+    py: Python<'py>,
+    shape: &[usize],
+    lead: Option<usize>,
+) -> Bound<'py, PyArrayDyn<f64>> {
+    // Kernels' results have at most three axes and a batch adds one: `IxDyn` keeps up to
+    // four without allocating.
+    let mut dims = [0; 4];
+    let axes = lead.into_iter().chain(shape.iter().copied());
+    if shape.len() + usize::from(lead.is_some()) > dims.len() {
+        // SAFETY: as the function's contract says.
+        return unsafe { PyArrayDyn::<f64>::new(py, IxDyn(&axes.collect::<Vec<_>>()), false) };
+    }
+    let mut n = 0;
+    for (slot, d) in dims.iter_mut().zip(axes) {
+        *slot = d;
+        n += 1;
+    }
+    // SAFETY: as the function's contract says.
+    unsafe { PyArrayDyn::<f64>::new(py, IxDyn(&dims[..n]), false) }
 }
 
 /// New C-contiguous arrays, one per part, each with `lead` (the batch size) first when given.
-fn new_arrays<'py>(
+///
+/// # Safety
+/// As `new_array`'s: `layout::gather` writes every value of every part (tested in `layout`).
+unsafe fn new_arrays<'py>(
     py: Python<'py>,
     parts: &[Part],
     lead: Option<usize>,
 ) -> Vec<Bound<'py, PyArrayDyn<f64>>> {
     parts
         .iter()
-        .map(|p| {
-            let shape: Vec<usize> = lead.into_iter().chain(p.shape.iter().copied()).collect();
-            PyArrayDyn::<f64>::zeros(py, IxDyn(&shape), false)
-        })
+        // SAFETY: as the function's contract says.
+        .map(|p| unsafe { new_array(py, &p.shape, lead) })
         .collect()
 }
 
@@ -225,11 +281,8 @@ fn new_arrays<'py>(
 unsafe fn slices<'a>(arrays: &'a [Bound<'_, PyArrayDyn<f64>>]) -> PyResult<Vec<&'a mut [f64]>> {
     arrays
         .iter()
-        .map(|a| {
-            // SAFETY: as the function's contract says, nothing else accesses the array.
-            unsafe { a.as_slice_mut() }
-                .map_err(|e| PyRuntimeError::new_err(format!("internal error in rne: {e}")))
-        })
+        // SAFETY: as the function's contract says, nothing else accesses the array.
+        .map(|a| unsafe { slice(a) })
         .collect()
 }
 
@@ -248,18 +301,29 @@ fn result<'py>(
     }
 }
 
+/// The writable values of `array`.
+///
+/// # Safety
+/// As `slices`'.
+#[allow(clippy::mut_from_ref)]
+unsafe fn slice<'a>(array: &'a Bound<'_, PyArrayDyn<f64>>) -> PyResult<&'a mut [f64]> {
+    // SAFETY: as the function's contract says, nothing else accesses the array.
+    unsafe { array.as_slice_mut() }
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error in rne: {e}")))
+}
+
 /// One state, computed with the GIL held (a call of a few microseconds at most).
 fn single<'py>(
     py: Python<'py>,
     model: &JitModel,
     plan: &Plan,
-    inputs: &[(Input, Array<'py>)],
+    inputs: &Inputs<'py>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let state = State {
-        q: values(inputs, Input::Q),
-        qd: values(inputs, Input::Qd),
-        qdd: values(inputs, Input::Qdd),
-        tau: values(inputs, Input::Tau),
+        q: inputs.values(Input::Q),
+        qd: inputs.values(Input::Qd),
+        qdd: inputs.values(Input::Qdd),
+        tau: inputs.values(Input::Tau),
     };
     let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
     if parts.len() == 1 && parts[0].shape.is_empty() {
@@ -269,17 +333,21 @@ fn single<'py>(
             .map_err(errors::jit)?;
         return result(py, Vec::new(), Some(value[0]));
     }
-    let arrays = new_arrays(py, parts, None);
+    if plan.whole {
+        // SAFETY: the kernel writes every value (its output is the whole array) before the
+        // array is returned; on an error it is dropped unseen.
+        let array = unsafe { new_array(py, &parts[0].shape, None) };
+        // SAFETY: the array was just created and is returned after the slice's last use.
+        let out = unsafe { slice(&array)? };
+        model.evaluate(kernel, state, out).map_err(errors::jit)?;
+        return Ok(array.into_any());
+    }
+    // SAFETY: `gather` writes every value before the arrays are returned.
+    let arrays = unsafe { new_arrays(py, parts, None) };
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
     let mut outs = unsafe { slices(&arrays)? };
-    if plan.whole {
-        model
-            .evaluate(kernel, state, outs[0])
-            .map_err(errors::jit)?;
-    } else {
-        let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
-        layout::gather(&values, per, parts, &mut outs);
-    }
+    let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
+    layout::gather(&values, per, parts, &mut outs, 0);
     drop(outs);
     result(py, arrays, None)
 }
@@ -290,38 +358,30 @@ fn batch<'py>(
     py: Python<'py>,
     model: &JitModel,
     plan: &Plan,
-    inputs: &[(Input, Array<'py>)],
+    inputs: &Inputs<'py>,
     n: usize,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     let states = Batch {
-        q: values(inputs, Input::Q),
-        qd: values(inputs, Input::Qd),
-        qdd: values(inputs, Input::Qdd),
-        tau: values(inputs, Input::Tau),
+        q: inputs.values(Input::Q),
+        qd: inputs.values(Input::Qd),
+        qdd: inputs.values(Input::Qdd),
+        tau: inputs.values(Input::Tau),
     };
-    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
-    let arrays = new_arrays(py, parts, Some(n));
+    // SAFETY: the kernel (a whole part) or `gather` writes every value before the arrays are
+    // returned; on an error they are dropped unseen.
+    let arrays = unsafe { new_arrays(py, &plan.parts, Some(n)) };
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
-    let mut outs = unsafe { slices(&arrays)? };
-    let whole = plan.whole;
-    py.detach(|| -> Result<(), JitError> {
-        if n == 0 {
-            return Ok(());
-        }
-        let run = |out: &mut [f64]| match threads {
-            1 => model.evaluate_batch(kernel, states, out),
-            t => model.evaluate_batch_threaded(kernel, states, out, t),
-        };
-        if whole {
-            return run(outs[0]);
-        }
-        let mut values = vec![0.0; n * per];
-        run(&mut values)?;
-        layout::gather(&values, per, parts, &mut outs);
-        Ok(())
-    })
-    .map_err(errors::jit)?;
-    drop(outs);
+    let outs = unsafe { slices(&arrays)? };
+    let job = Job {
+        model,
+        kernel: plan.kernel,
+        states,
+        per: plan.per,
+        parts: &plan.parts,
+        whole: plan.whole,
+    };
+    py.detach(|| job.run(n, outs, threads))
+        .map_err(errors::jit)?;
     result(py, arrays, None)
 }

@@ -38,7 +38,6 @@ impl Part {
     }
 
     /// The number of values per state.
-    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.segments.iter().map(|&(_, n)| n).sum()
     }
@@ -81,11 +80,17 @@ pub(crate) fn is_whole(parts: &[Part], output_len: usize) -> bool {
     matches!(parts, [part] if part.segments == [(0, output_len)])
 }
 
-/// Gathers `states` consecutive outputs of `per` values each from `values` into one slice per
-/// part (each `states · part.len()` long).
-pub(crate) fn gather(values: &[f64], per: usize, parts: &[Part], outs: &mut [&mut [f64]]) {
+/// Gathers consecutive outputs of `per` values each from `values` into one slice per part,
+/// from state `first` of the slices on (each slice holds `part.len()` values per state).
+pub(crate) fn gather(
+    values: &[f64],
+    per: usize,
+    parts: &[Part],
+    outs: &mut [&mut [f64]],
+    first: usize,
+) {
     for (part, out) in parts.iter().zip(outs.iter_mut()) {
-        let mut k = 0;
+        let mut k = first * part.len();
         for state in values.chunks_exact(per.max(1)) {
             for &(start, len) in &part.segments {
                 out[k..k + len].copy_from_slice(&state[start..start + len]);
@@ -138,7 +143,7 @@ mod tests {
         let values: Vec<f64> = (0..48).map(f64::from).collect(); // two states, two frames
         let parts = parts(Kernel::FramePlacements, SIZES, 24);
         let (mut r, mut p) = (vec![0.0; 36], vec![0.0; 12]);
-        gather(&values, 24, &parts, &mut [&mut r, &mut p]);
+        gather(&values, 24, &parts, &mut [&mut r, &mut p], 0);
         assert_eq!(&r[..9], &values[..9]);
         assert_eq!(&r[9..18], &values[12..21]);
         assert_eq!(&p[..3], &[9.0, 10.0, 11.0]);

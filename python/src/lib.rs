@@ -3,7 +3,7 @@
 //! A robot read from a built-in name or a URDF / TOML file has every kernel compiled in memory
 //! by rne's JIT ([`rne_jit::JitModel`]: the optimised straight-line programs of the
 //! Newton–Euler recursion, after Høifødt, *Dynamics of robot manipulators by the Newton–Euler
-//! formulation*, NTNU 2010, lowered to machine code by Cranelift). [`model::Model`] calls them
+//! formulation*, NTNU 2010, lowered to machine code by Cranelift). The `Model` class (`model.rs`) calls them
 //! under Pinocchio's names on numpy arrays: one state, or a batch of N states computed with the
 //! GIL released on one or more threads. Identification (`excitation`, `identify`, `validate`)
 //! is the `rne identify` command's, on arrays.
@@ -12,6 +12,7 @@
 //! errors become Python exceptions (`errors`).
 
 mod arrays;
+mod batch;
 mod builtin;
 mod call;
 mod errors;

@@ -1,12 +1,13 @@
 //! What `rne.load` does: the robot read (a built-in name or a file), the options turned into the
-//! generator's scene, and every kernel the model supports compiled by the JIT.
+//! generator's scene and generation options, and every kernel the model supports compiled by
+//! the JIT.
 
 use std::path::{Path, PathBuf};
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rne_codegen_core::{Kernel, MimicMode, ParameterMode, Scene};
+use rne_codegen_core::{GenerationOptions, Kernel, MimicMode, ParameterMode, Scene};
 use rne_jit::JitModel;
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::{LoadOptions, RobotFormat};
@@ -49,17 +50,17 @@ pub(crate) struct Loaded {
 }
 
 /// Reads `robot` and compiles the kernels named in `kernels` (rne's names; `None` for every
-/// kernel the robot has) as `scene` says (`rne.load`). Needs no GIL.
+/// kernel the robot has) in `scene` as `options` say (`rne.load`). Needs no GIL.
 pub(crate) fn read_and_compile(
     robot: &Path,
-    mut scene: Scene,
+    (scene, mut options): (Scene, GenerationOptions),
     kernels: Option<&[String]>,
 ) -> PyResult<Loaded> {
     let (text, origin) = source(robot)?;
     let read = |symbolic_parameters: bool| -> PyResult<RobotModel> {
         let load_options = LoadOptions {
             symbolic_parameters,
-            strict: scene.strict,
+            strict: options.strict,
             free_mimic: scene.mimic == MimicMode::Free,
             ..LoadOptions::default()
         };
@@ -69,12 +70,12 @@ pub(crate) fn read_and_compile(
             .map_err(|e| PyValueError::new_err(e.to_string()))
     };
     let numeric = scene.apply(&read(false)?).map_err(errors::codegen)?;
-    scene.outputs = kernel_list(kernels, &numeric)?;
-    let model = match scene.parameters {
+    options.outputs = kernel_list(kernels, &numeric)?;
+    let model = match options.parameters {
         ParameterMode::Runtime => read(true)?,
         _ => read(false)?,
     };
-    let jit = JitModel::compile(&model, &scene, &origin).map_err(errors::jit)?;
+    let jit = JitModel::compile(&model, &scene, &options, &origin).map_err(errors::jit)?;
     Ok(Loaded {
         jit,
         numeric,
@@ -93,8 +94,9 @@ fn source(robot: &Path) -> PyResult<(String, String)> {
     Ok((text, origin))
 }
 
-/// The generator's scene for `options` (its outputs set by [`load`]).
-pub(crate) fn scene(options: &Options<'_>) -> PyResult<Scene> {
+/// The generator's scene and generation options for `options` (the outputs set by
+/// [`read_and_compile`]).
+pub(crate) fn settings(options: &Options<'_>) -> PyResult<(Scene, GenerationOptions)> {
     let mimic = match options.mimic {
         "constrained" => MimicMode::Constrained,
         "free" => MimicMode::Free,
@@ -114,18 +116,22 @@ pub(crate) fn scene(options: &Options<'_>) -> PyResult<Scene> {
             )))
         }
     };
-    Ok(Scene {
+    let scene = Scene {
         base: options.floating_base.then_some(Base::Floating),
         mimic,
         friction: options.friction,
         gravity: gravity(options.gravity.as_deref())?,
         lock: lock(options.lock.as_ref())?,
+        ..Scene::default()
+    };
+    let generation = GenerationOptions {
         frames: options.frames.clone(),
         parameters,
         fma: options.fma,
         strict: options.strict,
-        ..Scene::default()
-    })
+        ..GenerationOptions::default()
+    };
+    Ok((scene, generation))
 }
 
 /// Three finite numbers.

@@ -12,7 +12,7 @@ use rne_symbolic::RobotModel;
 use crate::arrays::Array;
 use crate::call::{call, Plan};
 use crate::errors;
-use crate::load::{read_and_compile, robot_path, scene, Options};
+use crate::load::{read_and_compile, robot_path, settings, Options};
 
 /// A robot's kernels compiled in memory for this processor (rne's JIT, Cranelift).
 ///
@@ -103,8 +103,8 @@ pub fn load<'py>(
         fma,
         strict,
     };
-    let scene = scene(&options)?;
-    let loaded = py.detach(|| read_and_compile(&path, scene, kernels.as_deref()))?;
+    let settings = settings(&options)?;
+    let loaded = py.detach(|| read_and_compile(&path, settings, kernels.as_deref()))?;
     Ok(Model {
         plans: Plan::all(&loaded.jit),
         jit: loaded.jit,

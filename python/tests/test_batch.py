@@ -93,6 +93,13 @@ def test_non_contiguous_and_converted_inputs_give_the_same_bits(ur5):
     assert bits(ur5.crba(ints)) == bits(ur5.crba(ints.astype(float)))
     q32 = q.astype(np.float32)
     assert bits(ur5.crba(q32)) == bits(ur5.crba(q32.astype(np.float64)))
+    # float64 values at an odd address (numpy's `aligned` flag off) are copied, not read in place.
+    raw = np.zeros(q.size * 8 + 1, dtype=np.uint8)
+    unaligned = raw[1:].view(np.float64).reshape(q.shape)
+    unaligned[...] = q
+    assert not unaligned.flags.aligned
+    assert bits(ur5.rnea(unaligned, v, a)) == bits(expected)
+    assert bits(ur5.rnea(unaligned[0], v[0], a[0])) == bits(expected[0])
 
 
 def test_the_input_arrays_are_not_modified(ur5):

@@ -7,16 +7,23 @@ usage (from the repository root, with Pinocchio 4.1 from tools/peers/setup.sh):
     $PY python/tools/pinocchio_expected.py > python/tests/fixtures/pinocchio.json
 
 Robots: UR5 and the Panda (rne-models/robots, fixed base) and the quadruped
-(rne-models/robots/quadruped.urdf) on a free-flyer. Each state is written in a layout that
+(rne-models/robots/quadruped.urdf) on a free-flyer, written to stdout; with --talos FILE,
+Talos (example-robot-data's talos_reduced.urdf, NV 38) on a free-flyer instead, at two states
+and seven frames (the file is not in the repository: its entry records the file's SHA-256, and
+the test runs when it finds the same file):
+    $PY python/tools/pinocchio_expected.py --talos > python/tests/fixtures/pinocchio_talos.json Each state is written in a layout that
 does not depend on Pinocchio's (tools/peers/pinocchio_values.py's): `joints` lists the joint
 variables by URDF name in Pinocchio's velocity order; `q` holds one angle or distance per
 joint (a continuous joint's angle, not Pinocchio's (cos, sin)), after the seven free-flyer
 entries [x, y, z, qx, qy, qz, qw]; every nv-sized output is in Pinocchio's velocity order.
 Frames are keyed by link name. Every float is written by repr(), so it reads back bit for bit.
 """
+import argparse
+import hashlib
 import json
 import os
 import sys
+import sysconfig
 
 import numpy as np
 import pinocchio as pin
@@ -31,6 +38,19 @@ ROBOTS = [
     ("quadruped", "rne-models/robots/quadruped.urdf", True),
 ]
 STATES = 3
+# Talos: the file within example-robot-data's robots/ directory, and the frames compared (the
+# feet, a hand's fingertip behind fixed joints, an arm's last link, the head, the torso, the IMU).
+TALOS = "talos_data/robots/talos_reduced.urdf"
+TALOS_FRAMES = [
+    "left_sole_link",
+    "right_sole_link",
+    "gripper_left_fingertip_3_link",
+    "arm_right_7_link",
+    "head_2_link",
+    "torso_2_link",
+    "imu_link",
+]
+TALOS_STATES = 2
 SEED = 35
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
@@ -40,13 +60,14 @@ def symmetric(m):
     return np.triu(m) + np.triu(m, 1).T
 
 
-def frames(model, data, q, v):
-    """Placement, LOCAL_WORLD_ALIGNED Jacobian and J̇ v of every body frame, by name."""
+def frames(model, data, q, v, only=None):
+    """Placement, LOCAL_WORLD_ALIGNED Jacobian and J̇ v of every body frame (or of those named
+    in `only`), by name."""
     out = {}
     pin.framesForwardKinematics(model, data, q)
     pin.computeJointJacobians(model, data, q)
     for fid, frame in enumerate(model.frames):
-        if frame.type != pin.FrameType.BODY:
+        if frame.type != pin.FrameType.BODY or (only is not None and frame.name not in only):
             continue
         placement = data.oMf[fid]
         out[frame.name] = {
@@ -67,7 +88,7 @@ def frames(model, data, q, v):
     return out
 
 
-def state_values(model, data, q, v, a, tau_fd):
+def state_values(model, data, q, v, a, tau_fd, only=None):
     """Every kernel's value at one state, Pinocchio's layout."""
     dq, dv, _ = pin.computeRNEADerivatives(model, data, q, v, a)
     dq, dv = dq.copy(), dv.copy()
@@ -88,18 +109,20 @@ def state_values(model, data, q, v, a, tau_fd):
         "computeKineticEnergy": float(pin.computeKineticEnergy(model, data, q, v)),
         "computePotentialEnergy": float(pin.computePotentialEnergy(model, data, q)),
         "computeJointTorqueRegressor": pin.computeJointTorqueRegressor(model, data, q, v, a).tolist(),
-        "frames": frames(model, data, q, v),
+        "frames": frames(model, data, q, v, only),
     }
 
 
-def robot(name, path, floating):
+def robot(name, path, floating, file=None, count=STATES, only=None):
+    """The robot's entry: `path` as the test finds it, read from `file` (default: the
+    repository's `path`)."""
     root = [pin.JointModelFreeFlyer()] if floating else []
-    model = pin.buildModelFromUrdf(os.path.join(ROOT, path), *root)
+    model = pin.buildModelFromUrdf(file or os.path.join(ROOT, path), *root)
     data = model.createData()
     layout = Layout(model)
     rng = np.random.default_rng([SEED, len(name)])
     states = []
-    for _ in range(STATES):
+    for _ in range(count):
         base = None
         if floating:
             quat = rng.normal(size=4)
@@ -116,7 +139,7 @@ def robot(name, path, floating):
             "a": a[order].tolist(),
             "tau_fd": tau_fd[order].tolist(),
         }
-        state.update(state_values(model, data, q, v, a, tau_fd))
+        state.update(state_values(model, data, q, v, a, tau_fd, only))
         state["velocity_order"] = order
         states.append(state)
     return {
@@ -128,11 +151,32 @@ def robot(name, path, floating):
     }
 
 
+def talos(robots_dir):
+    """Talos on a free-flyer, the file's SHA-256 beside its values."""
+    file = os.path.join(robots_dir, TALOS)
+    with open(file, "rb") as f:
+        digest = hashlib.sha256(f.read()).hexdigest()
+    entry = robot("talos", TALOS, True, file, TALOS_STATES, TALOS_FRAMES)
+    entry.update({"example_robot_data": True, "sha256": digest, "frames": TALOS_FRAMES})
+    return entry
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    default = os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix/share/example-robot-data/robots")
+    parser.add_argument(
+        "--talos",
+        nargs="?",
+        const=default,
+        metavar="ROBOTS_DIR",
+        help="Talos only, from example-robot-data's robots/ directory (default: this Python's)",
+    )
+    args = parser.parse_args()
+    robots = [talos(args.talos)] if args.talos else [robot(*r) for r in ROBOTS]
     out = {
         "pinocchio": pin.__version__,
         "seed": SEED,
-        "robots": [robot(*r) for r in ROBOTS],
+        "robots": robots,
     }
     json.dump(out, sys.stdout)
     print()

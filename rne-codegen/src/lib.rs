@@ -32,7 +32,7 @@
 //! a `Model` type implementing [`Dynamics`]. The module is regenerated when the robot file
 //! changes. Scene settings generate only what the application needs:
 //! `gravity: [0.0, 0.0, 0.0]` removes every gravity term, `lock: { q1: 0.0, "joint 8": 0.0 }`
-//! turns joints into constants, `velocities: zero` makes a static scene (q̇ = 0: no Coriolis
+//! turns joints into constants, `at_rest: true` makes a static scene (q̇ = 0: no Coriolis
 //! or centrifugal terms), `parameters: runtime` reads the model parameters from a `Params`
 //! struct at run time (`parameters: base`: the base parameters, the identifiable combinations
 //! of masses and inertias, with `Params::from_standard`), `scalar: f32 | generic` changes the scalar type (generic functions
@@ -60,8 +60,9 @@
 //! # Build scripts
 //! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module
 //! to `OUT_DIR`. The feature adds the build-script API and nothing of the generator behind it:
-//! `Builder` and `generate_from_path`, their settings (`Scene`, `ScalarType`, `ParameterMode`,
-//! `MimicMode`, `ForwardDynamicsMethod`, `Base`), what they return (`GeneratedModule`,
+//! `Builder` and `generate_from_path`, their settings (`Scene`, `GenerationOptions`,
+//! `ScalarType`, `ParameterMode`, `MimicMode`, `ForwardDynamicsMethod`, `Base`), what they
+//! return (`GeneratedModule`,
 //! `KernelReport`, `ForwardDynamicsChoice`, `SpecWarning`) and their error (`CodegenError`).
 //! The generator's own API (kernels, programs, the C emitter) is `rne-codegen-core`'s.
 //! ```toml
@@ -94,7 +95,8 @@ pub use rne_runtime::convert;
 #[cfg(feature = "builder")]
 pub use rne_codegen_core::{
     generate_from_path, Builder, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod,
-    GeneratedModule, KernelReport, MimicMode, ParameterMode, ScalarType, Scene, KEEP_GENERATED_ENV,
+    GeneratedModule, GenerationOptions, KernelReport, MimicMode, ParameterMode, ScalarType, Scene,
+    KEEP_GENERATED_ENV,
 };
 /// How the robot's root is attached to the world ([`Builder::base`]).
 #[cfg(feature = "builder")]

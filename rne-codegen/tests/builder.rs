@@ -2,7 +2,9 @@
 
 use std::path::PathBuf;
 
-use rne_codegen::{generate_from_path, Builder, Kernel, Scene, KEEP_GENERATED_ENV};
+use rne_codegen::{
+    generate_from_path, Builder, GenerationOptions, Kernel, Scene, KEEP_GENERATED_ENV,
+};
 
 fn robot_file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -16,9 +18,9 @@ fn robot() -> PathBuf {
 
 #[test]
 fn two_generations_of_the_same_spec_are_byte_identical() {
-    let scene = Scene::default();
-    let first = generate_from_path(&robot(), &scene).unwrap();
-    let second = generate_from_path(&robot(), &scene).unwrap();
+    let options = GenerationOptions::default();
+    let first = generate_from_path(&robot(), &Scene::default(), &options).unwrap();
+    let second = generate_from_path(&robot(), &Scene::default(), &options).unwrap();
     assert_eq!(first.source, second.source);
     assert_eq!(first.to_pretty_string(), second.to_pretty_string());
 }
@@ -39,15 +41,16 @@ fn a_kernel_is_the_same_code_whichever_other_kernels_are_generated() {
     // last bits of another. Each is now built on its own.
     for robot in ["puma560.toml", "panda-arm.urdf"] {
         let path = robot_file(robot);
-        let everything = generate_from_path(&path, &Scene::default())
-            .unwrap()
-            .to_pretty_string();
+        let everything =
+            generate_from_path(&path, &Scene::default(), &GenerationOptions::default())
+                .unwrap()
+                .to_pretty_string();
         for kernel in Kernel::DYNAMICS {
-            let scene = Scene {
+            let options = GenerationOptions {
                 outputs: vec![kernel],
-                ..Scene::default()
+                ..GenerationOptions::default()
             };
-            let alone = generate_from_path(&path, &scene)
+            let alone = generate_from_path(&path, &Scene::default(), &options)
                 .unwrap()
                 .to_pretty_string();
             assert_eq!(
@@ -61,15 +64,15 @@ fn a_kernel_is_the_same_code_whichever_other_kernels_are_generated() {
 
 #[test]
 fn a_kernel_listed_twice_is_generated_once() {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![
             Kernel::MassMatrix,
             Kernel::InverseDynamics,
             Kernel::MassMatrix,
         ],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let module = generate_from_path(&robot(), &scene).unwrap();
+    let module = generate_from_path(&robot(), &Scene::default(), &options).unwrap();
     let kernels: Vec<Kernel> = module.kernels.iter().map(|r| r.kernel).collect();
     assert_eq!(kernels, [Kernel::MassMatrix, Kernel::InverseDynamics]);
     assert_eq!(
@@ -95,7 +98,7 @@ fn builder_writes_the_module_to_out_dir_and_a_readable_copy_on_request() {
     let written = builder.write("irb140.rs").unwrap();
     assert_eq!(written, out_dir.join("irb140.rs"));
     let source = std::fs::read_to_string(&written).unwrap();
-    let expected = generate_from_path(&robot(), builder.scene())
+    let expected = generate_from_path(&robot(), builder.scene(), builder.options())
         .unwrap()
         .to_pretty_string();
     assert_eq!(
@@ -113,6 +116,31 @@ fn builder_writes_the_module_to_out_dir_and_a_readable_copy_on_request() {
         source
     );
     std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// `Builder::at_rest(true)` is the macro's `at_rest: true`: the same module as the scene at
+/// rest, whose functions never read q̇ (the Coriolis and centrifugal terms are gone), while the
+/// default scene's inverse dynamics does read it.
+#[test]
+fn builder_at_rest_generates_the_static_scene_whose_functions_ignore_qd() {
+    let builder = Builder::new(robot()).at_rest(true);
+    assert!(builder.scene().at_rest);
+    let at_rest = builder.generate().unwrap().to_pretty_string();
+    let scene = Scene {
+        at_rest: true,
+        ..Scene::default()
+    };
+    let expected = generate_from_path(&robot(), &scene, &GenerationOptions::default()).unwrap();
+    assert_eq!(at_rest, expected.to_pretty_string());
+    for kernel in [Kernel::InverseDynamics, Kernel::CoriolisMatrix] {
+        let function = function_source(&at_rest, kernel.name());
+        assert!(
+            !function.contains("qd["),
+            "{kernel} reads qd at rest: {function}"
+        );
+    }
+    let moving = Builder::new(robot()).generate().unwrap().to_pretty_string();
+    assert!(function_source(&moving, "inverse_dynamics").contains("qd["));
 }
 
 #[test]

@@ -35,6 +35,7 @@ const INTENDED: &[&str] = &[
     "ForwardDynamicsChoice",
     "ForwardDynamicsMethod",
     "GeneratedModule",
+    "GenerationOptions",
     "KernelReport",
     "MimicMode",
     "ParameterMode",
@@ -139,8 +140,8 @@ fn the_export_reader_reads_every_form_of_pub_use() {
 fn a_build_script_needs_nothing_but_the_facade() {
     use rne_codegen::{
         generate_from_path, Base, Builder, CodegenError, ForwardDynamicsChoice,
-        ForwardDynamicsMethod, GeneratedModule, Kernel, KernelReport, MimicMode, ParameterMode,
-        ScalarType, Scene, SpecWarning, KEEP_GENERATED_ENV,
+        ForwardDynamicsMethod, GeneratedModule, GenerationOptions, Kernel, KernelReport, MimicMode,
+        ParameterMode, ScalarType, Scene, SpecWarning, KEEP_GENERATED_ENV,
     };
     let robot = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/robots/irb140-3dof.toml");
     let builder = Builder::new(robot)
@@ -162,9 +163,11 @@ fn a_build_script_needs_nothing_but_the_facade() {
     );
     assert!(warnings.is_empty(), "{warnings:?}");
     let scene: &Scene = builder.scene();
-    let again = generate_from_path(robot.as_ref(), scene).expect("the same module");
+    let options: &GenerationOptions = builder.options();
+    let again = generate_from_path(robot.as_ref(), scene, options).expect("the same module");
     assert_eq!(again.source, module.source);
-    let missing: Result<_, CodegenError> = generate_from_path("no/such.toml".as_ref(), scene);
+    let missing: Result<_, CodegenError> =
+        generate_from_path("no/such.toml".as_ref(), scene, options);
     assert!(missing.unwrap_err().to_string().contains("no/such.toml"));
     assert_eq!(KEEP_GENERATED_ENV, "RNE_KEEP_GENERATED");
 }

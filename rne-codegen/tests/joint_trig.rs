@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use rne_codegen::{generate_from_path, Kernel, ScalarType, Scene};
+use rne_codegen::{generate_from_path, GenerationOptions, Kernel, ScalarType, Scene};
 
 fn puma560() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/puma560.toml")
@@ -10,13 +10,16 @@ fn puma560() -> PathBuf {
 
 /// The angles passed to `sin_cos_array` in the emitted source of `kernel`.
 fn batched_angles(kernel: Kernel, scalar: ScalarType, gravity: [f64; 3]) -> Vec<String> {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![kernel],
         scalar,
+        ..GenerationOptions::default()
+    };
+    let scene = Scene {
         gravity: Some(gravity),
         ..Scene::default()
     };
-    let source = generate_from_path(&puma560(), &scene)
+    let source = generate_from_path(&puma560(), &scene, &options)
         .unwrap()
         .source
         .replace(' ', "");

@@ -6,7 +6,7 @@
 
 mod robots_common;
 
-use rne_codegen_core::{generate, Scene};
+use rne_codegen_core::{generate, GenerationOptions, Scene};
 use rne_reference::Reference;
 use robots_common::{assert_close, fixture, load, reference, rng, state, uniform, Symbolic};
 
@@ -60,9 +60,9 @@ fn handwritten_urdf_and_toml_generate_the_same_code() {
     agrees_with_the_reference("handwritten.urdf");
     let urdf = load(&fixture("handwritten.urdf"));
     let toml = load(&fixture("handwritten.toml"));
-    let scene = Scene::default();
-    let a = generate(&urdf, &scene, "handwritten").unwrap();
-    let b = generate(&toml, &scene, "handwritten").unwrap();
+    let (scene, options) = (Scene::default(), GenerationOptions::default());
+    let a = generate(&urdf, &scene, &options, "handwritten").unwrap();
+    let b = generate(&toml, &scene, &options, "handwritten").unwrap();
     assert_eq!(a.joints, b.joints);
     assert_eq!(a.source, b.source);
 }

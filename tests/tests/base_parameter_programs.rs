@@ -8,7 +8,7 @@
 mod common;
 
 use common::{rel_err, rng, uniform};
-use rne_codegen_core::{build_kernel, Kernel, ParameterMode, Program, Scene};
+use rne_codegen_core::{build_kernel, GenerationOptions, Kernel, ParameterMode, Program, Scene};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
 use rne_models::QUADRUPED;
 use rne_symbolic::model::Base;
@@ -148,10 +148,11 @@ fn base_parameter_inverse_dynamics_costs_less_than_runtime_parameters() {
                     ..LoadOptions::default()
                 })
                 .expect("built-in robot"),
-            &Scene {
+            &Scene::default(),
+            &GenerationOptions {
                 outputs: vec![Kernel::InverseDynamics],
                 parameters: ParameterMode::Runtime,
-                ..Scene::default()
+                ..GenerationOptions::default()
             },
             name,
         )

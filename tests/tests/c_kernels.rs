@@ -22,7 +22,8 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rne_codegen::{Dynamics, Kernel};
 use rne_codegen_core::{
-    emit_c, generate_programs, CModule, GeneratedPrograms, ParameterMode, Program, Scene, Shape,
+    emit_c, generate_programs, CModule, GeneratedPrograms, GenerationOptions, ParameterMode,
+    Program, Scene, Shape,
 };
 use rne_models::{RobotSource, Visitor, BUILTIN_ROBOTS};
 use rne_symbolic::spec::LoadOptions;
@@ -294,8 +295,20 @@ struct Case {
 }
 
 impl Case {
-    fn new(label: &str, model: &RobotModel, scene: &Scene, seed: u64) -> Case {
-        let module = generate_programs(model, scene, label).expect("the programs are built");
+    fn new(label: &str, model: &RobotModel, options: &GenerationOptions, seed: u64) -> Case {
+        Case::in_scene(label, model, &Scene::default(), options, seed)
+    }
+
+    /// The same in `scene`.
+    fn in_scene(
+        label: &str,
+        model: &RobotModel,
+        scene: &Scene,
+        options: &GenerationOptions,
+        seed: u64,
+    ) -> Case {
+        let module =
+            generate_programs(model, scene, options, label).expect("the programs are built");
         let c = emit_c(&module, label).expect("the C is written");
         let mut rng = common::rng(seed);
         let states = module
@@ -487,12 +500,12 @@ fn fixture(file: &str, symbolic_parameters: bool) -> RobotModel {
     read_robot(Description::file(&path), &options).expect("it loads")
 }
 
-/// `outputs` with the default scene and `parameters`.
-fn scene(outputs: &[Kernel], parameters: ParameterMode) -> Scene {
-    Scene {
+/// `outputs` with the default options and `parameters`.
+fn options(outputs: &[Kernel], parameters: ParameterMode) -> GenerationOptions {
+    GenerationOptions {
         outputs: outputs.to_vec(),
         parameters,
-        ..Scene::default()
+        ..GenerationOptions::default()
     }
 }
 
@@ -679,12 +692,22 @@ fn builtin_compiled(name: &str, kernel: Kernel, state: &State) -> Option<Vec<f64
     control(kernel, state)
 }
 
-/// Whether the rne-models kernels of a URDF robot were built with `fma: true` and
-/// `derivatives: lanes` (its feature `fma`): the C is then emitted with fused multiply-adds
-/// too, and its derivatives, built in scalars, compared with the programs only.
+/// Whether the rne-models kernels of a URDF robot were built with `fma: true` (its feature
+/// `fma`): the C is then emitted with fused multiply-adds too.
 fn urdf_fused(name: &str) -> bool {
-    rne_models::generated::FUSED_MULTIPLY_ADD
-        && rne_models::builtin(name).unwrap().file.ends_with(".urdf")
+    rne_models::generated::FUSED_MULTIPLY_ADD && is_urdf(name)
+}
+
+/// Whether the rne-models derivative kernels of a URDF robot were built with
+/// `derivatives: lanes` (its feature `derivative-lanes`): the C's, built in scalars, are then
+/// compared with the programs only.
+fn urdf_in_lanes(name: &str) -> bool {
+    rne_models::generated::DERIVATIVE_LANES && is_urdf(name)
+}
+
+/// Whether the built-in robot `name` is read from a URDF file.
+fn is_urdf(name: &str) -> bool {
+    rne_models::builtin(name).unwrap().file.ends_with(".urdf")
 }
 
 /// Runs `check` on each case on as many threads as the machine has cores (each case compiles
@@ -714,14 +737,14 @@ fn every_builtin_robots_c_kernels_equal_the_rust_kernels_bit_for_bit() {
         .iter()
         .enumerate()
         .map(|(k, robot)| {
-            let scene = Scene {
+            let options = GenerationOptions {
                 fma: urdf_fused(robot.name),
-                ..scene(&Kernel::ALL, ParameterMode::Constant)
+                ..options(&Kernel::ALL, ParameterMode::Constant)
             };
             Case::new(
                 robot.name,
                 &builtin(robot.name, false),
-                &scene,
+                &options,
                 0xC0DE + k as u64,
             )
         })
@@ -731,7 +754,7 @@ fn every_builtin_robots_c_kernels_equal_the_rust_kernels_bit_for_bit() {
             Kernel::InverseDynamicsDerivatives,
             Kernel::ForwardDynamicsDerivatives,
         ];
-        let compiled = |kernel: Kernel, state: &State| match urdf_fused(&case.label)
+        let compiled = |kernel: Kernel, state: &State| match urdf_in_lanes(&case.label)
             && derivatives.contains(&kernel)
         {
             true => None,
@@ -762,10 +785,10 @@ fn runtime_parameters_give_the_rust_kernels_values() {
         .iter()
         .enumerate()
         .map(|(k, name)| {
-            let scene = scene(&outputs, ParameterMode::Runtime);
+            let options = options(&outputs, ParameterMode::Runtime);
             // A label of its own: the cases' scratch directories are named after them.
             let label = format!("{name}-runtime");
-            Case::new(&label, &builtin(name, true), &scene, 0xBA5E + k as u64)
+            Case::new(&label, &builtin(name, true), &options, 0xBA5E + k as u64)
         })
         .collect();
     for case in &cases {
@@ -805,13 +828,13 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
         Case::new(
             "ur5_all",
             &fixture("ur5.urdf", false),
-            &scene(&Kernel::ALL, ParameterMode::Constant),
+            &options(&Kernel::ALL, ParameterMode::Constant),
             1,
         ),
         Case::new(
             "hopper",
             &fixture("hopper-floating.toml", false),
-            &scene(
+            &options(
                 &[
                     Kernel::InverseDynamics,
                     Kernel::MassMatrix,
@@ -823,29 +846,30 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
             ),
             2,
         ),
-        Case::new(
+        Case::in_scene(
             "geared",
             &fixture("geared-arm.toml", false),
             &Scene {
                 friction: true,
-                ..scene(
-                    &[
-                        Kernel::InverseDynamics,
-                        Kernel::MassMatrix,
-                        Kernel::ForwardDynamics,
-                        Kernel::FrictionTorques,
-                        Kernel::InverseDynamicsDerivatives,
-                        Kernel::FramePlacements,
-                    ],
-                    ParameterMode::Constant,
-                )
+                ..Scene::default()
             },
+            &options(
+                &[
+                    Kernel::InverseDynamics,
+                    Kernel::MassMatrix,
+                    Kernel::ForwardDynamics,
+                    Kernel::FrictionTorques,
+                    Kernel::InverseDynamicsDerivatives,
+                    Kernel::FramePlacements,
+                ],
+                ParameterMode::Constant,
+            ),
             7,
         ),
         Case::new(
             "elbow_base",
             &fixture("planar-elbow.toml", false),
-            &scene(
+            &options(
                 &[
                     Kernel::InverseDynamics,
                     Kernel::MassMatrix,
@@ -858,7 +882,7 @@ fn every_kernel_a_floating_base_and_base_parameters_equal_the_compiled_rust() {
         Case::new(
             "ur5_lanes",
             &fixture("ur5.urdf", false),
-            &scene(
+            &options(
                 &[
                     Kernel::InverseDynamicsDerivatives,
                     Kernel::ForwardDynamicsDerivatives,
@@ -935,7 +959,7 @@ fn base_parameters_from_standard_parameters_equal_the_rusts() {
     let case = Case::new(
         "from_standard",
         &fixture("planar-elbow.toml", false),
-        &scene(&outputs, ParameterMode::Base),
+        &options(&outputs, ParameterMode::Base),
         6,
     );
     let (name, np) = (&case.c.name, case.module.dims.np);
@@ -1000,7 +1024,7 @@ fn the_c_sine_and_cosine_are_the_runtimes_bit_for_bit() {
     let case = Case::new(
         "trig",
         &builtin("planar-elbow", false),
-        &scene(&[Kernel::MassMatrix], ParameterMode::Constant),
+        &options(&[Kernel::MassMatrix], ParameterMode::Constant),
         5,
     );
     let mut rng = common::rng(0x5105);
@@ -1105,7 +1129,7 @@ fn optimisation_and_gnu_c_change_no_result() {
     let case = Case::new(
         "panda",
         &builtin("panda", false),
-        &scene(&outputs, ParameterMode::Constant),
+        &options(&outputs, ParameterMode::Constant),
         8,
     );
     assert!(
@@ -1133,13 +1157,14 @@ fn optimisation_and_gnu_c_change_no_result() {
     }
 }
 
-/// The same robot and scene give the same bytes, header and source.
+/// The same robot, scene and options give the same bytes, header and source.
 #[test]
 fn the_c_is_the_same_every_time() {
     let model = builtin("panda", false);
-    let scene = scene(&Kernel::ALL, ParameterMode::Constant);
-    let first = rne_codegen_core::generate_c(&model, &scene, "panda").unwrap();
-    let second = rne_codegen_core::generate_c(&model, &scene, "panda").unwrap();
+    let options = options(&Kernel::ALL, ParameterMode::Constant);
+    let first = rne_codegen_core::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
+    let second =
+        rne_codegen_core::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
     assert!(first == second, "two runs wrote different C");
     assert!(
         first.source.contains("RNE_NOINLINE"),

@@ -9,7 +9,7 @@ mod common;
 use common::{rng, uniform};
 use nalgebra::DMatrix;
 use rne_codegen::{Dynamics, Identification, Kinematics};
-use rne_codegen_core::{build_kernel_with, Kernel, KernelSetup, Program, Scene};
+use rne_codegen_core::{build_kernel_with, GenerationOptions, Kernel, KernelSetup, Program, Scene};
 use rne_reference::Reference;
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::{read_robot, Description};
@@ -93,12 +93,12 @@ fn program(model: &RobotModel, kernel: Kernel, frames: &[&str]) -> Program {
 /// [`program`], the derivatives built in lanes when `lanes` is set (`derivatives: lanes`).
 fn program_with(model: &RobotModel, kernel: Kernel, frames: &[&str], lanes: bool) -> Program {
     let dynamics = SymbolicDynamics::new(model);
-    let scene = Scene {
+    let options = GenerationOptions {
         frames: Some(frames.iter().map(|f| (*f).to_owned()).collect()),
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
     let setup = KernelSetup {
-        frames: scene.frame_indices(dynamics.frames()).unwrap(),
+        frames: options.frame_indices(dynamics.frames()).unwrap(),
         derivative_lanes: lanes,
         ..KernelSetup::new(&dynamics, &[kernel])
     };

@@ -8,7 +8,7 @@
 use std::path::PathBuf;
 
 use rne_codegen::{Dynamics, Kernel};
-use rne_codegen_core::{read_robot, ParameterMode, Program, Scene};
+use rne_codegen_core::{read_robot, GenerationOptions, ParameterMode, Program, Scene};
 use rne_interpreted::StateRef;
 use rne_jit::{Batch, JitError, JitModel, State};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
@@ -106,10 +106,10 @@ fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
     }
 }
 
-fn all_kernels() -> Scene {
-    Scene {
+fn all_kernels() -> GenerationOptions {
+    GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
-        ..Scene::default()
+        ..GenerationOptions::default()
     }
 }
 
@@ -132,7 +132,13 @@ fn builtin_states() -> usize {
 #[test]
 fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &all_kernels(), robot.name).unwrap();
+        let jit = JitModel::compile(
+            &builtin(robot),
+            &Scene::default(),
+            &all_kernels(),
+            robot.name,
+        )
+        .unwrap();
         assert_eq!(jit.kernels().len(), Kernel::ALL.len());
         check_against_programs(
             &jit,
@@ -147,7 +153,13 @@ fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
 #[test]
 fn the_dynamics_kernels_are_the_compiled_modules_bit_for_bit() {
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+        let jit = JitModel::compile(
+            &builtin(robot),
+            &Scene::default(),
+            &GenerationOptions::default(),
+            robot.name,
+        )
+        .unwrap();
         let states = States::new(&jit, 1_000, 0x718);
         robot.visit(AgainstCompiled {
             jit: &jit,
@@ -207,14 +219,68 @@ fn every_kernel_of_the_committed_robot_files_on_both_bases() {
         for base in [Base::Fixed, Base::Floating] {
             let scene = Scene {
                 base: Some(base),
-                ..all_kernels()
+                ..Scene::default()
             };
             let what = format!("{} {base:?}", path.display());
-            let model = read_robot(&path, &path.display().to_string(), &scene).unwrap();
-            let jit = JitModel::compile(&model, &scene, &what).unwrap();
+            let file = path.display().to_string();
+            let model = read_robot(&path, &file, &scene, &all_kernels()).unwrap();
+            let jit = JitModel::compile(&model, &scene, &all_kernels(), &what).unwrap();
             check_against_programs(&jit, &States::new(&jit, 50, 0x719), &what);
         }
     }
+}
+
+/// Every URDF under the directory `RNE_JIT_URDF_DIR` (searched recursively; skipped when the
+/// variable is unset) that rne loads, on its own base, every kernel at 20 states, compiled at
+/// the fast tier (both tiers give the same bits: `both_tiers_compute_the_same_bits`). The run
+/// on example-robot-data is docs/performance.md's:
+/// `RNE_JIT_URDF_DIR=DIR cargo test --release -p rne-tests --test jit -- --nocapture urdfs_of`.
+#[test]
+fn every_kernel_of_the_urdfs_of_a_directory() {
+    let Some(dir) = std::env::var_os("RNE_JIT_URDF_DIR") else {
+        eprintln!("RNE_JIT_URDF_DIR is not set: no directory of URDFs to check");
+        return;
+    };
+    let mut files = Vec::new();
+    let mut folders = vec![PathBuf::from(dir)];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).unwrap().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                folders.push(path);
+            } else if path.extension().is_some_and(|e| e == "urdf") {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    let (mut checked, mut refused) = (0, Vec::new());
+    for path in &files {
+        let what = path.display().to_string();
+        let scene = Scene::default();
+        let compiled = read_robot(path, &what, &scene, &all_kernels())
+            .map_err(|e| e.to_string())
+            .and_then(|model| {
+                JitModel::compile_at(&model, &scene, &all_kernels(), &what, rne_jit::Tier::Fast)
+                    .map_err(|e| e.to_string())
+            });
+        match compiled {
+            Ok(jit) => {
+                check_against_programs(&jit, &States::new(&jit, 20, 0x5eed), &what);
+                checked += 1;
+            }
+            Err(why) => refused.push(format!("{what}: {why}")),
+        }
+    }
+    eprintln!(
+        "{} URDF files: {checked} checked bit for bit, {} not loaded:",
+        files.len(),
+        refused.len()
+    );
+    for why in &refused {
+        eprintln!("  {why}");
+    }
+    assert!(checked > 0, "no URDF under the directory loads");
 }
 
 /// Fused multiply-adds: with `fma` on, each kernel is its fused program, rounded once per
@@ -222,12 +288,13 @@ fn every_kernel_of_the_committed_robot_files_on_both_bases() {
 /// where it does not (as the runtime's `mul_add` there).
 #[test]
 fn with_fma_every_kernel_is_its_fused_program() {
-    let scene = Scene {
+    let options = GenerationOptions {
         fma: true,
         ..all_kernels()
     };
     for robot in BUILTIN_ROBOTS {
-        let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+        let jit =
+            JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
         let fuses = cfg!(target_arch = "aarch64") || std::is_x86_feature_detected!("fma");
         assert_eq!(
             jit.fused(),
@@ -242,7 +309,7 @@ fn with_fma_every_kernel_is_its_fused_program() {
 #[test]
 fn runtime_parameters_are_read_at_every_call() {
     let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         parameters: ParameterMode::Runtime,
         ..all_kernels()
     };
@@ -252,7 +319,7 @@ fn runtime_parameters_are_read_at_every_call() {
             ..LoadOptions::default()
         })
         .unwrap();
-    let mut jit = JitModel::compile(&model, &scene, robot.name).unwrap();
+    let mut jit = JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap();
     assert!(!jit.parameter_symbols().is_empty());
     let states = States::new(&jit, 200, 0x71b);
     check_against_programs(&jit, &states, "spec values");
@@ -278,11 +345,11 @@ fn runtime_parameters_are_read_at_every_call() {
 #[test]
 fn bad_calls_are_errors() {
     let robot = rne_models::builtin::builtin("ur5").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
     let (q, v) = (vec![0.1; 6], vec![0.2; 6]);
     let state = State {
         q: &q,
@@ -355,11 +422,11 @@ fn bad_calls_are_errors() {
 #[test]
 fn batches_and_threads_give_the_single_calls() {
     let robot = rne_models::builtin::builtin("panda-arm").unwrap();
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::ForwardDynamics, Kernel::InverseDynamicsDerivatives],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(&builtin(robot), &scene, robot.name).unwrap();
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
     let states = States::new(&jit, 333, 0x71c);
     let flat = |v: &[Vec<f64>]| v.concat();
     let (q, qd, qdd, tau) = (
@@ -396,7 +463,13 @@ fn batches_and_threads_give_the_single_calls() {
 fn a_model_is_shared_between_threads() {
     fn shared<T: Send + Sync>(_: &T) {}
     let robot = rne_models::builtin::builtin("puma560").unwrap();
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), robot.name).unwrap();
+    let jit = JitModel::compile(
+        &builtin(robot),
+        &Scene::default(),
+        &GenerationOptions::default(),
+        robot.name,
+    )
+    .unwrap();
     shared(&jit);
     let states = States::new(&jit, 64, 0x71d);
     let expected: Vec<Vec<f64>> = (0..states.len())
@@ -442,14 +515,14 @@ fn dropped_models_free_their_code() {
     }
     let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
     let model = builtin(robot);
-    let scene = Scene::default();
+    let options = GenerationOptions::default();
     let resident = || -> usize {
         let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
         let pages: usize = statm.split_whitespace().nth(1).unwrap().parse().unwrap();
         pages * 4096
     };
     for _ in 0..50 {
-        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+        drop(JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap());
     }
     let before = resident();
     // RNE_JIT_DROPS=10000 for the figure of docs/performance.md.
@@ -458,7 +531,7 @@ fn dropped_models_free_their_code() {
         .and_then(|n| n.parse().ok())
         .unwrap_or(500);
     for _ in 0..drops {
-        drop(JitModel::compile(&model, &scene, robot.name).unwrap());
+        drop(JitModel::compile(&model, &Scene::default(), &options, robot.name).unwrap());
     }
     let grown = resident().saturating_sub(before);
     eprintln!("resident memory grew by {grown} bytes over {drops} models");
@@ -542,7 +615,13 @@ impl RuntimeTrig for f64 {
 fn both_tiers_compute_the_same_bits() {
     let robot = rne_models::builtin::builtin("ur5").unwrap();
     let model = builtin(robot);
-    let fast =
-        JitModel::compile_at(&model, &all_kernels(), robot.name, rne_jit::Tier::Fast).unwrap();
+    let fast = JitModel::compile_at(
+        &model,
+        &Scene::default(),
+        &all_kernels(),
+        robot.name,
+        rne_jit::Tier::Fast,
+    )
+    .unwrap();
     check_against_programs(&fast, &States::new(&fast, 200, 0x71e), "ur5, fast tier");
 }

@@ -263,11 +263,12 @@ proptest! {
         let model = read_robot(Description::toml(&text, "random.toml"), &LoadOptions::default())
             .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let n = model.dof();
-        let scene = rne_codegen_core::Scene {
+        let options = rne_codegen_core::GenerationOptions {
             outputs: Kernel::ALL.to_vec(),
-            ..rne_codegen_core::Scene::default()
+            ..rne_codegen_core::GenerationOptions::default()
         };
-        let jit = rne_jit::JitModel::compile(&model, &scene, "random.toml")
+        let scene = rne_codegen::Scene::default();
+        let jit = rne_jit::JitModel::compile(&model, &scene, &options, "random.toml")
             .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         for (q, qd, qdd) in &states {
             let tau: Vec<f64> = qdd.iter().map(|x| 3.0 * x).collect();

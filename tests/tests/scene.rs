@@ -1,11 +1,12 @@
-//! Scene specialisation: a module generated with locked joints, zero gravity or runtime
-//! parameters equals the full module evaluated accordingly, and costs fewer operations.
+//! Scene specialisation: a module generated with locked joints, zero gravity, at rest or with
+//! runtime parameters equals the full module evaluated accordingly, and costs fewer
+//! operations; the deprecated spelling `velocities: zero` is still `at_rest: true`.
 
 mod common;
 
 use common::{rel_err, rel_err_floor, state};
 use rne_codegen::Kernel;
-use rne_codegen_core::{generate, ParameterMode, Scene};
+use rne_codegen_core::{generate, GenerationOptions, ParameterMode, Scene};
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::{read_robot, Description};
 
@@ -36,7 +37,25 @@ rne_codegen::derive_dynamics! {
     /// A static scene: the joints move slowly enough that q̇ = 0.
     mod at_rest {
         robot: "fixtures/robots/irb140-3dof.toml",
+        at_rest: true,
+    }
+}
+
+rne_codegen::derive_dynamics! {
+    /// The same under the deprecated spelling, still accepted (its warning allowed here).
+    #[allow(deprecated)]
+    mod velocities_zero {
+        robot: "fixtures/robots/irb140-3dof.toml",
         velocities: zero,
+    }
+}
+
+rne_codegen::derive_dynamics! {
+    /// `at_rest: false`, the default, spelled out.
+    mod moving {
+        robot: "fixtures/robots/irb140-3dof.toml",
+        outputs: [inverse_dynamics],
+        at_rest: false,
     }
 }
 
@@ -140,6 +159,37 @@ fn static_scene_module_equals_the_full_module_at_zero_velocity() {
     }
 }
 
+/// `velocities: zero` is the old spelling of `at_rest: true`: the same functions, bit for bit;
+/// `at_rest: false` is the full module's inverse dynamics, bit for bit.
+#[test]
+fn the_deprecated_spelling_velocities_zero_is_at_rest_true() {
+    let mut rng = common::rng(15);
+    for _ in 0..100 {
+        let (q, qd, qdd) = state(&mut rng, 3);
+        let (q, qd, qdd): ([f64; 3], [f64; 3], [f64; 3]) = (
+            q.try_into().unwrap(),
+            qd.try_into().unwrap(),
+            qdd.try_into().unwrap(),
+        );
+        assert_eq!(
+            velocities_zero::inverse_dynamics(&q, &qd, &qdd),
+            at_rest::inverse_dynamics(&q, &qd, &qdd)
+        );
+        assert_eq!(
+            velocities_zero::bias_torques(&q, &qd),
+            at_rest::bias_torques(&q, &qd)
+        );
+        assert_eq!(
+            velocities_zero::forward_dynamics(&q, &qd, &qdd),
+            at_rest::forward_dynamics(&q, &qd, &qdd)
+        );
+        assert_eq!(
+            moving::inverse_dynamics(&q, &qd, &qdd),
+            full::inverse_dynamics(&q, &qd, &qdd)
+        );
+    }
+}
+
 #[test]
 fn runtime_parameters_default_to_the_spec_and_follow_edits() {
     let p = tunable::Params::default();
@@ -192,34 +242,21 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
 #[test]
 fn specialised_scenes_cost_fewer_operations() {
     let model = read_robot(Description::file(SPEC.as_ref()), &LoadOptions::default()).unwrap();
-    let full = generate(&model, &Scene::default(), "irb140").unwrap();
-    let weightless = generate(
-        &model,
-        &Scene {
-            gravity: Some([0.0; 3]),
-            ..Scene::default()
-        },
-        "irb140",
-    )
-    .unwrap();
-    let locked = generate(
-        &model,
-        &Scene {
-            lock: vec![("q1".into(), 0.3), ("q2".into(), -0.5)],
-            ..Scene::default()
-        },
-        "irb140",
-    )
-    .unwrap();
-    let at_rest = generate(
-        &model,
-        &Scene {
-            zero_velocities: true,
-            ..Scene::default()
-        },
-        "irb140",
-    )
-    .unwrap();
+    let in_scene =
+        |scene: Scene| generate(&model, &scene, &GenerationOptions::default(), "irb140").unwrap();
+    let full = in_scene(Scene::default());
+    let weightless = in_scene(Scene {
+        gravity: Some([0.0; 3]),
+        ..Scene::default()
+    });
+    let locked = in_scene(Scene {
+        lock: vec![("q1".into(), 0.3), ("q2".into(), -0.5)],
+        ..Scene::default()
+    });
+    let at_rest = in_scene(Scene {
+        at_rest: true,
+        ..Scene::default()
+    });
     for (variant, name) in [
         (&weightless, "zero gravity"),
         (&locked, "locked q1, q2"),
@@ -242,28 +279,21 @@ fn specialised_scenes_cost_fewer_operations() {
             }
         }
     }
-    let only_id = generate(
-        &model,
-        &Scene {
-            outputs: vec![Kernel::InverseDynamics],
-            ..Scene::default()
-        },
-        "irb140",
-    )
-    .unwrap();
+    let with_options = |options: GenerationOptions| {
+        generate(&model, &Scene::default(), &options, "irb140").unwrap()
+    };
+    let only_id = with_options(GenerationOptions {
+        outputs: vec![Kernel::InverseDynamics],
+        ..GenerationOptions::default()
+    });
     assert_eq!(
         only_id.kernels.len(),
         1,
         "only what the scene asks for is generated"
     );
-    let runtime = generate(
-        &model,
-        &Scene {
-            parameters: ParameterMode::Runtime,
-            ..Scene::default()
-        },
-        "irb140",
-    )
-    .unwrap();
+    let runtime = with_options(GenerationOptions {
+        parameters: ParameterMode::Runtime,
+        ..GenerationOptions::default()
+    });
     assert_eq!(runtime.kernels.len(), full.kernels.len());
 }

@@ -5,7 +5,7 @@
 mod common;
 
 use common::state;
-use rne_codegen_core::{generate_from_path, Kernel, Scene};
+use rne_codegen_core::{generate_from_path, GenerationOptions, Kernel, Scene};
 use rne_interpreted::{Interpreted, StateRef};
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::{read_robot, Description};
@@ -35,11 +35,12 @@ const FIXTURE: &str = "fixtures/robots/chain-20.toml";
 fn the_large_kernels_of_the_chain_are_emitted_in_parts() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(FIXTURE);
     let emitted = |kernel: Kernel| {
-        let scene = Scene {
+        let options = GenerationOptions {
             outputs: vec![kernel],
-            ..Scene::default()
+            ..GenerationOptions::default()
         };
-        let module = generate_from_path(&path, &scene).expect("the fixture generates");
+        let module =
+            generate_from_path(&path, &Scene::default(), &options).expect("the fixture generates");
         module.source
     };
     assert!(

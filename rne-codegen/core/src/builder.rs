@@ -3,10 +3,13 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::CodegenError;
+use crate::generation_options::{
+    ForwardDynamicsMethod, GenerationOptions, ParameterMode, ScalarType,
+};
 use crate::kernel::Kernel;
 use crate::load::read_robot;
 use crate::module::{generate, GeneratedModule};
-use crate::scene::{ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene};
+use crate::scene::{MimicMode, Scene};
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::SpecWarning;
 
@@ -30,6 +33,7 @@ pub const KEEP_GENERATED_ENV: &str = "RNE_KEEP_GENERATED";
 pub struct Builder {
     robot: PathBuf,
     scene: Scene,
+    options: GenerationOptions,
 }
 
 impl Builder {
@@ -44,12 +48,13 @@ impl Builder {
         Builder {
             robot,
             scene: Scene::default(),
+            options: GenerationOptions::default(),
         }
     }
 
     /// The kernels to generate.
     pub fn outputs(mut self, kernels: &[Kernel]) -> Builder {
-        self.scene.outputs = kernels.to_vec();
+        self.options.outputs = kernels.to_vec();
         self
     }
 
@@ -62,6 +67,14 @@ impl Builder {
     /// Locks a joint at a value: it becomes a constant and leaves the state.
     pub fn lock(mut self, joint: &str, value: f64) -> Builder {
         self.scene.lock.push((joint.to_owned(), value));
+        self
+    }
+
+    /// A static scene (the macro's `at_rest: true`; [`Scene::at_rest`]): every joint velocity
+    /// is 0, so the Coriolis and centrifugal terms vanish; the functions keep their `qd`
+    /// arguments and ignore them.
+    pub fn at_rest(mut self, at_rest: bool) -> Builder {
+        self.scene.at_rest = at_rest;
         self
     }
 
@@ -79,15 +92,15 @@ impl Builder {
     }
 
     /// The derivative kernels built in lanes (the macro's `derivatives: lanes`;
-    /// [`Scene::derivative_lanes`]).
+    /// [`GenerationOptions::derivative_lanes`]).
     pub fn derivative_lanes(mut self, lanes: bool) -> Builder {
-        self.scene.derivative_lanes = lanes;
+        self.options.derivative_lanes = lanes;
         self
     }
 
-    /// Fused multiply-add in the kernels (the macro's `fma: true`; [`Scene::fma`]).
+    /// Fused multiply-add in the kernels (the macro's `fma: true`; [`GenerationOptions::fma`]).
     pub fn fma(mut self, fused: bool) -> Builder {
-        self.scene.fma = fused;
+        self.options.fma = fused;
         self
     }
 
@@ -101,47 +114,52 @@ impl Builder {
     /// How `forward_dynamics` is generated (the macro's `forward_dynamics:`; by default the
     /// cheaper of the articulated-body algorithm and M + LᵀDL).
     pub fn forward_dynamics(mut self, method: ForwardDynamicsMethod) -> Builder {
-        self.scene.forward_dynamics = method;
+        self.options.forward_dynamics = method;
         self
     }
 
     /// The frames (link names) of the kinematics kernels, in output order (the macro's
     /// `frames:`; every link by default).
     pub fn frames(mut self, frames: &[&str]) -> Builder {
-        self.scene.frames = Some(frames.iter().map(|f| (*f).to_owned()).collect());
+        self.options.frames = Some(frames.iter().map(|f| (*f).to_owned()).collect());
         self
     }
 
     /// Constant (folded) or runtime parameters: the spec's (`Params`), or the base parameters
     /// (`Params` of `BASE_PARAMETERS`, the macro's `parameters: base`).
     pub fn parameters(mut self, mode: ParameterMode) -> Builder {
-        self.scene.parameters = mode;
+        self.options.parameters = mode;
         self
     }
 
     /// The scalar type.
     pub fn scalar(mut self, scalar: ScalarType) -> Builder {
-        self.scene.scalar = scalar;
+        self.options.scalar = scalar;
         self
     }
 
     /// Where the generated code finds the `rne-codegen` crate, as a path
     /// (`::my_reexport::rne_codegen`; default `::rne_codegen`). Checked by [`Builder::generate`].
     pub fn crate_path(mut self, path: &str) -> Builder {
-        self.scene.crate_path = path.to_owned();
+        self.options.crate_path = path.to_owned();
         self
     }
 
     /// Strict validation (the macro's `validation: strict`): every warning about the robot
     /// file is an error.
     pub fn strict(mut self, strict: bool) -> Builder {
-        self.scene.strict = strict;
+        self.options.strict = strict;
         self
     }
 
-    /// The scene as configured.
+    /// The physical scene as configured.
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+
+    /// The generation options as configured.
+    pub fn options(&self) -> &GenerationOptions {
+        &self.options
     }
 
     /// Generates the module without writing it.
@@ -155,8 +173,8 @@ impl Builder {
         &self,
     ) -> Result<(GeneratedModule, Vec<SpecWarning>), CodegenError> {
         let origin = self.robot.display().to_string();
-        let model = read_robot(&self.robot, &origin, &self.scene)?;
-        let module = generate(&model, &self.scene, &origin)?;
+        let model = read_robot(&self.robot, &origin, &self.scene, &self.options)?;
+        let module = generate(&model, &self.scene, &self.options, &origin)?;
         Ok((module, model.warnings))
     }
 

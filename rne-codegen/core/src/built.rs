@@ -3,11 +3,11 @@
 
 use rne_symbolic::{Id, SymbolicDynamics};
 
+use crate::generation_options::ForwardDynamicsMethod;
 use crate::kernel::{build_outputs, Kernel, KernelSetup};
 use crate::linear::distribute_constants;
 use crate::module::ForwardDynamicsChoice;
 use crate::program::Program;
-use crate::scene::ForwardDynamicsMethod;
 use crate::split::SPLIT_ABOVE;
 
 /// One kernel built in an expression graph of its own.

@@ -29,9 +29,9 @@ use rne_symbolic::dynamics::LANES;
 use rne_symbolic::{Symbol, SymbolTable};
 
 use crate::dispatch::{dispatching_body, DISPATCH_FROM};
+use crate::generation_options::{ParameterMode, ScalarType};
 use crate::kernel::{Dims, Input, Kernel};
 use crate::program::{Instr, Operand, Program};
-use crate::scene::{ParameterMode, ScalarType};
 use crate::shape::Layout;
 use crate::split::{self, SplitPlan, Statement};
 
@@ -45,7 +45,7 @@ pub(crate) struct EmitContext<'a> {
     /// Constant or runtime parameters.
     pub parameters: ParameterMode,
     /// The path of the runtime crate (`rne-runtime`) from the generated code, as source text
-    /// ([`Scene::runtime_path`](crate::Scene::runtime_path)).
+    /// ([`GenerationOptions::runtime_path`](crate::GenerationOptions::runtime_path)).
     pub runtime: &'a str,
 }
 

@@ -36,9 +36,10 @@ use rne_symbolic::model::Parameter;
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
+use crate::generation_options::{GenerationOptions, ParameterMode, ScalarType};
 use crate::program::{Instr, Operand};
 use crate::programs::{generate_programs, GeneratedPrograms, KernelProgram};
-use crate::scene::{ParameterMode, ScalarType, Scene};
+use crate::scene::Scene;
 
 pub use text::c_identifier;
 use text::{c_comment, c_double, c_string, is_c_identifier};
@@ -117,22 +118,23 @@ pub struct CModule {
     pub source: String,
 }
 
-/// Generates the C of the kernels `scene` asks for, for `model` (loaded with symbolic
-/// parameters when the scene wants runtime parameters): [`generate_programs`], then
-/// [`emit_c`]. `source` names the robot file in the files' comments and in errors. The
-/// scene's scalar must be `f64`.
+/// Generates the C of the kernels `options` ask for, for `model` in `scene` (`model` loaded
+/// with symbolic parameters when the options want runtime parameters): [`generate_programs`],
+/// then [`emit_c`]. `source` names the robot file in the files' comments and in errors. The
+/// options' scalar must be `f64`.
 pub fn generate_c(
     model: &RobotModel,
     scene: &Scene,
+    options: &GenerationOptions,
     source: &str,
 ) -> Result<CModule, CodegenError> {
-    if scene.scalar != ScalarType::F64 {
+    if options.scalar != ScalarType::F64 {
         return Err(CodegenError::CEmission(format!(
-            "C kernels compute in double; the scene asks for {:?} scalars",
-            scene.scalar
+            "C kernels compute in double; the options ask for {:?} scalars",
+            options.scalar
         )));
     }
-    emit_c(&generate_programs(model, scene, source)?, source)
+    emit_c(&generate_programs(model, scene, options, source)?, source)
 }
 
 /// Writes `module`'s kernels as C. An error names a kernel that cannot be written (one that

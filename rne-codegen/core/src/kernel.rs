@@ -19,14 +19,14 @@ pub struct KernelSetup {
     /// allows it) rather than the LᵀDL factorisation of M.
     pub articulated: bool,
     /// Whether the derivative kernels are built in lanes (the `derivatives: lanes` setting,
-    /// [`crate::Scene::derivative_lanes`]).
+    /// [`crate::GenerationOptions::derivative_lanes`]).
     pub derivative_lanes: bool,
 }
 
 impl KernelSetup {
     /// Every frame, and the base parameters when `kernels` has a kernel built from them
     /// (`base_regressor`, `base_parameters`; a module with any identification kernel has
-    /// `base_parameters`, [`crate::Scene::kernels`]).
+    /// `base_parameters`, [`crate::GenerationOptions::kernels`]).
     pub fn new(dynamics: &SymbolicDynamics, kernels: &[Kernel]) -> KernelSetup {
         KernelSetup {
             frames: (0..dynamics.frames().len()).collect(),

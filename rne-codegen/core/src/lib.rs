@@ -1,5 +1,6 @@
-//! The code generator behind `rne-codegen`: from a robot model and a scene to a module of
-//! flat Rust functions.
+//! The code generator behind `rne-codegen`: from a robot model, its [`Scene`] (the physical
+//! world: gravity, locked joints, rest, base, mimic, friction) and the [`GenerationOptions`]
+//! (which functions, scalar, parameters, arithmetic) to a module of flat Rust functions.
 //!
 //! Pipeline: the scene is applied to the model (gravity, locked joints); each requested
 //! kernel is built by the symbolic dynamics into an expression graph of its own
@@ -53,6 +54,7 @@ mod dispatch;
 mod emit;
 mod emit_c;
 mod error;
+mod generation_options;
 mod kernel;
 mod latency;
 mod linear;
@@ -73,11 +75,12 @@ pub use built::{build_kernel, build_kernel_with, kernel_program, BuiltKernel};
 pub use dispatch::DISPATCH_FROM;
 pub use emit_c::{c_identifier, emit_c, generate_c, CModule};
 pub use error::CodegenError;
+pub use generation_options::{ForwardDynamicsMethod, GenerationOptions, ParameterMode, ScalarType};
 pub use kernel::{Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
-pub use scene::{ForwardDynamicsMethod, MimicMode, ParameterMode, ScalarType, Scene};
+pub use scene::{MimicMode, Scene};
 pub use split::{PART_LEN, SPLIT_ABOVE};

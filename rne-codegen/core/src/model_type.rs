@@ -5,8 +5,8 @@ use proc_macro2::{Ident, Span, TokenStream};
 use quote::quote;
 
 use crate::emit::{argument, return_type};
+use crate::generation_options::{ParameterMode, ScalarType};
 use crate::kernel::Kernel;
-use crate::scene::{ParameterMode, ScalarType};
 
 /// What the `Model` type depends on.
 pub struct ModelType<'a> {

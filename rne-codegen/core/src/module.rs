@@ -11,9 +11,10 @@ use crate::assemble::module_source;
 use crate::built::BuiltKernel;
 use crate::emit::{emit_kernel, EmitContext};
 use crate::error::CodegenError;
+use crate::generation_options::{ForwardDynamicsMethod, GenerationOptions};
 use crate::kernel::{Dims, Kernel};
 use crate::plan::Plan;
-use crate::scene::{ForwardDynamicsMethod, Scene};
+use crate::scene::Scene;
 use crate::schedule;
 
 /// What was generated for one kernel.
@@ -78,16 +79,18 @@ pub struct ForwardDynamicsChoice {
     pub chosen: ForwardDynamicsMethod,
 }
 
-/// Generates the kernels `scene` asks for, for `model` (loaded with symbolic parameters when
-/// the scene wants runtime parameters). `source` names the robot file in the docs.
+/// Generates the kernels `options` ask for, for `model` in `scene` (`model` loaded with
+/// symbolic parameters when the options want runtime parameters). `source` names the robot
+/// file in the docs.
 pub fn generate(
     model: &RobotModel,
     scene: &Scene,
+    options: &GenerationOptions,
     source: &str,
 ) -> Result<GeneratedModule, CodegenError> {
     let start = Instant::now();
-    let plan = Plan::new(model, scene, source)?;
-    let runtime = scene.runtime_path()?;
+    let plan = Plan::new(model, scene, options, source)?;
+    let runtime = options.runtime_path()?;
     let runtime_text = runtime.to_string();
     let emit = |built: BuiltKernel, kernel: Kernel, dims: Dims, start: Instant| {
         Ok(emit_built(built, kernel, &plan, &runtime_text, dims, start))
@@ -119,16 +122,16 @@ fn emit_built(
     dims: Dims,
     start: Instant,
 ) -> (String, KernelReport) {
-    let scene = plan.scene;
+    let options = plan.options;
     drop(built.dynamics);
-    let program = match scene.fma {
+    let program = match options.fma {
         true => built.program.fuse_multiply_add(),
         false => built.program,
     };
     let ctx = EmitContext {
         fields: &plan.fields,
-        scalar: scene.scalar,
-        parameters: scene.parameters,
+        scalar: options.scalar,
+        parameters: options.parameters,
         runtime,
     };
     let function = emit_kernel(kernel, &program, dims, ctx);

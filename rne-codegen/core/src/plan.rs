@@ -7,15 +7,16 @@ use rne_symbolic::{RobotModel, SymbolicDynamics};
 
 use crate::emit::{is_valid_parameter_name, parameter_fields};
 use crate::error::CodegenError;
+use crate::generation_options::{GenerationOptions, ParameterMode, ScalarType};
 use crate::kernel::{Dims, Kernel, KernelSetup};
-use crate::scene::{ParameterMode, ScalarType, Scene};
+use crate::scene::Scene;
 
-/// What a module is generated from: the robot as the scene sees it and everything decided
-/// before the first kernel is built.
+/// What a module is generated from: the robot as the scene sees it, the options, and
+/// everything decided before the first kernel is built.
 #[derive(Clone, Debug)]
 pub struct Plan<'a> {
-    /// The scene.
-    pub scene: &'a Scene,
+    /// How the code is generated.
+    pub options: &'a GenerationOptions,
     /// The robot file, as the module's docs name it.
     pub source: &'a str,
     /// The model with the scene applied (base, mimic, gravity, locks).
@@ -25,7 +26,7 @@ pub struct Plan<'a> {
     pub dynamics: SymbolicDynamics,
     /// The base parameters when every kernel is a function of them (`parameters: base`).
     pub base_mode: Option<BaseParameters>,
-    /// The kernels, in emission order ([`Scene::kernels`]).
+    /// The kernels, in emission order ([`GenerationOptions::kernels`]).
     pub kernels: Vec<Kernel>,
     /// What the kernels are built with besides the dynamics; its base parameters are found
     /// while building when [`Plan::finds_base_parameters`].
@@ -41,32 +42,34 @@ pub struct Plan<'a> {
 }
 
 impl<'a> Plan<'a> {
-    /// Validates `scene` against `model` and plans the module; `source` names the robot file.
+    /// Validates `scene` and `options` against `model` and plans the module; `source` names
+    /// the robot file.
     pub fn new(
         model: &RobotModel,
-        scene: &'a Scene,
+        scene: &Scene,
+        options: &'a GenerationOptions,
         source: &'a str,
     ) -> Result<Plan<'a>, CodegenError> {
-        let mut model = validate(model, scene, source)?;
-        model.graph.set_node_limit(scene.node_limit);
+        let mut model = validate(model, scene, options, source)?;
+        model.graph.set_node_limit(options.node_limit);
         let mut dynamics = SymbolicDynamics::new(&model);
-        if scene.zero_velocities {
+        if scene.at_rest {
             dynamics = dynamics.at_rest();
         }
         if scene.friction {
             dynamics = dynamics.with_friction();
         }
-        let base_mode = (scene.parameters == ParameterMode::Base).then(|| {
+        let base_mode = (options.parameters == ParameterMode::Base).then(|| {
             let (in_base, base) = dynamics.in_base_parameters();
             dynamics = in_base;
             base
         });
-        let kernels = scene.kernels();
+        let kernels = options.kernels();
         let setup = KernelSetup {
-            frames: scene.frame_indices(dynamics.frames())?,
+            frames: options.frame_indices(dynamics.frames())?,
             base_parameters: base_mode.clone(),
             articulated: false,
-            derivative_lanes: scene.derivative_lanes && scene.scalar == ScalarType::F64,
+            derivative_lanes: options.derivative_lanes && options.scalar == ScalarType::F64,
         };
         let parameter_names = dynamics.parameter_names();
         let dims = Dims {
@@ -76,7 +79,7 @@ impl<'a> Plan<'a> {
             nb: base_mode.as_ref().map_or(0, BaseParameters::len),
         };
         Ok(Plan {
-            scene,
+            options,
             source,
             finds_base_parameters: base_mode.is_none() && kernels.iter().any(|k| reads_base(*k)),
             fields: parameter_fields(dynamics.model.graph.symbols()),
@@ -91,13 +94,18 @@ impl<'a> Plan<'a> {
     }
 }
 
-/// The model as `scene` sees it, once the scene is known to apply: the kernels that solve with
-/// M need every joint to move some mass, runtime parameters need names that are Rust fields,
-/// and base parameters are found at numeric geometry.
-fn validate(model: &RobotModel, scene: &Scene, source: &str) -> Result<RobotModel, CodegenError> {
-    scene.runtime_path()?;
+/// The model as `scene` sees it, once the scene and `options` are known to apply: the kernels
+/// that solve with M need every joint to move some mass, runtime parameters need names that
+/// are Rust fields, and base parameters are found at numeric geometry.
+fn validate(
+    model: &RobotModel,
+    scene: &Scene,
+    options: &GenerationOptions,
+    source: &str,
+) -> Result<RobotModel, CodegenError> {
+    options.runtime_path()?;
     let model = scene.apply(model)?;
-    let inverting: Vec<Kernel> = scene
+    let inverting: Vec<Kernel> = options
         .outputs
         .iter()
         .copied()
@@ -112,7 +120,7 @@ fn validate(model: &RobotModel, scene: &Scene, source: &str) -> Result<RobotMode
                 joint,
             })?;
     }
-    if scene.parameters == ParameterMode::Runtime {
+    if options.parameters == ParameterMode::Runtime {
         if let Some(bad) = model
             .parameters
             .iter()
@@ -121,7 +129,7 @@ fn validate(model: &RobotModel, scene: &Scene, source: &str) -> Result<RobotMode
             return Err(CodegenError::ParameterName(bad.name.clone()));
         }
     }
-    if scene.parameters == ParameterMode::Base && !model.graph.symbols().parameters().is_empty() {
+    if options.parameters == ParameterMode::Base && !model.graph.symbols().parameters().is_empty() {
         return Err(CodegenError::SymbolicBaseParameters {
             robot: source.to_owned(),
         });

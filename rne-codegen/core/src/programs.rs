@@ -11,11 +11,12 @@ use rne_symbolic::{RobotModel, Symbol};
 
 use crate::built::BuiltKernel;
 use crate::error::CodegenError;
+use crate::generation_options::{GenerationOptions, ParameterMode};
 use crate::kernel::{Dims, Kernel};
 use crate::module::{ForwardDynamicsChoice, KernelReport};
 use crate::plan::Plan;
 use crate::program::Program;
-use crate::scene::{ParameterMode, Scene};
+use crate::scene::Scene;
 use crate::schedule;
 
 /// One kernel's program and how it was made.
@@ -23,19 +24,19 @@ use crate::schedule;
 pub struct KernelProgram {
     /// The kernel.
     pub kernel: Kernel,
-    /// Its program, with multiply-adds fused when the scene says `fma`
+    /// Its program, with multiply-adds fused when the options say `fma`
     /// ([`Program::fuse_multiply_add`]); matrices' outputs row-major, tuples concatenated.
     pub program: Program,
     /// Its operation count, critical path and generation time.
     pub report: KernelReport,
 }
 
-/// Every kernel a scene asks for, as programs, and what reading them needs.
+/// Every kernel the options ask for, as programs, and what reading them needs.
 #[derive(Clone, Debug)]
 pub struct GeneratedPrograms {
     /// The robot's name.
     pub robot: String,
-    /// The kernels, in the scene's order ([`Scene::kernels`]).
+    /// The kernels, in the options' order ([`GenerationOptions::kernels`]).
     pub kernels: Vec<KernelProgram>,
     /// Joint variable names, in state order.
     pub joints: Vec<String>,
@@ -75,21 +76,22 @@ pub struct GeneratedPrograms {
     pub generation_time: Duration,
 }
 
-/// The programs of every kernel `scene` asks for, for `model`; `source` names the robot file.
-/// The derivative kernels are built in scalars (lanes are the Rust emitter's).
+/// The programs of every kernel `options` ask for, for `model` in `scene`; `source` names the
+/// robot file. The derivative kernels are built in scalars (lanes are the Rust emitter's).
 pub fn generate_programs(
     model: &RobotModel,
     scene: &Scene,
+    options: &GenerationOptions,
     source: &str,
 ) -> Result<GeneratedPrograms, CodegenError> {
     let start = Instant::now();
-    let scalar_scene = Scene {
+    let scalar_options = GenerationOptions {
         derivative_lanes: false,
-        ..scene.clone()
+        ..options.clone()
     };
-    let plan = Plan::new(model, &scalar_scene, source)?;
+    let plan = Plan::new(model, scene, &scalar_options, source)?;
     let finish = |built: BuiltKernel, kernel: Kernel, _: Dims, start: Instant| {
-        let program = match scene.fma {
+        let program = match options.fma {
             true => built.program.fuse_multiply_add(),
             false => built.program,
         };
@@ -117,7 +119,7 @@ pub fn generate_programs(
                 .unwrap_or(f64::NAN)
         })
         .collect();
-    let runtime_parameters = match scene.parameters {
+    let runtime_parameters = match options.parameters {
         ParameterMode::Constant => Vec::new(),
         ParameterMode::Runtime => plan.model.parameters.clone(),
         ParameterMode::Base => plan.dynamics.model.parameters.clone(),
@@ -146,7 +148,7 @@ pub fn generate_programs(
         parameter_names: plan.parameter_names.clone(),
         parameter_values,
         parameter_symbols,
-        parameter_mode: scene.parameters,
+        parameter_mode: options.parameters,
         runtime_parameters,
         base_parameters: built.base_parameters.clone(),
         forward_dynamics_choice: built.forward_dynamics_choice,

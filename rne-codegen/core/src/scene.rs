@@ -1,110 +1,35 @@
-//! Scene settings: what the user's application needs, so that only that is generated.
+//! The physical scene: the world the robot's generated functions describe — its gravity, the
+//! joints that do not move, whether it is at rest, its base, its mimic couplings and its
+//! friction. Everything here changes what the dynamics *are*; how they are written as code is
+//! [`GenerationOptions`](crate::GenerationOptions).
 
-use proc_macro2::TokenStream;
-use quote::quote;
-use rne_symbolic::model::{Base, Frame};
+use rne_symbolic::model::Base;
 use rne_symbolic::RobotModel;
 
 use crate::error::CodegenError;
-use crate::kernel::Kernel;
 
-/// How model parameters enter the generated code.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum ParameterMode {
-    /// Folded as numbers at generation time (the default; the fastest code).
-    #[default]
-    Constant,
-    /// Read at run time from a generated `Params` struct whose `Default` holds the spec's
-    /// values; every function takes `p: &Params` first.
-    Runtime,
-    /// Runtime parameters that are the base parameters (`BASE_PARAMETERS`): the identifiable
-    /// combinations of the standard ones, found at the spec's geometry. `Params::default()`
-    /// holds the base parameters of the spec's masses and inertias,
-    /// `Params::from_standard(&π)` those of any standard parameters, and every function is
-    /// an exact function of them ([`rne_symbolic::SymbolicDynamics::in_base_parameters`]);
-    /// `potential_energy` is exact up to a constant, which the base parameters do not fix.
-    Base,
-}
-
-/// The scalar type of the generated functions.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum ScalarType {
-    /// `f64` (the default).
-    #[default]
-    F64,
-    /// `f32`.
-    F32,
-    /// Generic over the runtime's `Real` (f32, f64, `DoubleDouble`, ...).
-    Generic,
-}
-
-/// Everything that decides what is generated besides the robot itself (docs/design.md §3).
-#[derive(Clone, Debug, PartialEq)]
+/// The robot's world as the application sees it, so that only that is generated
+/// (docs/design.md §3). Each field changes the equations of motion the kernels compute: a
+/// scene at rest has no Coriolis terms, a locked joint no variable, a constrained mimic
+/// follower no variable of its own, friction adds torques. Which functions are generated and
+/// how their arithmetic is written are the [`GenerationOptions`](crate::GenerationOptions).
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
-    /// The kernels to generate, in the order they are emitted.
-    pub outputs: Vec<Kernel>,
     /// Gravity overriding the spec's (`[0, 0, 0]` removes every gravity term).
     pub gravity: Option<[f64; 3]>,
     /// Joints locked at constant values: they become constants and leave the state.
     pub lock: Vec<(String, f64)>,
-    /// A static scene: every joint velocity is 0 (`velocities: zero`), so the Coriolis and
+    /// A static scene (`at_rest: true`): every joint velocity is 0, so the Coriolis and
     /// centrifugal terms vanish. The functions keep their `qd` arguments and ignore them.
-    pub zero_velocities: bool,
-    /// Constant or runtime parameters.
-    pub parameters: ParameterMode,
-    /// The scalar type.
-    pub scalar: ScalarType,
-    /// The path of the `rne-codegen` crate as the generated code's crate sees it (the macro's
-    /// `crate:` setting, [`DEFAULT_CRATE_PATH`] by default); the code reaches the runtime
-    /// through `<path>::__private`.
-    pub crate_path: String,
+    pub at_rest: bool,
     /// The base overriding the spec's (`base: fixed | floating`); `None` keeps the spec's.
     pub base: Option<Base>,
     /// Whether mimic followers follow their leaders (the default, URDF semantics) or are
     /// joints of their own.
     pub mimic: MimicMode,
-    /// The frames (link names) of the kinematics kernels, in output order; `None` for every
-    /// link of the robot file (the `frames:` setting).
-    pub frames: Option<Vec<String>>,
     /// Joint friction in the inverse and forward dynamics and the regressor
     /// (`friction: include`); `friction_torques` is available either way.
     pub friction: bool,
-    /// How `forward_dynamics` solves for q̈ (the `forward_dynamics:` setting).
-    pub forward_dynamics: ForwardDynamicsMethod,
-    /// Strict validation (`validation: strict`): every warning about the robot file is an
-    /// error (docs/design.md §2.4).
-    pub strict: bool,
-    /// Fused multiply-add (`fma: true`): a product used only by a sum is computed with the
-    /// sum by the runtime's `Real::mul_add`, one rounding instead of two and one instruction
-    /// where the target has FMA (e.g. `-C target-cpu=native`); elsewhere the same two
-    /// operations as without.
-    pub fma: bool,
-    /// The derivative kernels built in lanes (`derivatives: lanes`): their forward sweeps
-    /// carry four directions at a time in the runtime's `F64x4`, one vector instruction for
-    /// four derivatives (`rne_symbolic::dynamics::LanePartials`). Needs rne-codegen's feature
-    /// `simd`; applies to `f64` kernels (the others are built as without) short of the
-    /// length at which kernels are split into parts (module `split`).
-    /// It pays in a build for a target with AVX (`-C target-cpu=native`): in a baseline
-    /// x86-64 build each vector is a pair of SSE2 registers and the kernels are slower than
-    /// without (docs/performance.md, "Derivatives in lanes").
-    pub derivative_lanes: bool,
-    /// The most nodes the expression graph of one kernel may reach while it is built
-    /// ([`rne_symbolic::ExprGraph::node_limit`]); a kernel that would need more is an error
-    /// naming it ([`CodegenError::TooLarge`]) instead of minutes of work and gigabytes.
-    pub node_limit: usize,
-}
-
-/// The algorithm of the `forward_dynamics` kernel.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum ForwardDynamicsMethod {
-    /// Whichever of the two costs fewer operations for this robot and scene (the default).
-    #[default]
-    Auto,
-    /// The articulated-body algorithm (Featherstone, RBDA ch. 7), linear in the number of
-    /// links; fixed-base models without mimic couplings only (others use `Ldlt`).
-    Aba,
-    /// M(q) and C q̇ + g, solved by a generated LᵀDL factorisation of M (thesis (6.2)).
-    Ldlt,
 }
 
 /// How mimic joints are generated (the macro's `mimic:` setting).
@@ -115,32 +40,6 @@ pub enum MimicMode {
     Constrained,
     /// Every follower is an independent joint (Pinocchio's default when loading a URDF).
     Free,
-}
-
-/// Where generated code finds `rne-codegen` unless told otherwise.
-pub const DEFAULT_CRATE_PATH: &str = "::rne_codegen";
-
-impl Default for Scene {
-    fn default() -> Scene {
-        Scene {
-            outputs: Kernel::DYNAMICS.to_vec(),
-            gravity: None,
-            lock: Vec::new(),
-            zero_velocities: false,
-            parameters: ParameterMode::Constant,
-            scalar: ScalarType::F64,
-            crate_path: DEFAULT_CRATE_PATH.to_owned(),
-            base: None,
-            mimic: MimicMode::Constrained,
-            frames: None,
-            friction: false,
-            forward_dynamics: ForwardDynamicsMethod::Auto,
-            strict: false,
-            fma: false,
-            derivative_lanes: false,
-            node_limit: rne_symbolic::expr::NODE_LIMIT,
-        }
-    }
 }
 
 impl Scene {
@@ -169,54 +68,5 @@ impl Scene {
             model.lock_joint(joint, *value)?;
         }
         Ok(model)
-    }
-
-    /// The kernels to generate: each of `outputs` once, at its first mention (a Builder or
-    /// `rne emit` may repeat one), and `base_parameters` after them when an identification
-    /// kernel is asked for without it (the map from π to the base regressor's π_b).
-    pub fn kernels(&self) -> Vec<Kernel> {
-        let mut kernels: Vec<Kernel> = Vec::new();
-        for &kernel in &self.outputs {
-            if !kernels.contains(&kernel) {
-                kernels.push(kernel);
-            }
-        }
-        if kernels.iter().any(|k| k.is_identification())
-            && !kernels.contains(&Kernel::BaseParameters)
-        {
-            kernels.push(Kernel::BaseParameters);
-        }
-        kernels
-    }
-
-    /// The indices into `frames` (the robot's, [`rne_symbolic::SymbolicDynamics::frames`]) of
-    /// the frames this scene asks for; an error names a frame the robot does not have.
-    pub fn frame_indices(&self, frames: &[Frame]) -> Result<Vec<usize>, CodegenError> {
-        let Some(names) = &self.frames else {
-            return Ok((0..frames.len()).collect());
-        };
-        names
-            .iter()
-            .enumerate()
-            .map(|(i, name)| {
-                if names[..i].contains(name) {
-                    return Err(CodegenError::FrameTwice(name.clone()));
-                }
-                frames.iter().position(|f| &f.name == name).ok_or_else(|| {
-                    CodegenError::UnknownFrame {
-                        frame: name.clone(),
-                        known: frames.iter().map(|f| f.name.clone()).collect(),
-                    }
-                })
-            })
-            .collect()
-    }
-
-    /// The path generated code reaches the runtime by: `<crate_path>::__private`. An error
-    /// when `crate_path` is not a Rust path.
-    pub fn runtime_path(&self) -> Result<TokenStream, CodegenError> {
-        let path: syn::Path = syn::parse_str(&self.crate_path)
-            .map_err(|_| CodegenError::CratePath(self.crate_path.clone()))?;
-        Ok(quote!(#path::__private))
     }
 }

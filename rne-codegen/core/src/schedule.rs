@@ -29,10 +29,10 @@ use rne_symbolic::SymbolicDynamics;
 
 use crate::built::{build_in_scalars, build_kernel_with, choose_forward_dynamics, BuiltKernel};
 use crate::error::CodegenError;
+use crate::generation_options::ForwardDynamicsMethod;
 use crate::kernel::{articulated_applies, Dims, Kernel};
 use crate::module::ForwardDynamicsChoice;
 use crate::plan::{reads_base, Plan};
-use crate::scene::ForwardDynamicsMethod;
 
 /// How a built kernel is finished, on the thread that built it: its kernel, the array sizes
 /// and when its building started are given with it.
@@ -241,7 +241,7 @@ fn other_thread<T>(
     let choosing = Instant::now();
     let (choice, mut chosen) = if builds_forward_dynamics && articulated_applies(dynamics) {
         let (choice, built) =
-            choose_forward_dynamics(dynamics, &setup, plan.scene.forward_dynamics);
+            choose_forward_dynamics(dynamics, &setup, plan.options.forward_dynamics);
         (Some(choice), Some((built, choosing.elapsed())))
     } else {
         (None, None)

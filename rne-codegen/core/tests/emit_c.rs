@@ -5,17 +5,17 @@
 use std::path::PathBuf;
 
 use rne_codegen_core::{
-    emit_c, generate, generate_c, generate_programs, read_robot, CodegenError, Instr, Kernel,
-    Operand, ParameterMode, ScalarType, Scene,
+    emit_c, generate, generate_c, generate_programs, read_robot, CodegenError, GenerationOptions,
+    Instr, Kernel, Operand, ParameterMode, ScalarType, Scene,
 };
 use rne_symbolic::model::Parameter;
 use rne_symbolic::Symbol;
 
-fn robot(file: &str, scene: &Scene) -> rne_symbolic::RobotModel {
+fn robot(file: &str, options: &GenerationOptions) -> rne_symbolic::RobotModel {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/robots")
         .join(file);
-    read_robot(&path, file, scene).unwrap()
+    read_robot(&path, file, &Scene::default(), options).unwrap()
 }
 
 /// Every kernel, with and without fused multiply-adds: the programs have the operations of
@@ -24,14 +24,14 @@ fn robot(file: &str, scene: &Scene) -> rne_symbolic::RobotModel {
 #[test]
 fn the_programs_are_those_generate_emits() {
     for fma in [false, true] {
-        let scene = Scene {
+        let options = GenerationOptions {
             outputs: Kernel::ALL.to_vec(),
             fma,
-            ..Scene::default()
+            ..GenerationOptions::default()
         };
-        let model = robot("puma560.toml", &scene);
-        let module = generate(&model, &scene, "puma560").unwrap();
-        let programs = generate_programs(&model, &scene, "puma560").unwrap();
+        let model = robot("puma560.toml", &options);
+        let module = generate(&model, &Scene::default(), &options, "puma560").unwrap();
+        let programs = generate_programs(&model, &Scene::default(), &options, "puma560").unwrap();
         assert_eq!(programs.kernels.len(), module.kernels.len());
         for (kp, report) in programs.kernels.iter().zip(&module.kernels) {
             let (kernel, program) = (&kp.kernel, &kp.program);
@@ -56,11 +56,17 @@ fn message(error: CodegenError) -> String {
 
 #[test]
 fn a_scalar_other_than_double_is_an_error() {
-    let scene = Scene {
+    let options = GenerationOptions {
         scalar: ScalarType::F32,
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let error = generate_c(&robot("planar-elbow.toml", &scene), &scene, "elbow").unwrap_err();
+    let error = generate_c(
+        &robot("planar-elbow.toml", &options),
+        &Scene::default(),
+        &options,
+        "elbow",
+    )
+    .unwrap_err();
     assert!(message(error).contains("double"));
 }
 
@@ -68,12 +74,12 @@ fn a_scalar_other_than_double_is_an_error() {
 /// kernel's name.
 #[test]
 fn a_kernel_c_cannot_write_is_an_error_naming_it() {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix],
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let model = robot("planar-elbow.toml", &scene);
-    let programs = generate_programs(&model, &scene, "elbow").unwrap();
+    let model = robot("planar-elbow.toml", &options);
+    let programs = generate_programs(&model, &Scene::default(), &options, "elbow").unwrap();
     assert!(emit_c(&programs, "elbow").is_ok());
 
     let mut lanes = programs.clone();
@@ -98,12 +104,18 @@ fn a_kernel_c_cannot_write_is_an_error_naming_it() {
 /// Kinematics of no frame would return an empty array, which C does not have.
 #[test]
 fn an_empty_result_is_an_error() {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::FramePlacements],
         frames: Some(Vec::new()),
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let error = generate_c(&robot("planar-elbow.toml", &scene), &scene, "elbow").unwrap_err();
+    let error = generate_c(
+        &robot("planar-elbow.toml", &options),
+        &Scene::default(),
+        &options,
+        "elbow",
+    )
+    .unwrap_err();
     let error = message(error);
     assert!(
         error.contains("`frame_placements`") && error.contains("empty"),
@@ -114,13 +126,13 @@ fn an_empty_result_is_an_error() {
 /// A runtime parameter must be a field name in both C and C++.
 #[test]
 fn a_parameter_that_cannot_be_a_c_field_is_an_error() {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: vec![Kernel::InverseDynamics],
         parameters: ParameterMode::Runtime,
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let model = robot("planar-elbow.toml", &scene);
-    let mut programs = generate_programs(&model, &scene, "elbow").unwrap();
+    let model = robot("planar-elbow.toml", &options);
+    let mut programs = generate_programs(&model, &Scene::default(), &options, "elbow").unwrap();
     assert!(emit_c(&programs, "elbow").is_ok());
     programs.runtime_parameters.push(Parameter {
         name: "class".to_owned(),

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use rne_codegen_core::{generate, read_robot, Kernel, ParameterMode, Scene};
+use rne_codegen_core::{generate, read_robot, GenerationOptions, Kernel, ParameterMode, Scene};
 use rne_symbolic::dynamics::derivatives::Sweep;
 use rne_symbolic::SymbolicDynamics;
 
@@ -17,13 +17,13 @@ fn emitted_with(file: &str, outputs: &[Kernel], parameters: ParameterMode) -> St
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/robots")
         .join(file);
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: outputs.to_vec(),
         parameters,
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let model = read_robot(&path, file, &scene).expect("the robot loads");
-    generate(&model, &scene, file)
+    let model = read_robot(&path, file, &Scene::default(), &options).expect("the robot loads");
+    generate(&model, &Scene::default(), &options, file)
         .expect("the module generates")
         .to_pretty_string()
 }
@@ -59,16 +59,18 @@ fn planar_elbow_base_parameters() {
 #[test]
 fn base_parameters_of_a_model_with_symbolic_parameters_are_an_error() {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/robots/planar-elbow.toml");
-    let symbolic = Scene {
+    let symbolic = GenerationOptions {
         parameters: ParameterMode::Runtime,
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let model = read_robot(&path, "planar-elbow.toml", &symbolic).expect("the robot loads");
-    let base = Scene {
+    let model = read_robot(&path, "planar-elbow.toml", &Scene::default(), &symbolic)
+        .expect("the robot loads");
+    let base = GenerationOptions {
         parameters: ParameterMode::Base,
-        ..Scene::default()
+        ..GenerationOptions::default()
     };
-    let error = generate(&model, &base, "planar-elbow.toml").expect_err("symbolic geometry");
+    let error = generate(&model, &Scene::default(), &base, "planar-elbow.toml")
+        .expect_err("symbolic geometry");
     assert!(
         error
             .to_string()
@@ -156,8 +158,15 @@ fn a_kernel_is_the_same_whichever_kernels_come_with_it() {
             .expect("a file")
             .to_string_lossy()
             .into_owned();
-        let mut dynamics =
-            SymbolicDynamics::new(&read_robot(&path, &name, &Scene::default()).expect("loads"));
+        let mut dynamics = SymbolicDynamics::new(
+            &read_robot(
+                &path,
+                &name,
+                &Scene::default(),
+                &GenerationOptions::default(),
+            )
+            .expect("loads"),
+        );
         dynamics.inverse_dynamics_derivatives();
         assert_eq!(dynamics.derivative_sweep(), Some(sweep), "{name}");
         let derivatives = [
@@ -182,13 +191,14 @@ fn a_kernel_is_the_same_whichever_kernels_come_with_it() {
         };
         for derivative_lanes in [false, true] {
             let module = |outputs: &[Kernel]| {
-                let scene = Scene {
+                let options = GenerationOptions {
                     outputs: outputs.to_vec(),
                     derivative_lanes,
-                    ..Scene::default()
+                    ..GenerationOptions::default()
                 };
-                let model = read_robot(&path, &name, &scene).expect("the robot loads");
-                generate(&model, &scene, &name)
+                let model =
+                    read_robot(&path, &name, &Scene::default(), &options).expect("the robot loads");
+                generate(&model, &Scene::default(), &options, &name)
                     .expect("the module generates")
                     .to_pretty_string()
             };

@@ -4,28 +4,29 @@
 use std::path::PathBuf;
 
 use rne_codegen_core::{
-    build_kernel_with, generate, read_robot, ForwardDynamicsMethod, Kernel, KernelSetup, Scene,
+    build_kernel_with, generate, read_robot, ForwardDynamicsMethod, GenerationOptions, Kernel,
+    KernelSetup, Scene,
 };
 use rne_symbolic::{Symbol, SymbolicDynamics};
 
-fn robot(file: &str, scene: &Scene) -> rne_symbolic::RobotModel {
+fn robot(file: &str, options: &GenerationOptions) -> rne_symbolic::RobotModel {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/robots")
         .join(file);
-    scene
-        .apply(&read_robot(&path, file, scene).unwrap())
+    Scene::default()
+        .apply(&read_robot(&path, file, &Scene::default(), options).unwrap())
         .unwrap()
 }
 
 #[test]
 fn the_default_takes_the_cheaper_algorithm_and_either_can_be_forced() {
     for file in ["planar-elbow.toml", "puma560.toml"] {
-        let mut scene = Scene {
+        let mut options = GenerationOptions {
             outputs: vec![Kernel::ForwardDynamics],
-            ..Scene::default()
+            ..GenerationOptions::default()
         };
-        let model = robot(file, &scene);
-        let auto = generate(&model, &scene, file).unwrap();
+        let model = robot(file, &options);
+        let auto = generate(&model, &Scene::default(), &options, file).unwrap();
         let choice = auto.forward_dynamics_choice.clone().expect("both apply");
         let cheaper = if choice.aba.cost() < choice.ldlt.cost() {
             ForwardDynamicsMethod::Aba
@@ -43,8 +44,8 @@ fn the_default_takes_the_cheaper_algorithm_and_either_can_be_forced() {
             "{file}: the emitted kernel is the chosen one"
         );
         for forced in [ForwardDynamicsMethod::Aba, ForwardDynamicsMethod::Ldlt] {
-            scene.forward_dynamics = forced;
-            let module = generate(&model, &scene, file).unwrap();
+            options.forward_dynamics = forced;
+            let module = generate(&model, &Scene::default(), &options, file).unwrap();
             assert_eq!(module.forward_dynamics_choice.unwrap().chosen, forced);
         }
     }
@@ -52,7 +53,7 @@ fn the_default_takes_the_cheaper_algorithm_and_either_can_be_forced() {
 
 #[test]
 fn both_algorithms_compute_the_same_accelerations() {
-    let model = robot("puma560.toml", &Scene::default());
+    let model = robot("puma560.toml", &GenerationOptions::default());
     let dynamics = SymbolicDynamics::new(&model);
     let setup = KernelSetup::new(&dynamics, &[Kernel::ForwardDynamics]);
     let program = |articulated| {

@@ -32,9 +32,26 @@ impl JitModel {
         out: &mut [f64],
     ) -> Result<(), JitError> {
         let states = self.batch_states(kernel, &batch, out.len())?;
-        let per = self.compiled_kernel(kernel)?.outputs();
-        for (i, out) in out.chunks_mut(per.max(1)).enumerate().take(states) {
-            self.evaluate(kernel, self.state(&batch, i), out)?;
+        let per = self.compiled_kernel(kernel)?.outputs().max(1);
+        self.evaluate_share(kernel, &batch, 0, &mut out[..states * per])
+    }
+
+    /// `kernel` at states `first`, `first + 1`, … of `batch` into `out`, one kernel's outputs
+    /// per state, each state checked, one scratch array for all.
+    fn evaluate_share(
+        &self,
+        kernel: Kernel,
+        batch: &Batch<'_>,
+        first: usize,
+        out: &mut [f64],
+    ) -> Result<(), JitError> {
+        let compiled = self.compiled_kernel(kernel)?;
+        let mut scratch = compiled.scratch();
+        let parameters = self.parameters();
+        for (k, out) in out.chunks_mut(compiled.outputs().max(1)).enumerate() {
+            let state = self.state(batch, first + k);
+            self.check_state(kernel, &state)?;
+            self.run_in(compiled, state, parameters, out, &mut scratch);
         }
         Ok(())
     }
@@ -59,12 +76,7 @@ impl JitModel {
                 .chunks_mut(share * per)
                 .enumerate()
                 .map(|(t, out)| {
-                    scope.spawn(move || -> Result<(), JitError> {
-                        for (k, out) in out.chunks_mut(per).enumerate() {
-                            self.evaluate(kernel, self.state(&batch, t * share + k), out)?;
-                        }
-                        Ok(())
-                    })
+                    scope.spawn(move || self.evaluate_share(kernel, &batch, t * share, out))
                 })
                 .collect();
             handles

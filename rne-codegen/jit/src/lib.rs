@@ -3,11 +3,12 @@
 //! processor by Cranelift (the Wasmtime project's code generator), with no Rust build.
 //!
 //! ```no_run
-//! use rne_codegen_core::{Kernel, Scene};
+//! use rne_codegen_core::{GenerationOptions, Kernel, Scene};
 //! use rne_jit::{JitModel, State};
 //!
-//! let scene = Scene { outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix], ..Scene::default() };
-//! let model = JitModel::load("robots/ur5.urdf".as_ref(), &scene)?;
+//! let outputs = vec![Kernel::InverseDynamics, Kernel::MassMatrix];
+//! let options = GenerationOptions { outputs, ..GenerationOptions::default() };
+//! let model = JitModel::load("robots/ur5.urdf".as_ref(), &Scene::default(), &options)?;
 //! let (q, qd, qdd) = (vec![0.1; 6], vec![0.0; 6], vec![0.0; 6]);
 //! let tau = model.evaluate_vec(Kernel::InverseDynamics, State { q: &q, qd: &qd, qdd: &qdd, ..State::default() })?;
 //! # Ok::<(), rne_jit::JitError>(())
@@ -27,6 +28,11 @@
 //! macro's kernel compiled for it (`-C target-cpu=native`) fuses them; the sines and cosines
 //! are those of the runtime as this program was compiled (fused only in a build with FMA).
 //!
+//! # Threads
+//! The functions of all kernels are compiled on one thread per core (`RNE_JIT_THREADS=n`
+//! sets the number), and defined in the order they were lowered: the code does not depend on
+//! the number of threads.
+//!
 //! # Limits
 //! - `f64` only, and the derivative kernels in scalars (lanes are the Rust emitter's).
 //! - Processors Cranelift has no backend for (other than x86-64, AArch64, RISC-V 64, s390x)
@@ -37,10 +43,11 @@
 
 mod batch;
 mod code;
+mod compile;
 mod error;
 mod lower;
 mod model;
 
 pub use batch::Batch;
 pub use error::JitError;
-pub use model::{JitModel, State, Tier, Timings};
+pub use model::{host_support, JitModel, State, Tier, Timings};

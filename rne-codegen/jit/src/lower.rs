@@ -16,10 +16,9 @@ use std::collections::HashMap;
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
-    types, AbiParam, FuncRef, InstBuilder, MemFlagsData, Signature, StackSlotData, StackSlotKind,
-    Type, UserFuncName, Value,
+    types, AbiParam, FuncRef, Function, InstBuilder, MemFlagsData, Signature, StackSlotData,
+    StackSlotKind, Type, UserFuncName, Value,
 };
-use cranelift_codegen::Context;
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Linkage, Module};
@@ -39,7 +38,6 @@ pub(crate) struct Lowering {
     sin_cos: FuncId,
     /// Whether multiply-adds are fused (`fma` on and the processor has FMA).
     pub fused: bool,
-    context: Context,
     builder: FunctionBuilderContext,
 }
 
@@ -73,19 +71,19 @@ impl Lowering {
             kernel_signature,
             sin_cos,
             fused,
-            context: module.make_context(),
             builder: FunctionBuilderContext::new(),
         })
     }
 
-    /// Compiles `program` into `module` as functions named after `name`, to be called in
-    /// order with one scratch array: their ids and extents.
+    /// Lowers `program` to Cranelift IR as functions declared in `module` and named after
+    /// `name`, to be called in order with one scratch array: their ids, IR and extents, for
+    /// [`crate::compile::define`] to compile.
     pub(crate) fn lower(
         &mut self,
         module: &mut JITModule,
         name: &str,
         program: &Program,
-    ) -> Result<Vec<(FuncId, Extents)>, String> {
+    ) -> Result<Vec<Lowered>, String> {
         let parts = parts(program);
         let slots = crossing_slots(program, &parts);
         let mut functions = Vec::with_capacity(parts.len());
@@ -97,28 +95,40 @@ impl Lowering {
                     &self.kernel_signature,
                 )
                 .map_err(|e| e.to_string())?;
-            self.context.func.signature = self.kernel_signature.clone();
-            self.context.func.name = UserFuncName::user(0, id.as_u32());
-            let sin_cos = module.declare_func_in_func(self.sin_cos, &mut self.context.func);
+            let mut function = Function::with_name_signature(
+                UserFuncName::user(0, id.as_u32()),
+                self.kernel_signature.clone(),
+            );
+            let sin_cos = module.declare_func_in_func(self.sin_cos, &mut function);
             let mut extents = Extents {
                 scratch: slots.len(),
                 ..Extents::default()
             };
             let config = module.target_config();
             {
-                let builder = FunctionBuilder::new(&mut self.context.func, &mut self.builder);
+                let builder = FunctionBuilder::new(&mut function, &mut self.builder);
                 let mut body = Body::new(builder, self.pointer, sin_cos, self.fused);
                 body.run(program, part, &slots, &mut extents)?;
                 body.builder.finalize(config);
             }
-            module
-                .define_function(id, &mut self.context)
-                .map_err(|e| format!("{e:?}"))?;
-            module.clear_context(&mut self.context);
-            functions.push((id, extents));
+            functions.push(Lowered {
+                id,
+                function,
+                extents,
+            });
         }
         Ok(functions)
     }
+}
+
+/// One function in Cranelift IR, declared and not yet compiled.
+pub(crate) struct Lowered {
+    /// Its id in the module.
+    pub id: FuncId,
+    /// Its IR.
+    pub function: Function,
+    /// The array lengths it reads and writes.
+    pub extents: Extents,
 }
 
 /// One function's part of a program, [`SPLIT_ABOVE`] and [`PART_LEN`] as the Rust emitter's.

@@ -6,10 +6,13 @@ use std::time::{Duration, Instant};
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::default_libcall_names;
-use rne_codegen_core::{generate_programs, read_robot, GeneratedPrograms, Input, Kernel, Scene};
+use rne_codegen_core::{
+    generate_programs, read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel, Scene,
+};
 use rne_symbolic::RobotModel;
 
 use crate::code::{self, Arrays, Code, Entry};
+use crate::compile;
 use crate::error::JitError;
 use crate::lower::{Lowering, SIN_COS};
 
@@ -85,30 +88,40 @@ pub struct JitModel {
 }
 
 impl JitModel {
-    /// Reads the robot file `path` (TOML spec or URDF) as `scene` says and compiles the
-    /// kernels the scene asks for.
-    pub fn load(path: &Path, scene: &Scene) -> Result<JitModel, JitError> {
+    /// Reads the robot file `path` (TOML spec or URDF) as `scene` and `options` say and
+    /// compiles the kernels the options ask for.
+    pub fn load(
+        path: &Path,
+        scene: &Scene,
+        options: &GenerationOptions,
+    ) -> Result<JitModel, JitError> {
         let origin = path.display().to_string();
-        let model = read_robot(path, &origin, scene)?;
-        JitModel::compile(&model, scene, &origin)
+        let model = read_robot(path, &origin, scene, options)?;
+        JitModel::compile(&model, scene, options, &origin)
     }
 
-    /// Compiles the kernels `scene` asks for, for `model`, at [`Tier::Optimized`]; `source`
-    /// names the robot file in errors.
-    pub fn compile(model: &RobotModel, scene: &Scene, source: &str) -> Result<JitModel, JitError> {
-        JitModel::compile_at(model, scene, source, Tier::Optimized)
+    /// Compiles the kernels `options` ask for, for `model` in `scene`, at [`Tier::Optimized`];
+    /// `source` names the robot file in errors.
+    pub fn compile(
+        model: &RobotModel,
+        scene: &Scene,
+        options: &GenerationOptions,
+        source: &str,
+    ) -> Result<JitModel, JitError> {
+        JitModel::compile_at(model, scene, options, source, Tier::Optimized)
     }
 
-    /// Compiles the kernels `scene` asks for, for `model`, at `tier`.
+    /// Compiles the kernels `options` ask for, for `model` in `scene`, at `tier`.
     pub fn compile_at(
         model: &RobotModel,
         scene: &Scene,
+        options: &GenerationOptions,
         source: &str,
         tier: Tier,
     ) -> Result<JitModel, JitError> {
-        let programs = generate_programs(model, scene, source)?;
+        let programs = generate_programs(model, scene, options, source)?;
         let start = Instant::now();
-        let (mut module, fused) = host_module(scene.fma, tier)?;
+        let (mut module, fused) = host_module(options.fma, tier)?;
         let mut lowering =
             Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
                 kernel: programs
@@ -117,7 +130,7 @@ impl JitModel {
                     .map_or(Kernel::InverseDynamics, |k| k.kernel),
                 message,
             })?;
-        let mut declared = Vec::with_capacity(programs.kernels.len());
+        let mut lowered = Vec::with_capacity(programs.kernels.len());
         for k in &programs.kernels {
             let parts = lowering
                 .lower(&mut module, k.kernel.name(), &k.program)
@@ -125,7 +138,13 @@ impl JitModel {
                     kernel: k.kernel,
                     message,
                 })?;
-            declared.push((k.kernel, k.program.outputs.len(), parts));
+            lowered.push((k.kernel, k.program.outputs.len(), parts));
+        }
+        for (kernel, _, parts) in &lowered {
+            compile::define(&mut module, parts).map_err(|message| JitError::Compile {
+                kernel: *kernel,
+                message,
+            })?;
         }
         module
             .finalize_definitions()
@@ -133,18 +152,18 @@ impl JitModel {
                 kernel: Kernel::InverseDynamics,
                 message: e.to_string(),
             })?;
-        let kernels = declared
+        let kernels = lowered
             .into_iter()
             .map(|(kernel, outputs, parts)| {
-                let scratch = parts.iter().map(|(_, e)| e.scratch).max().unwrap_or(0);
+                let scratch = parts.iter().map(|p| p.extents.scratch).max().unwrap_or(0);
                 let parts = parts
                     .into_iter()
-                    .map(|(id, extents)| {
-                        let address = module.get_finalized_function(id);
-                        // SAFETY: `id` was defined with the kernels' signature by `Lowering`,
-                        // which recorded `extents`; `module` becomes the model's `Code`, which
-                        // outlives the entries (code.rs).
-                        unsafe { Entry::new(address, extents) }
+                    .map(|part| {
+                        let address = module.get_finalized_function(part.id);
+                        // SAFETY: `part.id` was defined with the kernels' signature from the
+                        // IR `Lowering` built, which recorded `part.extents`; `module` becomes
+                        // the model's `Code`, which outlives the entries (code.rs).
+                        unsafe { Entry::new(address, part.extents) }
                     })
                     .collect();
                 Compiled {
@@ -212,7 +231,7 @@ impl JitModel {
         &self.base_parameter_names
     }
 
-    /// The kernels compiled, in the scene's order.
+    /// The kernels compiled, in the options' order.
     pub fn kernels(&self) -> Vec<Kernel> {
         self.kernels.iter().map(|k| k.kernel).collect()
     }
@@ -227,7 +246,7 @@ impl JitModel {
         self.compiled(kernel).map(|k| k.outputs)
     }
 
-    /// Whether multiply-adds are fused: the scene's `fma` on a processor with FMA.
+    /// Whether multiply-adds are fused: the options' `fma` on a processor with FMA.
     pub fn fused(&self) -> bool {
         self.fused
     }
@@ -332,6 +351,20 @@ impl JitModel {
         parameters: &[f64],
         out: &mut [f64],
     ) {
+        let mut scratch = compiled.scratch();
+        self.run_in(compiled, state, parameters, out, &mut scratch);
+    }
+
+    /// [`JitModel::run`] with the kernel's scratch array given (`compiled.scratch()`), so that
+    /// a batch allocates it once.
+    pub(crate) fn run_in(
+        &self,
+        compiled: &Compiled,
+        state: State<'_>,
+        parameters: &[f64],
+        out: &mut [f64],
+        scratch: &mut [f64],
+    ) {
         let arrays = Arrays {
             q: state.q,
             qd: state.qd,
@@ -339,9 +372,8 @@ impl JitModel {
             tau: state.tau,
             parameters,
         };
-        let mut scratch = vec![0.0; compiled.scratch];
         for part in &compiled.parts {
-            part.call(arrays, out, &mut scratch)
+            part.call(arrays, out, scratch)
                 .expect("the arrays were checked against the kernel's inputs");
         }
     }
@@ -383,6 +415,11 @@ impl Compiled {
     pub(crate) fn outputs(&self) -> usize {
         self.outputs
     }
+
+    /// A scratch array for one call at a time (empty for a kernel of one part).
+    pub(crate) fn scratch(&self) -> Vec<f64> {
+        vec![0.0; self.scratch]
+    }
 }
 
 /// An error naming the first non-finite entry of `values`.
@@ -396,6 +433,12 @@ fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitE
             value: values[index],
         }),
     }
+}
+
+/// Whether this processor has a JIT backend: `Err(`[`JitError::UnsupportedHost`]`)` saying why
+/// not, where callers fall back to the interpreter.
+pub fn host_support() -> Result<(), JitError> {
+    host_module(false, Tier::Fast).map(|_| ())
 }
 
 /// A JIT module for this processor, its features detected at run time, with the runtime's

@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! #[attrs] pub mod NAME { robot: "file", outputs: [..], gravity: [x, y, z],
-//!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, parameters: constant|runtime|base,
+//!                         lock: { q1: 0.0, "joint 8": 0.0, .. }, at_rest: true|false,
+//!                         parameters: constant|runtime|base,
 //!                         scalar: f64|f32|generic, base: fixed|floating,
 //!                         mimic: constrained|free, validation: warn|strict,
 //!                         crate: ::path::to::rne_codegen }

@@ -1,11 +1,12 @@
-//! Checks the meaning of every setting and turns the syntax into a `Scene`, collecting all
-//! errors (each spanned on the offending token) before reporting them.
+//! Checks the meaning of every setting and turns the syntax into a `Scene` (the physical
+//! settings) and `GenerationOptions` (the others), collecting all errors (each spanned on the
+//! offending token) before reporting them.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use proc_macro2::Span;
 use rne_codegen_core::{
-    ForwardDynamicsMethod, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
+    ForwardDynamicsMethod, GenerationOptions, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
 };
 use rne_symbolic::model::Base;
 use syn::{Attribute, Ident, LitStr, Visibility};
@@ -19,6 +20,10 @@ pub struct CheckedModule {
     pub name: Ident,
     pub robot: LitStr,
     pub scene: Scene,
+    pub options: GenerationOptions,
+    /// The key of each setting given by a deprecated spelling, and its current spelling, for
+    /// a deprecation warning spanned on it.
+    pub deprecated: Vec<(Ident, &'static str)>,
     /// The span of each locked joint's name, for errors about joints the robot lacks.
     pub lock_spans: Vec<Span>,
     /// The span of each listed output (empty when `outputs` is left to its default), for
@@ -28,12 +33,13 @@ pub struct CheckedModule {
     pub frame_spans: Vec<Span>,
 }
 
+/// The settings, as the error about an unknown one lists them.
 const KEYS: [&str; 16] = [
     "robot",
     "outputs",
     "gravity",
     "lock",
-    "velocities",
+    "at_rest",
     "base",
     "mimic",
     "friction",
@@ -46,6 +52,15 @@ const KEYS: [&str; 16] = [
     "derivatives",
     "crate",
 ];
+
+/// Settings kept under an old spelling: (old key, the key it is an alias of, how to write it
+/// now). Accepted with a deprecation warning; giving both spellings is giving a key twice.
+const DEPRECATED_KEYS: [(&str, &str, &str); 1] = [(
+    "velocities",
+    "at_rest",
+    "`velocities: zero` is deprecated: write `at_rest: true` (and `velocities: free`, \
+     `at_rest: false`)",
+)];
 
 #[derive(Default)]
 struct Errors(Option<syn::Error>);
@@ -83,7 +98,8 @@ fn set<T>(place: &mut T, value: Option<T>) {
     }
 }
 
-/// Checks the settings in order, each key at most once, and builds the module's scene.
+/// Checks the settings in order, each key at most once, and builds the module's scene and
+/// generation options.
 pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
     let mut checker = Checker::default();
     for setting in &input.settings {
@@ -98,19 +114,28 @@ pub fn check(input: DynamicsModule) -> syn::Result<CheckedModule> {
 #[derive(Default)]
 struct Checker {
     errors: Errors,
-    seen: BTreeSet<&'static str>,
+    /// The settings given so far, by their current key, as they were spelled.
+    seen: BTreeMap<&'static str, String>,
     robot: Option<LitStr>,
     scene: Scene,
+    options: GenerationOptions,
+    deprecated: Vec<(Ident, &'static str)>,
     lock_spans: Vec<Span>,
     output_spans: Vec<Span>,
     frame_spans: Vec<Span>,
 }
 
 impl Checker {
-    /// The setting's key if it is one of [`KEYS`] not given before; an error otherwise.
+    /// The setting's key if it is one of [`KEYS`] (or a deprecated spelling of one, noted for
+    /// a warning) not given before; an error otherwise.
     fn key(&mut self, key: &Ident) -> Option<&'static str> {
         let name = key.to_string();
-        let Some(&known) = KEYS.iter().find(|&&k| k == name) else {
+        let old = DEPRECATED_KEYS.iter().find(|(old, _, _)| *old == name);
+        if let Some(&(_, _, note)) = old {
+            self.deprecated.push((key.clone(), note));
+        }
+        let current = old.map_or(name.as_str(), |(_, current, _)| current);
+        let Some(&known) = KEYS.iter().find(|&&k| k == current) else {
             let message = format!(
                 "unknown setting `{name}`; expected one of: {}",
                 KEYS.join(", ")
@@ -118,12 +143,21 @@ impl Checker {
             self.errors.push(key.span(), message);
             return None;
         };
-        if !self.seen.insert(known) {
-            self.errors
-                .push(key.span(), format!("`{name}` is given twice"));
+        if let Some(earlier) = self.seen.insert(known, name.clone()) {
+            let message = match earlier == name {
+                true => format!("`{name}` is given twice"),
+                false => format!(
+                    "`{name}` is given already as `{earlier}` (one is the deprecated spelling \
+                     of the other); give it once"
+                ),
+            };
+            self.errors.push(key.span(), message);
             return None;
         }
-        Some(known)
+        Some(match old {
+            Some(&(old, _, _)) => old,
+            None => known,
+        })
     }
 
     /// One setting, by its key and the shape of its value.
@@ -134,7 +168,7 @@ impl Checker {
             ("gravity", Value::List(bracket, elements)) => self.gravity(bracket, elements),
             ("lock", Value::Map(_, entries)) => self.lock(entries),
             ("frames", Value::List(bracket, elements)) => self.frames(bracket, elements),
-            ("velocities" | "base" | "mimic" | "friction", Value::Ident(name)) => {
+            ("at_rest" | "velocities" | "base" | "mimic" | "friction", Value::Ident(name)) => {
                 self.scene_choice(key, name)
             }
             (
@@ -142,7 +176,7 @@ impl Checker {
                 Value::Ident(name),
             ) => self.generation_choice(key, name),
             ("crate", Value::Path(path)) => {
-                self.scene.crate_path = quote::quote!(#path).to_string()
+                self.options.crate_path = quote::quote!(#path).to_string()
             }
             (key, value) => self.errors.push(value_span(value), expected_shape(key)),
         }
@@ -182,7 +216,7 @@ impl Checker {
                 "`outputs` must name at least one function",
             );
         }
-        self.scene.outputs = outputs;
+        self.options.outputs = outputs;
     }
 
     /// `gravity: [x, y, z]`: three finite numbers.
@@ -251,15 +285,23 @@ impl Checker {
             self.errors
                 .push(bracket.span.join(), "`frames` must name at least one frame");
         }
-        self.scene.frames = Some(frames);
+        self.options.frames = Some(frames);
     }
 
     /// The scene's settings given by a name: what moves and what acts on it.
     fn scene_choice(&mut self, key: &str, name: &Ident) {
         let (errors, scene) = (&mut self.errors, &mut self.scene);
         match key {
+            "at_rest" => set(
+                &mut scene.at_rest,
+                errors.pick(name, &[("true", true), ("false", false)], |other| {
+                    format!(
+                        "unknown at_rest `{other}`; expected `true` (a static scene) or `false`"
+                    )
+                }),
+            ),
             "velocities" => set(
-                &mut scene.zero_velocities,
+                &mut scene.at_rest,
                 errors.pick(name, &[("zero", true), ("free", false)], |other| {
                     format!(
                         "unknown velocities `{other}`; expected `zero` (a static scene) or `free`"
@@ -301,10 +343,10 @@ impl Checker {
 
     /// The settings given by a name that choose how the module is generated.
     fn generation_choice(&mut self, key: &str, name: &Ident) {
-        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        let (errors, options) = (&mut self.errors, &mut self.options);
         match key {
             "forward_dynamics" => set(
-                &mut scene.forward_dynamics,
+                &mut options.forward_dynamics,
                 errors.pick(
                     name,
                     &[
@@ -320,7 +362,7 @@ impl Checker {
                 ),
             ),
             "parameters" => set(
-                &mut scene.parameters,
+                &mut options.parameters,
                 errors.pick(
                     name,
                     &[
@@ -337,7 +379,7 @@ impl Checker {
                 ),
             ),
             "scalar" => set(
-                &mut scene.scalar,
+                &mut options.scalar,
                 errors.pick(
                     name,
                     &[
@@ -354,10 +396,10 @@ impl Checker {
 
     /// The generation settings that turn something on or off.
     fn switch(&mut self, key: &str, name: &Ident) {
-        let (errors, scene) = (&mut self.errors, &mut self.scene);
+        let (errors, options) = (&mut self.errors, &mut self.options);
         match key {
             "validation" => set(
-                &mut scene.strict,
+                &mut options.strict,
                 errors.pick(name, &[("strict", true), ("warn", false)], |other| {
                     format!(
                         "unknown validation `{other}`; expected `warn` (warnings in the module's \
@@ -366,13 +408,13 @@ impl Checker {
                 }),
             ),
             "fma" => set(
-                &mut scene.fma,
+                &mut options.fma,
                 errors.pick(name, &[("true", true), ("false", false)], |other| {
                     format!("unknown fma `{other}`; expected `true` or `false`")
                 }),
             ),
             _ => set(
-                &mut scene.derivative_lanes,
+                &mut options.derivative_lanes,
                 errors.pick(name, &[("lanes", true), ("scalar", false)], |other| {
                     format!(
                         "unknown derivatives `{other}`; expected `lanes` (four directions per \
@@ -385,7 +427,7 @@ impl Checker {
 
     /// The checked module, or every error found.
     fn finish(mut self, input: DynamicsModule) -> syn::Result<CheckedModule> {
-        if self.robot.is_none() && !self.seen.contains("robot") {
+        if self.robot.is_none() && !self.seen.contains_key("robot") {
             self.errors
                 .push(input.name.span(), "missing `robot: \"path/to/robot.toml\"`");
         }
@@ -397,6 +439,8 @@ impl Checker {
                 name: input.name,
                 robot,
                 scene: self.scene,
+                options: self.options,
+                deprecated: self.deprecated,
                 lock_spans: self.lock_spans,
                 output_spans: self.output_spans,
                 frame_spans: self.frame_spans,
@@ -424,6 +468,7 @@ fn expected_shape(key: &str) -> String {
         }
         "gravity" => "expected three numbers: `gravity: [0.0, 0.0, -9.81]`".into(),
         "lock" => "expected joint values: `lock: { q1: 0.0 }`".into(),
+        "at_rest" => "expected `true` or `false`".into(),
         "velocities" => "expected `zero` or `free`".into(),
         "base" => "expected `fixed` or `floating`".into(),
         "mimic" => "expected `constrained` or `free`".into(),
@@ -438,5 +483,67 @@ fn expected_shape(key: &str) -> String {
             "expected a path to the rne-codegen crate: `crate: ::my_reexport::rne_codegen`".into()
         }
         _ => "expected `f64`, `f32` or `generic`".into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The checked module of `settings` (after `robot: "r.toml",`).
+    fn checked(settings: &str) -> syn::Result<CheckedModule> {
+        let input = format!("mod m {{ robot: \"r.toml\", {settings} }}");
+        check(syn::parse_str(&input).expect("the settings parse"))
+    }
+
+    #[test]
+    fn at_rest_true_makes_a_static_scene_without_a_deprecation() {
+        let module = checked("at_rest: true,").unwrap();
+        assert!(module.scene.at_rest);
+        assert!(module.deprecated.is_empty());
+        assert!(!checked("at_rest: false,").unwrap().scene.at_rest);
+        assert!(!checked("").unwrap().scene.at_rest, "moving by default");
+    }
+
+    #[test]
+    fn velocities_zero_is_at_rest_noted_as_deprecated_on_its_key() {
+        let module = checked("velocities: zero,").unwrap();
+        assert!(module.scene.at_rest);
+        let [(key, note)] = &module.deprecated[..] else {
+            panic!("one deprecation: {:?}", module.deprecated.len())
+        };
+        assert_eq!(key.to_string(), "velocities");
+        assert!(note.contains("at_rest: true"), "{note}");
+        assert!(!checked("velocities: free,").unwrap().scene.at_rest);
+    }
+
+    #[test]
+    fn both_spellings_are_one_setting_given_twice() {
+        for settings in [
+            "at_rest: true, velocities: zero,",
+            "velocities: zero, at_rest: true,",
+        ] {
+            let error = checked(settings).err().expect("an error").to_string();
+            assert!(
+                error.contains("is given already as") && error.contains("deprecated spelling"),
+                "{settings}: {error}"
+            );
+        }
+    }
+
+    #[test]
+    fn physical_settings_go_to_the_scene_and_the_others_to_the_options() {
+        let module = checked(
+            "gravity: [0.0, 0.0, 0.0], lock: { q1: 0.5 }, friction: include, \
+             outputs: [mass_matrix], scalar: f32, fma: true, parameters: runtime,",
+        )
+        .unwrap();
+        assert_eq!(module.scene.gravity, Some([0.0; 3]));
+        assert_eq!(module.scene.lock, [("q1".to_owned(), 0.5)]);
+        assert!(module.scene.friction);
+        assert_eq!(module.options.outputs, [Kernel::MassMatrix]);
+        assert_eq!(module.options.scalar, ScalarType::F32);
+        assert!(module.options.fma);
+        assert_eq!(module.options.parameters, ParameterMode::Runtime);
     }
 }

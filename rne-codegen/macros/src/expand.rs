@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 
+use proc_macro2::Ident;
 use quote::quote;
 use rne_codegen_core::{generate, read_robot, CodegenError};
 use rne_symbolic::spec::SpecWarning;
@@ -22,9 +23,9 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
         (Some(primary), _) => primary,
         (None, fallback) => fallback.unwrap_or_else(|| PathBuf::from(&origin)),
     };
-    let generated = read_robot(&path, &origin, &module.scene)
+    let generated = read_robot(&path, &origin, &module.scene, &module.options)
         .and_then(|model| {
-            let generated = generate(&model, &module.scene, &origin)?;
+            let generated = generate(&model, &module.scene, &module.options, &origin)?;
             Ok((generated, model.warnings))
         })
         .map_err(|e| match &e {
@@ -39,7 +40,7 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
             }
             CodegenError::Massless { .. } => {
                 let span = module
-                    .scene
+                    .options
                     .outputs
                     .iter()
                     .position(|k| k.inverts_mass_matrix())
@@ -49,7 +50,7 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
             }
             CodegenError::UnknownFrame { frame, .. } => {
                 let span = module
-                    .scene
+                    .options
                     .frames
                     .iter()
                     .flatten()
@@ -66,6 +67,7 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
             format!("rne generated a module that does not lex as Rust ({e}); please report this"),
         )
     })?;
+    let deprecations = deprecations(&module.deprecated);
     let CheckedModule {
         attrs, vis, name, ..
     } = module;
@@ -76,9 +78,30 @@ pub fn expand(module: CheckedModule) -> syn::Result<proc_macro2::TokenStream> {
         #(#warnings)*
         #vis mod #name {
             const _: &[u8] = include_bytes!(#tracked);
+            #(#deprecations)*
             #items
         }
     })
+}
+
+/// A use of a `#[deprecated]` item for each setting given by an old spelling, spanned on its
+/// key: the compiler's deprecation warning, which a stable proc macro cannot emit itself,
+/// shown where the user wrote it (and silenced by `#[allow(deprecated)]` on the module).
+fn deprecations(deprecated: &[(Ident, &str)]) -> Vec<proc_macro2::TokenStream> {
+    deprecated
+        .iter()
+        .map(|(key, note)| {
+            let item = Ident::new(&format!("{key}_setting"), key.span());
+            quote! {
+                const _: () = {
+                    #[deprecated(note = #note)]
+                    #[allow(non_camel_case_types)]
+                    struct #item;
+                    let _ = #item;
+                };
+            }
+        })
+        .collect()
 }
 
 /// A `# Warnings` section of doc attributes, one item per warning; nothing without warnings.

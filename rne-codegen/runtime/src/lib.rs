@@ -26,7 +26,6 @@ extern crate std;
 
 pub mod batch;
 #[cfg(feature = "nalgebra")]
-#[path = "nalgebra.rs"]
 pub mod convert;
 pub mod cpu;
 mod double_double;

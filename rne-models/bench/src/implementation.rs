@@ -17,7 +17,7 @@ pub enum Implementation {
     ZeroGravity,
     /// Generated with the first joint locked at 0.
     Locked,
-    /// Generated with `velocities: zero` (a static scene), called at q̇ = 0.
+    /// Generated with `at_rest: true` (a static scene), called at q̇ = 0.
     AtRest,
     /// The same optimised programs evaluated without compiling them
     /// ([`rne_interpreted::Interpreted`]), in `f64`.

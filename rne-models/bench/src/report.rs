@@ -80,15 +80,22 @@ fn ratio(r: f64) -> String {
     }
 }
 
-/// The command that produces a report with `effort` in this build: with the fused kernels
-/// (the `fma` feature) in a build for the machine, as the fused build is made.
+/// The command that produces a report with `effort` in this build: with the features that
+/// built it (`fma`: fused kernels, `derivative-lanes`: derivatives in lanes) in a build for
+/// the machine, as such a build is made.
 fn command(effort: Effort) -> String {
     let fused = rne_models::generated::FUSED_MULTIPLY_ADD;
-    let flags = match fused && cfg!(target_feature = "fma") {
+    let lanes = rne_models::generated::DERIVATIVE_LANES;
+    let flags = match (fused || lanes) && cfg!(target_feature = "fma") {
         true => "RUSTFLAGS=\"-C target-cpu=native\" ",
         false => "",
     };
-    let features = if fused { " --features fma" } else { "" };
+    let features = match (fused, lanes) {
+        (true, true) => " --features fma,derivative-lanes",
+        (true, false) => " --features fma",
+        (false, true) => " --features derivative-lanes",
+        (false, false) => "",
+    };
     let quick = match effort {
         Effort::Quick => " --quick",
         Effort::Full => "",
@@ -113,8 +120,8 @@ fn machine() -> String {
 
 /// The build: its profile, whether its target has fused multiply-add (AVX2 and FMA, as in a
 /// `RUSTFLAGS="-C target-cpu=native"` build on this kind of machine; Pinocchio's generated
-/// code is built with `-march=native`), and whether the URDF robots' kernels fuse (the `fma`
-/// feature).
+/// code is built with `-march=native`), whether the URDF robots' kernels fuse (the `fma`
+/// feature) and whether their derivatives are in lanes (the `derivative-lanes` feature).
 fn build() -> String {
     let profile = if cfg!(debug_assertions) {
         "debug"
@@ -131,14 +138,20 @@ fn build() -> String {
         rne_models::generated::FUSED_MULTIPLY_ADD,
         cfg!(target_feature = "fma"),
     ) {
-        (true, true) => "; the URDF robots' kernels `fma: true`, fused, and `derivatives: lanes`",
-        (true, false) => {
-            "; the URDF robots' kernels `fma: true`, unfused on this target, and \
-             `derivatives: lanes`"
-        }
+        (true, true) => "`fma: true`, fused",
+        (true, false) => "`fma: true`, unfused on this target",
         (false, _) => "",
     };
-    format!("{profile} build, {target}{fused}")
+    let lanes = match rne_models::generated::DERIVATIVE_LANES {
+        true => "`derivatives: lanes`",
+        false => "",
+    };
+    let kernels = match (fused, lanes) {
+        ("", "") => String::new(),
+        (only, "") | ("", only) => format!("; the URDF robots' kernels {only}"),
+        (fused, lanes) => format!("; the URDF robots' kernels {fused}, and {lanes}"),
+    };
+    format!("{profile} build, {target}{kernels}")
 }
 
 impl Report {

@@ -12,7 +12,7 @@ mod calls;
 mod peers;
 
 use rne_codegen::Kernel;
-use rne_codegen_core::Scene;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, Engine as Agreement};
 use rne_interpreted::Interpreted;
 use rne_jit::{JitModel, Tier};
@@ -72,11 +72,13 @@ pub const DEFAULT_KERNELS: [Kernel; 10] = [
 pub struct RobotBenchSettings {
     /// The engines of rne to time (the peers' come from [`RobotBenchSettings::peers`]).
     pub engines: Vec<Engine>,
-    /// The kernels to time; the JIT compiles every kernel of `scene` either way.
+    /// The kernels to time; the JIT compiles every kernel of `options` either way.
     pub kernels: Vec<Kernel>,
-    /// The scene the JIT and the interpreter are built with (its `outputs` are the kernels
-    /// whose time to obtain is reported).
+    /// The scene the JIT and the interpreter are built with.
     pub scene: Scene,
+    /// The generation options the JIT is built with (their `outputs` are the kernels whose
+    /// time to obtain is reported).
+    pub options: GenerationOptions,
     /// Seeded states: timing pool and error check.
     pub states: usize,
     /// The timing plan.
@@ -131,7 +133,7 @@ pub struct RobotBench {
     pub nq: usize,
     /// NV.
     pub nv: usize,
-    /// Whether the JIT fused multiply-adds (the processor has FMA and the scene asked).
+    /// Whether the JIT fused multiply-adds (the processor has FMA and the options asked).
     pub fused: bool,
     /// The JIT's tier.
     pub tier: Tier,
@@ -153,8 +155,14 @@ pub fn bench_robot(
         problem: e.to_string(),
     };
     progress("generating and compiling the kernels (JIT)");
-    let jit =
-        JitModel::compile_at(model, &settings.scene, source, settings.tier).map_err(failed)?;
+    let jit = JitModel::compile_at(
+        model,
+        &settings.scene,
+        &settings.options,
+        source,
+        settings.tier,
+    )
+    .map_err(failed)?;
     let peak_memory_bytes = peak_memory();
     let timings = jit.timings();
     let states = random_states(jit.nq(), jit.nv(), settings.states, 0xbe4c);

@@ -170,7 +170,7 @@ pub struct Modules<G, S, Z, K, R, P> {
     pub zero_gravity: Z,
     /// The first joint locked at 0.
     pub locked: K,
-    /// `velocities: zero`.
+    /// `at_rest: true`.
     pub at_rest: R,
     /// `parameters: runtime` with the spec's values, if the spec has named parameters.
     pub runtime: Option<P>,

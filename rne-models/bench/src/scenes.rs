@@ -8,7 +8,7 @@
 //! five generated functions together ([`time_interleaved`](super::timing::time_interleaved)).
 
 use rne_codegen::Kernel;
-use rne_codegen_core::{generate, Scene};
+use rne_codegen_core::{generate, GenerationOptions, Scene};
 use rne_symbolic::OpCount;
 
 use super::error::BenchError;
@@ -60,14 +60,11 @@ impl SceneKernel {
             SceneKernel::GravityOnly => Kernel::GravityTorques,
             _ => Kernel::InverseDynamics,
         };
-        let mut scene = Scene {
-            outputs: vec![kernel],
-            ..Scene::default()
-        };
+        let mut scene = Scene::default();
         match self {
             SceneKernel::ZeroGravity => scene.gravity = Some([0.0; 3]),
             SceneKernel::Locked => scene.lock = vec![(locked_joint.to_owned(), 0.0)],
-            SceneKernel::AtRest => scene.zero_velocities = true,
+            SceneKernel::AtRest => scene.at_rest = true,
             SceneKernel::Full | SceneKernel::GravityOnly => {}
         }
         (kernel, scene)
@@ -104,11 +101,16 @@ pub fn measure(cases: &Cases, plan: &Plan, pool: usize) -> Result<RobotScenes, B
     let mut ops = Vec::new();
     for scene in SceneKernel::ALL {
         let (kernel, settings) = scene.generation(&cases.locked_joint);
-        let module =
-            generate(&cases.model, &settings, robot).map_err(|cause| BenchError::Codegen {
+        let options = GenerationOptions {
+            outputs: vec![kernel],
+            ..GenerationOptions::default()
+        };
+        let module = generate(&cases.model, &settings, &options, robot).map_err(|cause| {
+            BenchError::Codegen {
                 robot: robot.to_owned(),
                 cause,
-            })?;
+            }
+        })?;
         let count = module
             .kernels
             .iter()

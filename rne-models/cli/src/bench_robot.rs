@@ -15,7 +15,7 @@ use rne_bench::robot::{
 };
 use rne_bench::Effort;
 use rne_codegen::Kernel;
-use rne_codegen_core::Scene;
+use rne_codegen_core::GenerationOptions;
 use rne_jit::Tier;
 use rne_models::builtin::RobotSource;
 use serde_json::json;
@@ -57,17 +57,17 @@ pub enum JitTier {
 pub fn run(model: &str, args: &BenchArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(model);
     let robot = args.options.load(&source, false)?;
-    let mut scene = Scene {
+    let mut options = GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
         fma: args.fma,
-        ..args.options.scene()
+        ..GenerationOptions::default()
     };
     if let Err(e) = robot.check_mass_matrix_invertible() {
         eprintln!(
             "warning: {}: {e}; the kernels that solve with M are left out",
             source.display_name()
         );
-        scene.outputs.retain(|k| !k.inverts_mass_matrix());
+        options.outputs.retain(|k| !k.inverts_mass_matrix());
     }
     let effort = if args.quick {
         Effort::Quick
@@ -77,7 +77,8 @@ pub fn run(model: &str, args: &BenchArgs, out: &mut dyn Write) -> Result<(), Cli
     let settings = RobotBenchSettings {
         engines: args.engines.iter().map(|e| e.engine()).collect(),
         kernels: kernels(&args.kernels)?,
-        scene,
+        scene: args.options.scene(),
+        options,
         states: effort.pool(),
         plan: effort.kernel_plan(),
         tier: match args.jit_tier {

@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use rne_codegen_core::{c_identifier, generate, generate_c, CodegenError, ParameterMode};
 
 use super::model::ModelOptions;
-use super::options::scene;
+use super::options::scene_and_options;
 use super::stats::Parameters;
 use super::CliError;
 use rne_models::RobotSource;
@@ -41,7 +41,7 @@ pub struct EmitArgs {
     /// Joints to lock, `q1=0,q2=1.5`.
     #[arg(long, allow_hyphen_values = true)]
     pub lock: Option<String>,
-    /// A static scene: every joint velocity is zero (the macro's `velocities: zero`).
+    /// A static scene: every joint velocity is zero (the macro's `at_rest: true`).
     #[arg(long)]
     pub at_rest: bool,
     /// Fused multiply-add (the macro's `fma: true`): products summed through `Real::mul_add`,
@@ -66,15 +66,15 @@ pub struct EmitArgs {
 
 /// Prints or writes the generated code.
 pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    let mut scene = scene(
+    let (mut scene, mut options) = scene_and_options(
         args.outputs.as_deref(),
         args.gravity.as_deref(),
         args.lock.as_deref(),
     )?;
-    scene.zero_velocities = args.at_rest;
-    scene.fma = args.fma;
+    scene.at_rest = args.at_rest;
     scene.mimic = args.options.mimic_mode();
-    scene.parameters = match args.parameters {
+    options.fma = args.fma;
+    options.parameters = match args.parameters {
         Parameters::Constant => ParameterMode::Constant,
         Parameters::Runtime => ParameterMode::Runtime,
         Parameters::Base => ParameterMode::Base,
@@ -86,12 +86,12 @@ pub fn run(args: &EmitArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let name = source.display_name();
     let files: Vec<(String, String)> = match args.lang {
         Lang::Rust => {
-            let module = generate(&model, &scene, &name)?;
+            let module = generate(&model, &scene, &options, &name)?;
             let stem = c_identifier(&model.name);
             vec![(format!("{stem}.rs"), module.to_pretty_string())]
         }
         Lang::C => {
-            let module = generate_c(&model, &scene, &name)?;
+            let module = generate_c(&model, &scene, &options, &name)?;
             vec![
                 (format!("{}.h", module.name), module.header),
                 (format!("{}.c", module.name), module.source),

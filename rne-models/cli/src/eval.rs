@@ -13,7 +13,7 @@ use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
 use rne_codegen::{Dynamics, Kernel, Shape};
-use rne_codegen_core::Scene;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::{evaluate, Interpreted, StateRef};
 use rne_jit::{JitError, JitModel};
 use rne_models::{RobotSource, Visitor};
@@ -283,11 +283,11 @@ fn jit(
     given: &Given,
     args: &EvalArgs,
 ) -> Result<Results, CliError> {
-    let scene = Scene {
+    let options = GenerationOptions {
         outputs: wanted.all_kernels(),
-        ..args.options.scene()
+        ..GenerationOptions::default()
     };
-    let jit = JitModel::compile(model, &scene, &args.model)?;
+    let jit = JitModel::compile(model, &args.options.scene(), &options, &args.model)?;
     let s = given.state();
     let state = rne_jit::State {
         q: s.q,

@@ -6,12 +6,17 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 use rne_identify::{
-    design, fit, identify, predict, simulate, torque_figure, BaseSet, Design, Estimate, Fit,
-    Limits, Measurements, Simulation,
+    candidates, design_with_progress, fit, identify, predict, simulate, torque_figure, BaseSet,
+    Design, Estimate, Fit, Limits, Measurements, Regressors, Simulation,
 };
+use rne_jit::JitError;
 use rne_reference::Reference;
+use rne_symbolic::RobotModel;
 use serde_json::json;
+
+use super::identify_engine::{add_joint_parameters, IdentifyEngine, JitRegressors};
 
 use super::model::ModelOptions;
 use super::options::parse_list;
@@ -61,6 +66,11 @@ pub struct IdentifyArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// What evaluates the regressor and the torques: the generated kernels compiled in memory
+    /// or the independent numeric reference (the base parameters come from the reference
+    /// either way).
+    #[arg(long, value_enum, default_value_t = IdentifyEngine::Jit)]
+    pub engine: IdentifyEngine,
     /// Instead of identifying: write an excitation trajectory optimised for the condition
     /// number of the stacked base regressor, with torques simulated from the model, to this
     /// CSV.
@@ -104,29 +114,41 @@ pub struct IdentifyArgs {
 /// Identifies, or writes an excitation.
 pub fn run(args: &IdentifyArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let source = RobotSource::resolve(&args.model);
-    let model = args.options.load(&source, false)?;
-    let mut numeric = model.to_numeric();
-    for link in numeric.links.iter_mut().filter(|l| l.joint.is_some()) {
-        if args.friction && link.friction.is_none() {
-            link.friction = Some(rne_symbolic::model::NumericFriction {
-                viscous: 0.0,
-                coulomb: 0.0,
-                offset: 0.0,
-            });
-        }
-        if args.armature && link.armature.is_none() {
-            link.armature = Some(0.0);
-        }
-    }
-    let mut reference = Reference::try_new(&numeric)?.with_friction(true);
+    let mut model = args.options.load(&source, false)?;
+    add_joint_parameters(&mut model, args.friction, args.armature);
+    let mut reference = Reference::try_new(&model.to_numeric())?.with_friction(true);
     let base = BaseSet::find(&mut reference)?;
     let name = source.display_name();
+    let mut jit = match args.engine {
+        IdentifyEngine::Jit => jit_or_warn(&model, args, &reference)?,
+        IdentifyEngine::Numeric => None,
+    };
+    let engine: &mut dyn Regressors = match jit.as_mut() {
+        Some(jit) => jit,
+        None => &mut reference,
+    };
     match (&args.excite, &args.data) {
-        (Some(path), _) => excite(args, &name, &mut reference, &base, path, out),
-        (None, Some(data)) => estimate(args, &name, &mut reference, &base, data, out),
+        (Some(path), _) => excite(args, &name, engine, &base, path, out),
+        (None, Some(data)) => estimate(args, &name, engine, &base, data, out),
         (None, None) => Err(CliError::Argument(
             "give DATA.csv to identify from, or --excite OUT.csv".into(),
         )),
+    }
+}
+
+/// The compiled kernels, or `None` (with a warning) on a processor without a JIT backend.
+fn jit_or_warn(
+    model: &RobotModel,
+    args: &IdentifyArgs,
+    reference: &Reference,
+) -> Result<Option<JitRegressors>, CliError> {
+    match JitRegressors::compile(model, args.options.scene(), &args.model, reference) {
+        Ok(jit) => Ok(Some(jit)),
+        Err(CliError::Jit(JitError::UnsupportedHost(why))) => {
+            eprintln!("warning: {why}; identifying with the numeric reference");
+            Ok(None)
+        }
+        Err(other) => Err(other),
     }
 }
 
@@ -145,7 +167,7 @@ fn per_joint(name: &str, text: &str, joints: usize) -> Result<Vec<f64>, CliError
 fn excite(
     args: &IdentifyArgs,
     name: &str,
-    reference: &mut Reference,
+    reference: &mut dyn Regressors,
     base: &BaseSet,
     path: &Path,
     out: &mut dyn Write,
@@ -159,18 +181,17 @@ fn excite(
             None => vec![f64::INFINITY; n],
         },
     };
-    let excitation = design(
-        reference,
-        base,
-        &Design {
-            period: args.period,
-            harmonics: args.harmonics,
-            limits,
-            iterations: args.iterations,
-            criterion_states: args.criterion_states,
-            seed: args.seed,
-        },
-    )?;
+    let spec = Design {
+        period: args.period,
+        harmonics: args.harmonics,
+        limits,
+        iterations: args.iterations,
+        criterion_states: args.criterion_states,
+        seed: args.seed,
+    };
+    let bar = candidates_bar(candidates(&spec) as u64);
+    let excitation = design_with_progress(reference, base, &spec, |k| bar.set_position(k as u64))?;
+    bar.finish_and_clear();
     let simulation = Simulation {
         duration: args.duration.unwrap_or(args.period),
         rate: args.rate,
@@ -228,6 +249,18 @@ fn excite(
     Ok(())
 }
 
+/// A progress bar on stderr over the candidate trajectories of the excitation's design
+/// (hidden when stderr is not a terminal).
+fn candidates_bar(len: u64) -> ProgressBar {
+    let bar = ProgressBar::new(len);
+    if let Ok(style) = ProgressStyle::with_template(
+        "designing the excitation {bar:30} {pos}/{len} candidates, {eta} left",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
 fn list(values: &[f64]) -> String {
     values
         .iter()
@@ -239,7 +272,7 @@ fn list(values: &[f64]) -> String {
 fn estimate(
     args: &IdentifyArgs,
     name: &str,
-    reference: &mut Reference,
+    reference: &mut dyn Regressors,
     base: &BaseSet,
     path: &Path,
     out: &mut dyn Write,

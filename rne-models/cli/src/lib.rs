@@ -3,7 +3,6 @@
 //! `rne-bench`, `rne-stress`) and their errors into one [`CliError`] that keeps every cause.
 #![deny(missing_docs)]
 
-mod accuracy;
 mod bench;
 mod bench_robot;
 mod check;
@@ -12,6 +11,7 @@ mod emit;
 mod eval;
 mod eval_kernels;
 mod identify;
+mod identify_engine;
 mod internal;
 mod list;
 mod long_run;
@@ -60,7 +60,9 @@ pub enum Command {
     /// Base parameters by weighted least squares from measured q, q̇, q̈, τ (CSV), or an
     /// optimised excitation trajectory with simulated torques (--excite).
     Identify(identify::IdentifyArgs),
-    /// Generate every built-in robot's kernels and check them against the numeric reference.
+    /// Generate all 18 kernels of every built-in robot, compile them in memory and check them,
+    /// and the built-in modules' dynamics kernels, against the numeric reference, each kernel
+    /// within its own tolerance.
     Verify(verify::VerifyArgs),
     /// Run the thesis's chapter 6 experiments or a scenario file: CSV, SVG/PNG figures, report.
     Simulate(simulate::SimulateArgs),

@@ -103,7 +103,9 @@ impl ModelOptions {
                 return Err(CliError::Argument(message));
             }
         }
-        let model = source.load(&self.load_options(symbolic_parameters))?;
+        let model = source
+            .load(&self.load_options(symbolic_parameters))
+            .map_err(|e| self.suggest_free_mimic(source, e.into()))?;
         for warning in &model.warnings {
             eprintln!("warning: {warning}");
         }
@@ -121,12 +123,13 @@ impl ModelOptions {
             model.set_base(Base::Floating);
         }
         if self.mimic == MimicOption::Constrained {
-            model
-                .constrain_mimic_joints()
-                .map_err(|cause| CliError::Mimic {
+            model.constrain_mimic_joints().map_err(|cause| {
+                let error = CliError::Mimic {
                     model: source.display_name(),
                     cause,
-                })?;
+                };
+                self.suggest_free_mimic(source, error)
+            })?;
         }
         model
             .check_moves()
@@ -135,5 +138,33 @@ impl ModelOptions {
                 cause,
             })?;
         Ok(model)
+    }
+
+    /// `error`, a failure to read `source` or to constrain its mimic joints, with the
+    /// suggestion of `--mimic free` when the mimic joints are constrained and reading the
+    /// robot with them free (quietly: no warning printed) and applying the other options
+    /// succeeds.
+    fn suggest_free_mimic(&self, source: &RobotSource, error: CliError) -> CliError {
+        if self.mimic == MimicOption::Free
+            || !matches!(error, CliError::Spec(_) | CliError::Mimic { .. })
+        {
+            return error;
+        }
+        let free = ModelOptions {
+            strict: self.strict,
+            floating_base: self.floating_base,
+            mimic: MimicOption::Free,
+            literal_angles: self.literal_angles,
+        };
+        let loads = source
+            .load(&free.load_options(false))
+            .map_err(CliError::from)
+            .and_then(|model| free.apply(source, model));
+        match loads {
+            Ok(_) => CliError::MimicFreeLoads {
+                cause: Box::new(error),
+            },
+            Err(_) => error,
+        }
     }
 }

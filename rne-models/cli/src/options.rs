@@ -1,7 +1,7 @@
 //! Argument parsing shared by the subcommands, and the command's error type.
 
 use rne_codegen::Kernel;
-use rne_codegen_core::Scene;
+use rne_codegen_core::{GenerationOptions, Scene};
 
 /// Why a command failed; printed as `error: ...` with a non-zero exit code. Every library
 /// error is kept whole in a variant of its own, so that the message says what failed (a bad
@@ -36,11 +36,12 @@ pub enum CliError {
     #[error(transparent)]
     Bench(Box<rne_bench::BenchError>),
     /// A built-in robot's kernels disagree with the numeric reference.
-    #[error("errors above {tolerance:e}: {}", failures.join(", "))]
+    #[error(
+        "kernels disagree with the numeric reference beyond their tolerance: {}",
+        failures.join(", ")
+    )]
     Disagreement {
-        /// The largest relative error accepted.
-        tolerance: f64,
-        /// The robot and quantity of each error above it.
+        /// The robot, kernel, errors and tolerance of each kernel above its tolerance.
         failures: Vec<String>,
     },
     /// The model's mimic joints cannot be constrained (a loop, a missing leader).
@@ -50,6 +51,13 @@ pub enum CliError {
         model: String,
         /// Why.
         cause: rne_symbolic::model::MimicError,
+    },
+    /// The model cannot be read or built with its mimic joints constrained, and it can with
+    /// them free: the error, and that suggestion.
+    #[error("{cause} (load it with `--mimic free` to treat mimic joints as independent)")]
+    MimicFreeLoads {
+        /// The error with the mimic joints constrained.
+        cause: Box<CliError>,
     },
     /// Nothing in the model moves on the base the options give it.
     #[error("{model}: {cause}")]
@@ -219,15 +227,16 @@ pub fn parse_locks(text: &str) -> Result<Vec<(String, f64)>, CliError> {
         .collect()
 }
 
-/// The scene described by the `--outputs`, `--gravity` and `--lock` options.
-pub fn scene(
+/// The scene described by the `--gravity` and `--lock` options, and the generation options
+/// described by `--outputs`.
+pub fn scene_and_options(
     outputs: Option<&str>,
     gravity: Option<&str>,
     lock: Option<&str>,
-) -> Result<Scene, CliError> {
-    let mut scene = Scene::default();
+) -> Result<(Scene, GenerationOptions), CliError> {
+    let (mut scene, mut options) = (Scene::default(), GenerationOptions::default());
     if let Some(outputs) = outputs {
-        scene.outputs = outputs
+        options.outputs = outputs
             .split(',')
             .map(|name| {
                 let name = name.trim();
@@ -249,5 +258,5 @@ pub fn scene(
     if let Some(lock) = lock {
         scene.lock = parse_locks(lock)?;
     }
-    Ok(scene)
+    Ok((scene, options))
 }

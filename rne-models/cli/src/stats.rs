@@ -4,7 +4,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use rne_codegen::Kernel;
-use rne_codegen_core::{generate, ParameterMode, Scene};
+use rne_codegen_core::{generate, GenerationOptions, ParameterMode};
 
 use super::model::ModelOptions;
 use super::CliError;
@@ -51,7 +51,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args
         .options
         .load(&source, args.parameters == Parameters::Runtime)?;
-    let mut scene = Scene {
+    let mut options = GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
         parameters: match args.parameters {
             Parameters::Constant => ParameterMode::Constant,
@@ -60,20 +60,25 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         },
         fma: args.fma,
         derivative_lanes: args.lanes,
-        ..args.options.scene()
+        ..GenerationOptions::default()
     };
     // Forward dynamics, its derivatives and M⁻¹ are undefined when a joint moves no mass: the
     // other kernels are still generated, and each undefined one is named with the joint.
     let undefined: Vec<(Kernel, String)> = match model.check_mass_matrix_invertible() {
         Ok(()) => Vec::new(),
         Err(e) => {
-            let undefined = scene.outputs.iter().filter(|k| k.inverts_mass_matrix());
+            let undefined = options.outputs.iter().filter(|k| k.inverts_mass_matrix());
             let undefined = undefined.map(|&k| (k, e.to_string())).collect();
-            scene.outputs.retain(|k| !k.inverts_mass_matrix());
+            options.outputs.retain(|k| !k.inverts_mass_matrix());
             undefined
         }
     };
-    let module = generate(&model, &scene, &source.display_name())?;
+    let module = generate(
+        &model,
+        &args.options.scene(),
+        &options,
+        &source.display_name(),
+    )?;
     if args.json {
         let kernels: Vec<serde_json::Value> = module
             .kernels

@@ -269,3 +269,51 @@ fn a_floating_base_is_excited_and_identified_through_the_command() {
     assert!(json["validation"]["relative_rms"].as_f64().unwrap() < 0.002);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--engine jit` (the generated regressor compiled in memory) and `--engine numeric` (the
+/// independent reference) identify the same base parameters from the same data, with joint
+/// friction and armature added to the model (`--friction --armature`: their columns come
+/// after the bodies' in both), and the excitation they design has the same condition number.
+#[test]
+fn the_jit_and_the_numeric_reference_identify_the_same_parameters() {
+    let dir = std::env::temp_dir().join(format!("rne-engines-{}", std::process::id()));
+    let path = dir.join("irb140.csv");
+    let file = path.to_str().expect("utf-8 path");
+    let excite = |engine: &str| {
+        let args = ["identify", "irb140", "--excite", file, "--iterations", "5"];
+        let json = rne(&[&args[..], &["--json", "--engine", engine, "--friction"]].concat())
+            .expect("excitation written");
+        let json: serde_json::Value = serde_json::from_str(&json).expect("one JSON object");
+        json["condition_number"].as_f64().expect("a number")
+    };
+    let (numeric, jit) = (excite("numeric"), excite("jit"));
+    assert!(
+        (numeric - jit).abs() <= 1e-9 * numeric,
+        "{numeric} vs {jit}"
+    );
+    let estimates = |engine: &str| -> Vec<f64> {
+        let args = [
+            "identify",
+            "irb140",
+            file,
+            "--json",
+            "--friction",
+            "--armature",
+        ];
+        let json = rne(&[&args[..], &["--engine", engine]].concat()).expect("identified");
+        let json: serde_json::Value = serde_json::from_str(&json).expect("one JSON object");
+        json["base_parameters"]
+            .as_array()
+            .expect("a list")
+            .iter()
+            .map(|p| p["estimate"].as_f64().expect("a number"))
+            .collect()
+    };
+    let (numeric, jit) = (estimates("numeric"), estimates("jit"));
+    assert_eq!(numeric.len(), jit.len());
+    let scale = numeric.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (a, b) in numeric.iter().zip(&jit) {
+        assert!((a - b).abs() <= 1e-8 * scale, "{numeric:?} vs {jit:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

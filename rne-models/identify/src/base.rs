@@ -7,6 +7,8 @@
 
 use nalgebra::DMatrix;
 use rne_reference::Reference;
+
+use crate::regressors::Regressors;
 use rne_symbolic::dynamics::base_parameters::BaseParameters;
 
 use crate::names::{combination, readable_names, short_value, ParameterName};
@@ -137,9 +139,9 @@ impl BaseSet {
 
     /// The base regressor Y_b(q, q̇, q̈): the kept columns of the reference's regressor,
     /// `nv × len()`, with Y_b π_b = τ.
-    pub fn base_regressor(
+    pub fn base_regressor<R: Regressors + ?Sized>(
         &self,
-        reference: &mut Reference,
+        reference: &mut R,
         q: &[f64],
         qd: &[f64],
         qdd: &[f64],
@@ -149,9 +151,9 @@ impl BaseSet {
     }
 
     /// The base regressors at `states`, stacked: rows `s·nv … s·nv + nv − 1` are state s.
-    pub fn stack<'a>(
+    pub fn stack<'a, R: Regressors + ?Sized>(
         &self,
-        reference: &mut Reference,
+        reference: &mut R,
         states: impl IntoIterator<Item = (&'a [f64], &'a [f64], &'a [f64])>,
     ) -> Result<DMatrix<f64>, IdentifyError> {
         let nv = reference.nv();

@@ -42,6 +42,9 @@ pub enum IdentifyError {
     /// The numeric reference rejected a state (a wrong vector length).
     #[error(transparent)]
     Reference(#[from] rne_reference::ReferenceError),
+    /// The engine evaluating the regressor (`Regressors`) failed.
+    #[error(transparent)]
+    Engine(Box<dyn std::error::Error + Send + Sync>),
     /// Drawing a figure failed.
     #[error("figure {}: {message}", file.display())]
     Figure {

@@ -19,12 +19,11 @@
 //! Natural Computing 1, 2002) over the offsets (within half the position limit) and the
 //! coefficients, each candidate scaled to its limits.
 
-use rne_reference::Reference;
-
 use crate::base::{BaseSet, State};
 use crate::free_flyer::free_flyer_state;
 use crate::least_squares::condition_number;
 use crate::random::Random;
+use crate::regressors::Regressors;
 use crate::IdentifyError;
 
 /// A finite Fourier series per joint.
@@ -140,10 +139,26 @@ const INITIAL_CANDIDATES: usize = 8;
 /// Designs an excitation trajectory for `reference` and its base set: one Fourier series per
 /// entry of v, the first six moving a floating base ([`free_flyer_state`]; their limits are
 /// those of the base's position, m, and of its three angles, rad).
-pub fn design(
-    reference: &mut Reference,
+pub fn design<R: Regressors + ?Sized>(
+    reference: &mut R,
     base: &BaseSet,
     design: &Design,
+) -> Result<Excitation, IdentifyError> {
+    design_with_progress(reference, base, design, |_| {})
+}
+
+/// The candidate trajectories [`design_with_progress`] evaluates for `design`.
+pub fn candidates(design: &Design) -> usize {
+    INITIAL_CANDIDATES + design.iterations
+}
+
+/// [`design()`], calling `progress` with the number of each candidate trajectory (1 up to
+/// [`candidates`]) as its evaluation starts.
+pub fn design_with_progress<R: Regressors + ?Sized>(
+    reference: &mut R,
+    base: &BaseSet,
+    design: &Design,
+    mut progress: impl FnMut(usize),
 ) -> Result<Excitation, IdentifyError> {
     let n = reference.nv();
     let floating = reference.nq() != n;
@@ -166,7 +181,10 @@ pub fn design(
     }
     let size = n * (1 + 2 * design.harmonics);
     let mut random = Random::new(design.seed);
+    let mut evaluated = 0;
     let mut cost = |x: &[f64]| -> Result<f64, IdentifyError> {
+        evaluated += 1;
+        progress(evaluated);
         let trajectory = decode(x, design);
         let states: Vec<State> = trajectory
             .states(trajectory.period, design.criterion_states)

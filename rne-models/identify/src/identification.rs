@@ -3,11 +3,11 @@
 //! model predicts on other data.
 
 use nalgebra::DVector;
-use rne_reference::Reference;
 
 use crate::base::BaseSet;
 use crate::data::Measurements;
 use crate::least_squares::{estimate, Estimate};
+use crate::regressors::Regressors;
 use crate::IdentifyError;
 
 /// How well predicted torques match measured ones.
@@ -21,7 +21,7 @@ pub struct Fit {
 
 /// Checks that `data` suit `reference`: NQ positions and NV rates, accelerations and forces
 /// per sample.
-fn check(reference: &Reference, data: &Measurements) -> Result<(), IdentifyError> {
+fn check<R: Regressors + ?Sized>(reference: &R, data: &Measurements) -> Result<(), IdentifyError> {
     if data.joints != reference.nv() || data.positions != reference.nq() {
         return Err(IdentifyError::Model(format!(
             "data of {} positions and {} velocities for a robot of {} and {}",
@@ -36,8 +36,8 @@ fn check(reference: &Reference, data: &Measurements) -> Result<(), IdentifyError
 
 /// The base parameters of `base` estimated from `data` by weighted (`weighted`) or ordinary
 /// least squares.
-pub fn identify(
-    reference: &mut Reference,
+pub fn identify<R: Regressors + ?Sized>(
+    reference: &mut R,
     base: &BaseSet,
     data: &Measurements,
     weighted: bool,
@@ -57,8 +57,8 @@ pub fn identify(
 }
 
 /// τ̂ = Y_b(q, q̇, q̈) θ at every sample of `data`.
-pub fn predict(
-    reference: &mut Reference,
+pub fn predict<R: Regressors + ?Sized>(
+    reference: &mut R,
     base: &BaseSet,
     theta: &[f64],
     data: &Measurements,

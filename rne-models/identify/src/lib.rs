@@ -38,15 +38,19 @@ mod identification;
 pub mod least_squares;
 pub mod names;
 mod random;
+mod regressors;
 mod simulate;
 
 pub use base::{BaseSet, State};
 pub use data::{Measurements, Sample};
 pub use error::IdentifyError;
-pub use excitation::{design, Design, Excitation, FourierTrajectory, Limits};
+pub use excitation::{
+    candidates, design, design_with_progress, Design, Excitation, FourierTrajectory, Limits,
+};
 #[cfg(feature = "figure")]
 pub use figure::torque_figure;
 pub use free_flyer::{free_flyer_state, BASE_COORDINATES};
 pub use identification::{fit, identify, predict, Fit};
 pub use least_squares::Estimate;
+pub use regressors::Regressors;
 pub use simulate::{simulate, Simulation};

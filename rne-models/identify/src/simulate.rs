@@ -1,12 +1,11 @@
 //! Simulated measurements: the torques of a trajectory by the numeric reference's inverse
 //! dynamics (friction included when the reference includes it), with seeded Gaussian noise.
 
-use rne_reference::Reference;
-
 use crate::data::{Measurements, Sample};
 use crate::excitation::FourierTrajectory;
 use crate::free_flyer::free_flyer_state;
 use crate::random::Random;
+use crate::regressors::Regressors;
 use crate::IdentifyError;
 
 /// How to sample and disturb a trajectory.
@@ -27,8 +26,8 @@ pub struct Simulation {
 /// `trajectory`: τ = ID(q, q̇, q̈) + noise · RMS_j(τ_j) · N(0, 1) per joint. On a floating
 /// base the trajectory's first six coordinates move the base ([`free_flyer_state`]) and the
 /// first six "torques" are the wrench on it, as force plates or a simulator report it.
-pub fn simulate(
-    reference: &mut Reference,
+pub fn simulate<R: Regressors + ?Sized>(
+    reference: &mut R,
     trajectory: &FourierTrajectory,
     simulation: &Simulation,
 ) -> Result<Measurements, IdentifyError> {
@@ -58,7 +57,7 @@ pub fn simulate(
             let tau = reference.inverse_dynamics(&q, &qd, &qdd)?;
             Ok(Sample {
                 t: Some(t),
-                tau: tau.iter().copied().collect(),
+                tau,
                 q,
                 qd,
                 qdd,

@@ -37,7 +37,7 @@ use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
 use super::outcome::{Finding, Outcome, Table};
 use super::progress::WithProgress;
-use rne_codegen_core::Scene;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_figures::time_series::Figure;
 use rne_interpreted::{visit_jit, Interpreted};
 use rne_jit::{JitError, JitModel};
@@ -213,7 +213,8 @@ impl UserScenario {
         engine: FileEngine,
     ) -> Result<Result<Outcome, ScenarioError>, rne_interpreted::Error> {
         if engine == FileEngine::Jit {
-            match JitModel::compile(model, &Scene::default(), &self.file.model) {
+            let (scene, options) = (Scene::default(), GenerationOptions::default());
+            match JitModel::compile(model, &scene, &options, &self.file.model) {
                 Ok(jit) => return visit_jit(&jit, run),
                 Err(JitError::UnsupportedHost(why)) => {
                     eprintln!("warning: {why}; the interpreter computes instead");

@@ -1,4 +1,8 @@
-//! Simulation: integrators, controllers and the thesis's chapter 6 experiments.
+//! Simulation: integrators and controllers, the means of the thesis's chapter 6 experiments.
+//! The experiments themselves (the named scenarios of `rne simulate`, their measures and
+//! figures) live in the crate `rne-scenarios`, which runs them on this crate; here the unit
+//! tests check the integrators and controllers against chapter 6's runs on a hand-written
+//! planar elbow.
 //!
 //! The thesis simulated M(q) q̈ + C(q, q̇) q̇ + g(q) = u in Simulink through the first-order form
 //! (6.1)–(6.11), q̈ = M⁻¹ (u − C q̇ − g) (6.2), with ode45 at relative tolerance 1e-10. This

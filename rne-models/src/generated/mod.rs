@@ -4,9 +4,9 @@
 //! ([`variants`]).
 
 /// `derive_dynamics!` for a URDF robot's module that `rne bench --pinocchio` sets beside
-/// Pinocchio: as written, or with the crate feature `fma` with `fma: true` and
-/// `derivatives: lanes` added, so that a build for the machine
-/// (`RUSTFLAGS="-C target-cpu=native"`) compares fused kernels, and derivatives four
+/// Pinocchio: as written, with `fma: true` added under the crate feature `fma` and
+/// `derivatives: lanes` under the crate feature `derivative-lanes`, so that a build for the
+/// machine (`RUSTFLAGS="-C target-cpu=native"`) compares fused kernels, and derivatives four
 /// directions per AVX instruction, with Pinocchio's CppADCodeGen code, which gcc builds with
 /// `-march=native`. (In a baseline x86-64 build the lanes' vectors are pairs of SSE2
 /// registers and the derivatives in lanes are slower than without: docs/performance.md.)
@@ -14,10 +14,21 @@
 macro_rules! beside_pinocchio {
     ($(#[$doc:meta])* pub mod $name:ident { $($settings:tt)* }) => {
         #[cfg(not(feature = "fma"))]
-        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* } }
+        in_lanes_if_asked! { $(#[$doc])* pub mod $name { $($settings)* } }
         #[cfg(feature = "fma")]
+        in_lanes_if_asked! { $(#[$doc])* pub mod $name { $($settings)* fma: true, } }
+    };
+}
+
+/// `derive_dynamics!`, with `derivatives: lanes` added under the crate feature
+/// `derivative-lanes` (the second half of [`beside_pinocchio`]).
+macro_rules! in_lanes_if_asked {
+    ($(#[$doc:meta])* pub mod $name:ident { $($settings:tt)* }) => {
+        #[cfg(not(feature = "derivative-lanes"))]
+        rne_codegen::derive_dynamics! { $(#[$doc])* pub mod $name { $($settings)* } }
+        #[cfg(feature = "derivative-lanes")]
         rne_codegen::derive_dynamics! {
-            $(#[$doc])* pub mod $name { $($settings)* fma: true, derivatives: lanes, }
+            $(#[$doc])* pub mod $name { $($settings)* derivatives: lanes, }
         }
     };
 }
@@ -25,9 +36,14 @@ macro_rules! beside_pinocchio {
 pub mod scenes;
 pub mod variants;
 
-/// Whether the URDF robots' default and `control` modules were generated with `fma: true` and
-/// `derivatives: lanes` (the crate feature `fma`, for `rne bench` in a native build).
+/// Whether the URDF robots' default and `control` modules were generated with `fma: true`
+/// (the crate feature `fma`, for `rne bench` in a native build).
 pub const FUSED_MULTIPLY_ADD: bool = cfg!(feature = "fma");
+
+/// Whether the URDF robots' default and `control` modules were generated with
+/// `derivatives: lanes` (the crate feature `derivative-lanes`, for `rne bench` in a native
+/// build).
+pub const DERIVATIVE_LANES: bool = cfg!(feature = "derivative-lanes");
 
 rne_codegen::derive_dynamics! {
     /// The planar elbow manipulator of the thesis's chapter 4 (table 6.1).

@@ -8,14 +8,15 @@
 //! - `single`: `scalar: f32`;
 //! - `zero_gravity`: `gravity: [0.0, 0.0, 0.0]`, every gravity term removed;
 //! - `locked`: the first joint locked at 0 (`lock: { <first joint>: 0.0 }`): N − 1 joints;
-//! - `at_rest`: `velocities: zero`, a static scene (the functions ignore `qd`);
+//! - `at_rest`: `at_rest: true`, a static scene (the functions ignore `qd`);
 //! - `runtime` (robots whose spec has named parameters, the TOML ones): `parameters: runtime`,
 //!   every function reading a `Params` struct;
 //! - `control` (the URDF robots, which `rne bench --pinocchio` sets beside Pinocchio): the
 //!   control and identification kernels of docs/design.md §4 that Pinocchio also offers — the
 //!   inverse- and forward-dynamics derivatives, M⁻¹, the Jacobians and J̇q̇ of every link's
 //!   frame, and the joint-torque regressor — with the default scene (and `fma: true` with the
-//!   crate feature `fma`, as the URDF robots' default modules).
+//!   crate feature `fma`, `derivatives: lanes` with the crate feature `derivative-lanes`, as
+//!   the URDF robots' default modules).
 //!
 //! Gravity and velocities do not enter M(q), so `zero_gravity` and `at_rest` generate no mass
 //! matrix: it would be the default module's.
@@ -54,11 +55,11 @@ macro_rules! variants {
             }
 
             rne_codegen::derive_dynamics! {
-                /// A static scene (`velocities: zero`): q̇ = 0, no Coriolis or centrifugal terms.
+                /// A static scene (`at_rest: true`): q̇ = 0, no Coriolis or centrifugal terms.
                 pub mod at_rest {
                     robot: $file,
                     outputs: [inverse_dynamics, bias_torques, forward_dynamics],
-                    velocities: zero,
+                    at_rest: true,
                 }
             }
 

@@ -27,6 +27,14 @@ pub enum StressError {
         /// Why.
         cause: rne_interpreted::Error,
     },
+    /// A robot's kernels could not be compiled in memory.
+    #[error("{robot}: {cause}")]
+    Compile {
+        /// The robot.
+        robot: String,
+        /// Why.
+        cause: rne_jit::JitError,
+    },
     /// A simulation stopped early.
     #[error(transparent)]
     Simulation(#[from] RunError),

@@ -26,6 +26,7 @@ pub mod cases;
 mod chain;
 mod error;
 pub mod measure;
+mod probe;
 mod random_robot;
 mod report;
 pub mod states;
@@ -33,6 +34,7 @@ pub mod sweep;
 
 pub use chain::{Chain, ChainLink, JointType};
 pub use error::StressError;
+pub use probe::{Engine, Probe};
 pub use random_robot::random_robot;
 pub use report::{CaseReport, StressReport};
 pub use sweep::Sweep;
@@ -56,6 +58,18 @@ impl Effort {
     }
 }
 
+/// How a stress run is made: how thorough, and what computes the kernels' `f64` values (the
+/// cases of the non-finite inputs, of the compiled kernels and of the chaotic runs use the
+/// interpreter, the compiled modules and the compiled elbow whatever the engine: compiled code
+/// rejects non-finite states before they reach it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Settings {
+    /// Sample sizes and run lengths.
+    pub effort: Effort,
+    /// The programs interpreted, or compiled in memory (the same bits).
+    pub engine: Engine,
+}
+
 /// The method paragraph at the head of the report.
 pub const METHOD: &str = "\
 Each case evaluates a robot's kernels at seeded random states twice, with the same `f64` \
@@ -74,7 +88,7 @@ pub struct Case {
     /// Short name: `mass-ratio`, `conditioning`, …
     pub slug: &'static str,
     /// Runs the case.
-    pub run: fn(Effort) -> Result<CaseReport, StressError>,
+    pub run: fn(Settings) -> Result<CaseReport, StressError>,
 }
 
 /// Every case, in the order of the report.
@@ -118,14 +132,17 @@ pub const CASES: [Case; 9] = [
 ];
 
 /// Runs every case, calling `progress` with each case's name before it starts.
-pub fn run(effort: Effort, mut progress: impl FnMut(&str)) -> Result<StressReport, StressError> {
+pub fn run(
+    settings: Settings,
+    mut progress: impl FnMut(&str),
+) -> Result<StressReport, StressError> {
     let mut report = StressReport {
-        effort,
+        effort: settings.effort,
         cases: Vec::with_capacity(CASES.len()),
     };
     for case in &CASES {
         progress(case.slug);
-        report.cases.push((case.run)(effort)?);
+        report.cases.push((case.run)(settings)?);
     }
     Ok(report)
 }

@@ -1,14 +1,17 @@
-//! A robot's kernels measured at a set of states: each evaluated twice by its
-//! [`Interpreted`] programs — in `f64` exactly as the generated code computes it
-//! ([`Interpreted::eval`], bit for bit the compiled kernel, checked on every built-in robot by
+//! A robot's kernels measured at a set of states: each evaluated twice — in `f64` exactly as
+//! the generated code computes it ([`Probe::eval_f64`]: the programs interpreted or compiled
+//! in memory, bit for bit the compiled kernel, checked on every built-in robot by
 //! [`crate::cases::compiled`]) and in double-double through the graph before optimisation
-//! ([`Interpreted::exact`], the value of the `f64` model to about 10⁻³¹ relative). Their
-//! difference is the error of the generated kernel alone: the rounding of its operations and
-//! of the constants the optimiser folds anew, not an error of the model or of the inputs.
+//! ([`Interpreted::exact`](rne_interpreted::Interpreted::exact), the value of the `f64` model
+//! to about 10⁻³¹ relative). Their difference is the error of the generated kernel alone: the
+//! rounding of its operations and of the constants the optimiser folds anew, not an error of
+//! the model or of the inputs.
 
 use rne_codegen::{DoubleDouble, Kernel};
 use rne_figures::{Deviation, Format};
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
+
+use crate::probe::Probe;
 
 use crate::measure::{condition, scaled_condition, ErrorsByKernel, KernelErrors, Spread, EPSILON};
 
@@ -31,19 +34,19 @@ pub struct Sweep {
 
 /// What the generated `f64` kernel returns at `state` (matrices row-major). `None` if the
 /// programs were not built with this kernel.
-pub fn eval_f64(programs: &Interpreted, kernel: Kernel, state: &JointState) -> Option<Vec<f64>> {
+pub fn eval_f64(programs: &Probe, kernel: Kernel, state: &JointState) -> Option<Vec<f64>> {
     programs.eval(kernel, state.as_ref())
 }
 
 /// The rounding error of the `f64` kernel at `state`, against double-double.
-pub fn deviation(programs: &Interpreted, kernel: Kernel, state: &JointState) -> Option<Deviation> {
+pub fn deviation(programs: &Probe, kernel: Kernel, state: &JointState) -> Option<Deviation> {
     let computed = eval_f64(programs, kernel, state)?;
     let exact = programs.exact(kernel, state.as_ref())?;
     Some(Deviation::between(&computed, &exact, Format::F64))
 }
 
 /// The errors of each of `kernels` that the programs were built with, over `states`.
-pub fn errors(programs: &Interpreted, kernels: &[Kernel], states: &[JointState]) -> ErrorsByKernel {
+pub fn errors(programs: &Probe, kernels: &[Kernel], states: &[JointState]) -> ErrorsByKernel {
     ErrorsByKernel(
         kernels
             .iter()
@@ -60,14 +63,14 @@ pub fn errors(programs: &Interpreted, kernels: &[Kernel], states: &[JointState])
 
 /// The torque τ(q, q̇, q̈) of `state` as the `f64` inverse-dynamics kernel computes it: the
 /// input that makes forward dynamics reproduce `state.qdd`. `None` without inverse dynamics.
-pub fn torque_for(programs: &Interpreted, state: &JointState) -> Option<Vec<f64>> {
+pub fn torque_for(programs: &Probe, state: &JointState) -> Option<Vec<f64>> {
     eval_f64(programs, Kernel::InverseDynamics, state)
 }
 
 /// cond(M(q)) and the condition number of M scaled to a unit diagonal (see
 /// [`scaled_condition`]), from M in double-double rounded once to `f64`. `None` without the
 /// mass matrix.
-pub fn conditions(programs: &Interpreted, q: &[f64]) -> Option<(f64, f64)> {
+pub fn conditions(programs: &Probe, q: &[f64]) -> Option<(f64, f64)> {
     let state = JointState::at(q);
     let m: Vec<f64> = programs
         .exact(Kernel::MassMatrix, state.as_ref())?
@@ -81,7 +84,7 @@ pub fn conditions(programs: &Interpreted, q: &[f64]) -> Option<(f64, f64)> {
 /// The cancellation κ = ‖b‖∞ / ‖τ − b‖∞ in forward dynamics' right-hand side τ − b, with
 /// b = C(q, q̇) q̇ + g(q) from the `f64` bias kernel: the subtraction leaves an absolute error
 /// of about ε‖b‖, which is ε κ relative to τ − b. `None` without the bias or without τ.
-pub fn cancellation(programs: &Interpreted, state: &JointState) -> Option<f64> {
+pub fn cancellation(programs: &Probe, state: &JointState) -> Option<f64> {
     let bias = eval_f64(programs, Kernel::BiasTorques, state)?;
     if state.tau.len() != bias.len() {
         return None;
@@ -94,7 +97,7 @@ pub fn cancellation(programs: &Interpreted, state: &JointState) -> Option<f64> {
 /// The errors of `kernels` over `states`, with the spread of cond(M), of the scaled condition
 /// number and of the cancellation κ over the same states, and forward dynamics' error against
 /// the estimate ε·max(κ, 1)·(scaled cond) where all three are available.
-pub fn sweep(programs: &Interpreted, kernels: &[Kernel], states: &[JointState]) -> Sweep {
+pub fn sweep(programs: &Probe, kernels: &[Kernel], states: &[JointState]) -> Sweep {
     let conditions: Vec<Option<(f64, f64)>> =
         states.iter().map(|s| conditions(programs, &s.q)).collect();
     let cancellations: Vec<Option<f64>> =

@@ -8,7 +8,7 @@ use rne_stress::cases::{
     chaos, conditioning, joint_angle, joint_count, link_length, mass_ratio, velocity,
 };
 use rne_stress::measure::EPSILON;
-use rne_stress::Sweep;
+use rne_stress::{Engine, Sweep};
 
 /// Asserts `sweep`'s largest error of each of `kernels` is at most `bound`.
 fn assert_within(case: &str, sweep: &Sweep, kernels: &[Kernel], bound: f64) {
@@ -24,7 +24,7 @@ fn assert_within(case: &str, sweep: &Sweep, kernels: &[Kernel], bound: f64) {
 #[test]
 fn mass_ratio_extremes_keep_full_accuracy() {
     for r in [1e-6, 1e6] {
-        let sweep = mass_ratio::measure(r, 8).unwrap();
+        let sweep = mass_ratio::measure(Engine::Interpreted, r, 8).unwrap();
         let case = format!("mass ratio {r:e}");
         assert_within(
             &case,
@@ -63,7 +63,7 @@ fn link_lengths_cost_only_forward_dynamics_through_cancellation() {
         Kernel::KineticEnergy,
     ];
     for s in [1e-4, 1e2] {
-        let sweep = link_length::measure(&[s; 4], 8).unwrap();
+        let sweep = link_length::measure(Engine::Interpreted, &[s; 4], 8).unwrap();
         let case = format!("length scale {s:e}");
         assert_within(&case, &sweep, &exact, 1e-13);
         assert!(
@@ -72,7 +72,7 @@ fn link_lengths_cost_only_forward_dynamics_through_cancellation() {
             sweep.fd_over_estimate
         );
     }
-    let tip = link_length::measure(&link_length::SCALES[7], 8).unwrap();
+    let tip = link_length::measure(Engine::Interpreted, &link_length::SCALES[7], 8).unwrap();
     assert_within("mixed lengths", &tip, &exact[..3], 1e-13);
     assert_within(
         "mixed lengths",
@@ -90,7 +90,7 @@ fn link_lengths_cost_only_forward_dynamics_through_cancellation() {
 #[test]
 fn huge_joint_angles_are_reduced_exactly() {
     for magnitude in [1e6, 1e8] {
-        let row = joint_angle::measure(magnitude, 4).unwrap();
+        let row = joint_angle::measure(Engine::Interpreted, magnitude, 4).unwrap();
         let case = format!("|q| ~ {magnitude:e}");
         assert_within(
             &case,
@@ -118,7 +118,7 @@ fn huge_joint_angles_are_reduced_exactly() {
 /// against τ when |q̈| ≤ 10 rad/s².
 #[test]
 fn high_velocities_cost_only_forward_dynamics_through_cancellation() {
-    let sweep = velocity::measure(1e3, 6).unwrap();
+    let sweep = velocity::measure(Engine::Interpreted, 1e3, 6).unwrap();
     assert_within(
         "|q̇| ~ 1e3",
         &sweep,
@@ -148,7 +148,7 @@ fn forward_dynamics_error_follows_the_condition_number() {
     let family = conditioning::Family::ShortLink;
     let mut largest_condition = 0.0f64;
     for delta in [0.5, 5e-4, 1.6e-6] {
-        for p in conditioning::measure(family, delta, 4).unwrap() {
+        for p in conditioning::measure(Engine::Interpreted, family, delta, 4).unwrap() {
             largest_condition = largest_condition.max(p.condition);
             let bound = 1e-16 * p.condition * 10.0;
             assert!(
@@ -162,7 +162,14 @@ fn forward_dynamics_error_follows_the_condition_number() {
         largest_condition > 1e11,
         "cond(M) reached only {largest_condition:e}"
     );
-    for p in conditioning::measure(conditioning::Family::LightTip, 1e-12, 4).unwrap() {
+    for p in conditioning::measure(
+        Engine::Interpreted,
+        conditioning::Family::LightTip,
+        1e-12,
+        4,
+    )
+    .unwrap()
+    {
         assert!(p.condition > 1e12 && p.error <= 1e-14, "light tip: {p:?}");
     }
 }
@@ -207,7 +214,7 @@ fn chaotic_release_keeps_energy() {
 #[test]
 fn random_robots_up_to_twelve_joints() {
     for n in [1, 6, joint_count::MAX_JOINTS] {
-        let row = joint_count::measure(n, 1, 3).unwrap();
+        let row = joint_count::measure(Engine::Interpreted, n, 1, 3).unwrap();
         let case = format!("{n} joints");
         assert_within(
             &case,

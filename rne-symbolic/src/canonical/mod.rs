@@ -71,6 +71,7 @@ mod expand;
 pub use expand::WORK_PER_TERM;
 mod harmonic;
 mod layout;
+pub mod mathml;
 mod monomial;
 mod notation;
 mod polynomial;

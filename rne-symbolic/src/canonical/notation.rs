@@ -3,45 +3,48 @@
 //! rules are stated in the `canonical` module docs.
 
 use super::harmonic::Harmonic;
+use super::mathml;
 use super::print::PrintFormat;
 use crate::expr::SymbolTable;
 
-const GREEK: [&str; 35] = [
-    "alpha",
-    "beta",
-    "gamma",
-    "delta",
-    "epsilon",
-    "varepsilon",
-    "zeta",
-    "eta",
-    "theta",
-    "vartheta",
-    "iota",
-    "kappa",
-    "lambda",
-    "mu",
-    "nu",
-    "xi",
-    "pi",
-    "rho",
-    "sigma",
-    "tau",
-    "upsilon",
-    "phi",
-    "varphi",
-    "chi",
-    "psi",
-    "omega",
-    "Gamma",
-    "Delta",
-    "Theta",
-    "Lambda",
-    "Xi",
-    "Pi",
-    "Sigma",
-    "Phi",
-    "Psi",
+/// Greek letter names a parameter name may start with, and the letters (LaTeX `\alpha`,
+/// MathML `α`).
+pub(super) const GREEK: [(&str, char); 35] = [
+    ("alpha", 'α'),
+    ("beta", 'β'),
+    ("gamma", 'γ'),
+    ("delta", 'δ'),
+    ("epsilon", 'ϵ'),
+    ("varepsilon", 'ε'),
+    ("zeta", 'ζ'),
+    ("eta", 'η'),
+    ("theta", 'θ'),
+    ("vartheta", 'ϑ'),
+    ("iota", 'ι'),
+    ("kappa", 'κ'),
+    ("lambda", 'λ'),
+    ("mu", 'μ'),
+    ("nu", 'ν'),
+    ("xi", 'ξ'),
+    ("pi", 'π'),
+    ("rho", 'ρ'),
+    ("sigma", 'σ'),
+    ("tau", 'τ'),
+    ("upsilon", 'υ'),
+    ("phi", 'ϕ'),
+    ("varphi", 'φ'),
+    ("chi", 'χ'),
+    ("psi", 'ψ'),
+    ("omega", 'ω'),
+    ("Gamma", 'Γ'),
+    ("Delta", 'Δ'),
+    ("Theta", 'Θ'),
+    ("Lambda", 'Λ'),
+    ("Xi", 'Ξ'),
+    ("Pi", 'Π'),
+    ("Sigma", 'Σ'),
+    ("Phi", 'Φ'),
+    ("Psi", 'Ψ'),
 ];
 
 /// The label of joint `k`: its number for a joint named `q<number>`, else its name.
@@ -59,7 +62,7 @@ pub(super) fn joint_name(symbols: &SymbolTable, joint: u16) -> String {
 }
 
 /// `Some(k)` for a name `q<k>` (digits, no leading zero).
-fn numbered_joint(name: &str) -> Option<&str> {
+pub(super) fn numbered_joint(name: &str) -> Option<&str> {
     let digits = name.strip_prefix('q')?;
     let valid = !digits.is_empty()
         && digits.bytes().all(|b| b.is_ascii_digit())
@@ -96,6 +99,9 @@ pub(super) fn abbreviation(
     if h.frequencies.iter().any(|&(_, n)| n != 1) {
         return None;
     }
+    if format == PrintFormat::MathMl {
+        return Some(mathml::abbreviation(symbols, h));
+    }
     let letter = if h.sine { 's' } else { 'c' };
     let labels: Vec<String> = h
         .frequencies
@@ -110,7 +116,7 @@ pub(super) fn abbreviation(
         PrintFormat::Text if digits_only || single_number => format!("{letter}{}", labels.concat()),
         PrintFormat::Text => format!("{letter}_{}", labels.join("_")),
         PrintFormat::Latex if digits_only => format!("{letter}_{{{}}}", labels.concat()),
-        PrintFormat::Latex => {
+        PrintFormat::Latex | PrintFormat::MathMl => {
             let labels: Vec<String> = h
                 .frequencies
                 .iter()
@@ -135,7 +141,7 @@ pub(super) fn latex_identifier(name: &str) -> String {
             format!("{main}_{{{tail}}}")
         }
     };
-    if GREEK.contains(&head) {
+    if GREEK.iter().any(|(greek, _)| *greek == head) {
         subscript(format!("\\{head}"))
     } else if head.len() == 1 || (head.len() == 2 && !tail.is_empty()) {
         let (main, rest) = head.split_at(1);
@@ -165,15 +171,14 @@ fn escape(text: &str) -> String {
 
 /// A non-negative number as printed (rules in the module docs).
 pub(super) fn number(x: f64, digits: Option<usize>, format: PrintFormat) -> String {
-    if x.fract() == 0.0 && x.abs() < 1e15 {
-        return format!("{}", x as i64);
-    }
     let text = match digits {
+        _ if x.fract() == 0.0 && x.abs() < 1e15 => format!("{}", x as i64),
         Some(d) => rounded(x, d.max(1)),
         None if (1e-4..1e15).contains(&x.abs()) => format!("{x}"),
         None => format!("{x:e}"),
     };
     match (format, text.split_once('e')) {
+        (PrintFormat::MathMl, _) => mathml::number(&text),
         (PrintFormat::Latex, Some((mantissa, exponent))) => {
             format!("{mantissa} \\cdot 10^{{{exponent}}}")
         }

@@ -8,6 +8,7 @@ use std::collections::BTreeMap;
 use super::atom::{Angle, Atom};
 use super::harmonic::{harmonic_terms, Factor, Harmonic, Term};
 use super::layout::{common_factor, group, Item};
+use super::mathml;
 use super::monomial::Monomial;
 use super::notation::{
     abbreviation, joint_name, latex_identifier, latex_joint, latex_label, number,
@@ -15,8 +16,8 @@ use super::notation::{
 use super::polynomial::Polynomial;
 use crate::expr::{Symbol, SymbolTable};
 
-/// Plain text (`l1 lc2 m2 s2 Dq1 Dq2`) or LaTeX
-/// (`l_{1} l_{c2} m_{2} s_{2} \dot{q}_{1} \dot{q}_{2}`).
+/// Plain text (`l1 lc2 m2 s2 Dq1 Dq2`), LaTeX
+/// (`l_{1} l_{c2} m_{2} s_{2} \dot{q}_{1} \dot{q}_{2}`) or MathML.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub enum PrintFormat {
     /// Plain text, with the names of the symbol table (`Dq1` for q̇1, `DDq1` for q̈1).
@@ -24,6 +25,9 @@ pub enum PrintFormat {
     Text,
     /// LaTeX math-mode source.
     Latex,
+    /// MathML presentation markup (the `mathml` module's names), the content of a `<math>`
+    /// element: browsers render it natively.
+    MathMl,
 }
 
 /// Prints polynomials over the symbols of a [`SymbolTable`].
@@ -80,7 +84,7 @@ impl<'a> Printer<'a> {
         for (key, coefficient) in &groups {
             self.push_group(key, coefficient, &mut chunks);
         }
-        join(chunks)
+        self.join(chunks)
     }
 
     /// The chunks of one group: `coefficient · key`.
@@ -106,7 +110,7 @@ impl<'a> Printer<'a> {
             return;
         }
         let mut parts = self.product_parts(common.coefficient.abs(), &common.factors, false);
-        parts.push(self.parenthesised(&join(self.items(group(cofactors)))));
+        parts.push(self.parenthesised(&self.join(self.items(group(cofactors)))));
         parts.extend(self.factor_list(&key_factors));
         chunks.push((common.coefficient < 0.0, parts.join(" ")));
     }
@@ -129,7 +133,7 @@ impl<'a> Printer<'a> {
                         .collect();
                     let mut parts =
                         self.product_parts(common.coefficient.abs(), &common.factors, false);
-                    parts.push(self.parenthesised(&join(inner)));
+                    parts.push(self.parenthesised(&self.join(inner)));
                     groups.push((
                         self.term_key(&common),
                         (common.coefficient < 0.0, parts.join(" ")),
@@ -235,6 +239,15 @@ impl<'a> Printer<'a> {
             (1, _) => base,
             (e, PrintFormat::Text) => format!("{base}^{e}"),
             (e, PrintFormat::Latex) => format!("{base}^{{{e}}}"),
+            (e, PrintFormat::MathMl) if e < 0 => mathml::msup(
+                &base,
+                &format!(
+                    "{}{}",
+                    mathml::minus(),
+                    mathml::mn(&e.unsigned_abs().to_string())
+                ),
+            ),
+            (e, PrintFormat::MathMl) => mathml::msup(&base, &mathml::mn(&e.to_string())),
         }
     }
 
@@ -258,15 +271,23 @@ impl<'a> Printer<'a> {
             Atom::Sqrt(p) => match self.format {
                 PrintFormat::Text => format!("sqrt({})", self.print(p)),
                 PrintFormat::Latex => format!("\\sqrt{{{}}}", self.print(p)),
+                PrintFormat::MathMl => format!("<msqrt>{}</msqrt>", self.print(p)),
             },
             Atom::Sign(p) => match self.format {
                 PrintFormat::Text => format!("sign({})", self.print(p)),
                 PrintFormat::Latex => format!("\\operatorname{{sgn}}({})", self.print(p)),
+                PrintFormat::MathMl => mathml::function("sgn", &self.print(p)),
             },
         }
     }
 
+    /// One symbol as this printer writes it: `Dq1`, `\dot{q}_{1}`, or q̇₁ in MathML.
+    pub fn print_symbol(&self, s: Symbol) -> String {
+        self.symbol(s)
+    }
+
     fn symbol(&self, s: Symbol) -> String {
+        let joint = |k, letter, accent| mathml::joint(self.symbols, k, letter, accent);
         match (self.format, s) {
             (PrintFormat::Text, _) => self.symbols.name(s),
             (PrintFormat::Latex, Symbol::Position(k)) => latex_joint(self.symbols, k, ""),
@@ -277,6 +298,16 @@ impl<'a> Printer<'a> {
             }
             (PrintFormat::Latex, Symbol::Parameter(_)) => latex_identifier(&self.symbols.name(s)),
             (PrintFormat::Latex, Symbol::Lane(k)) => format!("e_{{{k}}}"),
+            (PrintFormat::MathMl, Symbol::Position(k)) => joint(k, "q", None),
+            (PrintFormat::MathMl, Symbol::Velocity(k)) => joint(k, "q", Some('\u{2d9}')),
+            (PrintFormat::MathMl, Symbol::Acceleration(k)) => joint(k, "q", Some('\u{a8}')),
+            (PrintFormat::MathMl, Symbol::Force(k)) => joint(k, "τ", None),
+            (PrintFormat::MathMl, Symbol::Parameter(_)) => {
+                mathml::identifier(&self.symbols.name(s))
+            }
+            (PrintFormat::MathMl, Symbol::Lane(k)) => {
+                mathml::msub(&mathml::mi("e"), &mathml::mn(&k.to_string()))
+            }
         }
     }
 
@@ -285,22 +316,21 @@ impl<'a> Printer<'a> {
         if let Some(short) = abbreviation(self.symbols, h, self.format) {
             return short;
         }
-        let mut argument = String::new();
-        for (i, &(j, n)) in h.frequencies.iter().enumerate() {
-            match (i, n < 0) {
-                (0, true) => argument.push('-'),
-                (0, false) => {}
-                (_, true) => argument.push_str(" - "),
-                (_, false) => argument.push_str(" + "),
-            }
-            if n.abs() != 1 {
-                argument.push_str(&format!("{} ", n.abs()));
-            }
-            argument.push_str(&match self.format {
+        let chunks = h.frequencies.iter().map(|&(j, n)| {
+            let joint = match self.format {
                 PrintFormat::Text => joint_name(self.symbols, j),
                 PrintFormat::Latex => latex_joint(self.symbols, j, ""),
-            });
-        }
+                PrintFormat::MathMl => self.symbol(Symbol::Position(j)),
+            };
+            match n.abs() {
+                1 => (n < 0, joint),
+                m => (
+                    n < 0,
+                    format!("{} {joint}", number(f64::from(m), None, self.format)),
+                ),
+            }
+        });
+        let argument = self.join(chunks.collect());
         self.function(if h.sine { "sin" } else { "cos" }, &argument)
     }
 
@@ -308,6 +338,7 @@ impl<'a> Printer<'a> {
         match self.format {
             PrintFormat::Text => format!("{name}({argument})"),
             PrintFormat::Latex => format!("\\{name}\\left({argument}\\right)"),
+            PrintFormat::MathMl => mathml::function(name, argument),
         }
     }
 
@@ -315,7 +346,28 @@ impl<'a> Printer<'a> {
         match self.format {
             PrintFormat::Text => format!("({text})"),
             PrintFormat::Latex => format!("\\left({text}\\right)"),
+            PrintFormat::MathMl => mathml::parenthesised(text),
         }
+    }
+
+    /// `a - b + c` from signed chunks (`0` when there are none), with MathML's operators.
+    fn join(&self, chunks: Vec<Chunk>) -> String {
+        if self.format != PrintFormat::MathMl {
+            return join(chunks);
+        }
+        let mut out = String::new();
+        for (i, (negative, text)) in chunks.into_iter().enumerate() {
+            match (i, negative) {
+                (_, true) => out.push_str(&mathml::minus()),
+                (0, false) => {}
+                (_, false) => out.push_str(&mathml::mo("+")),
+            }
+            out.push_str(&text);
+        }
+        if out.is_empty() {
+            out.push_str(&mathml::mn("0"));
+        }
+        out
     }
 }
 
@@ -519,6 +571,75 @@ mod tests {
         assert_eq!(text(&g, &Polynomial::zero()), "0");
         let quotient = parse(&mut g, "(/ (* 2 q1) m1)");
         assert_eq!(text(&g, &quotient), "2 m1^-1 q1");
+    }
+
+    /// Whether every opened tag of `markup` closes, in order.
+    fn balanced(markup: &str) -> bool {
+        let mut open = Vec::new();
+        for tag in markup.split('<').skip(1) {
+            let name = tag.split(['>', ' ']).next().unwrap_or("");
+            match name.strip_prefix('/') {
+                Some(closed) if open.pop() != Some(closed) => return false,
+                Some(_) => {}
+                None => open.push(name),
+            }
+        }
+        open.is_empty()
+    }
+
+    #[test]
+    fn mathml_writes_the_thesis_terms_as_elements() {
+        let mut g = elbow_graph();
+        let m11 = parse(&mut g, THESIS_M[0][0]);
+        let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&m11);
+        let sub = |a: &str, b: &str| format!("<msub>{a}{b}</msub>");
+        let (i1, i2) = (
+            sub("<mi>I</mi>", "<mn>1</mn>"),
+            sub("<mi>I</mi>", "<mn>2</mn>"),
+        );
+        let (l1, lc1) = (
+            sub("<mi>l</mi>", "<mn>1</mn>"),
+            sub("<mi>l</mi>", "<mi>c1</mi>"),
+        );
+        let (m1, m2) = (
+            sub("<mi>m</mi>", "<mn>1</mn>"),
+            sub("<mi>m</mi>", "<mn>2</mn>"),
+        );
+        let (lc2, c2) = (
+            sub("<mi>l</mi>", "<mi>c2</mi>"),
+            sub("<mi>c</mi>", "<mn>2</mn>"),
+        );
+        let square = |x: &str| format!("<msup>{x}<mn>2</mn></msup>");
+        let plus = "<mo>+</mo>";
+        let expected = format!(
+            "{i1}{plus}{i2}{plus}{} {m1}{plus}{m2} <mrow><mo>(</mo>{}{plus}{}{plus}<mn>2</mn> \
+             {l1} {lc2} {c2}<mo>)</mo></mrow>",
+            square(&lc1),
+            square(&l1),
+            square(&lc2)
+        );
+        assert_eq!(printed, expected);
+        let tau = planar_elbow(&mut g);
+        for t in Polynomial::from_exprs(&g, &tau).unwrap() {
+            let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&t);
+            assert!(balanced(&printed), "{printed}");
+            assert!(printed.contains("<mover accent=\"true\"><mi>q</mi><mo>\u{a8}</mo></mover>"));
+        }
+    }
+
+    #[test]
+    fn mathml_writes_longhand_harmonics_powers_and_zero() {
+        let mut g = graph(&["q1", "q2", "q3"], &["m1"]);
+        let p = parse(&mut g, "(+ (sin (+ (* 2 q2) (- q3))) (/ 3 m1))");
+        let printed = Printer::new(g.symbols(), PrintFormat::MathMl).print(&p);
+        assert_eq!(
+            printed,
+            "<mn>3</mn> <msup><msub><mi>m</mi><mn>1</mn></msub><mrow><mo>\u{2212}</mo><mn>1</mn></mrow></msup>\
+             <mo>+</mo><mi>sin</mi><mo>&#x2061;</mo><mrow><mo>(</mo><mn>2</mn> \
+             <msub><mi>q</mi><mn>2</mn></msub><mo>\u{2212}</mo><msub><mi>q</mi><mn>3</mn></msub><mo>)</mo></mrow>"
+        );
+        let zero = Printer::new(g.symbols(), PrintFormat::MathMl).print(&Polynomial::zero());
+        assert_eq!(zero, "<mn>0</mn>");
     }
 
     #[test]

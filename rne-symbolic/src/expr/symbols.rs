@@ -94,20 +94,10 @@ impl SymbolTable {
             && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
         identifier
             && !RESERVED.contains(&name)
-            && !self.joints.iter().any(|other| {
-                [
-                    format!("D{other}"),
-                    format!("DD{other}"),
-                    format!("tau_{other}"),
-                ]
-                .contains(&name.to_owned())
-                    || [
-                        format!("D{name}"),
-                        format!("DD{name}"),
-                        format!("tau_{name}"),
-                    ]
-                    .contains(other)
-            })
+            && !self
+                .joints
+                .iter()
+                .any(|other| derived(name, other) || derived(other, name))
     }
 
     /// The symbol printed as `name` (by [`SymbolTable::name`]), if any; a joint is also found
@@ -135,6 +125,15 @@ impl SymbolTable {
         }
         None
     }
+}
+
+/// Whether `name` is how a joint named `joint` prints its velocity, acceleration or force
+/// (`Djoint`, `DDjoint`, `tau_joint`); compared without building the names, as every printed
+/// joint symbol asks it of every other joint.
+fn derived(name: &str, joint: &str) -> bool {
+    ["D", "DD", "tau_"]
+        .iter()
+        .any(|prefix| name.strip_prefix(prefix) == Some(joint))
 }
 
 #[cfg(test)]

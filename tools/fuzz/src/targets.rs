@@ -9,7 +9,8 @@ use std::time::Instant;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rne_codegen_core::{
-    generate, ForwardDynamicsMethod, Kernel, MimicMode, ParameterMode, ScalarType, Scene,
+    generate, ForwardDynamicsMethod, GenerationOptions, Kernel, MimicMode, ParameterMode,
+    ScalarType, Scene,
 };
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::{LoadOptions, RobotFormat};
@@ -53,8 +54,8 @@ pub struct Input {
     pub options: LoadOptions,
     /// The mutations applied, in order.
     pub applied: Vec<Applied>,
-    /// The scene generated from it (generate target).
-    pub scene: Option<Scene>,
+    /// The scene and generation options generated from it (generate target).
+    pub scene: Option<(Scene, GenerationOptions)>,
 }
 
 impl Input {
@@ -221,12 +222,13 @@ fn generate_input(rng: &mut ChaCha8Rng, corpus: &Corpus, longest: usize) -> Inpu
     input
 }
 
-/// Every kernel, with random scene settings.
-fn scene(rng: &mut ChaCha8Rng) -> Scene {
-    Scene {
+/// Every kernel, with random scene settings and generation options (drawn in a fixed order:
+/// the same seed gives the same settings).
+fn scene(rng: &mut ChaCha8Rng) -> (Scene, GenerationOptions) {
+    let gravity = rng.gen_bool(0.1).then_some([0.0, 0.0, 0.0]);
+    let at_rest = rng.gen_bool(0.1);
+    let mut options = GenerationOptions {
         outputs: Kernel::ALL.to_vec(),
-        gravity: rng.gen_bool(0.1).then_some([0.0, 0.0, 0.0]),
-        zero_velocities: rng.gen_bool(0.1),
         parameters: *pick(
             rng,
             &[
@@ -239,20 +241,26 @@ fn scene(rng: &mut ChaCha8Rng) -> Scene {
             rng,
             &[ScalarType::F64, ScalarType::F32, ScalarType::Generic],
         ),
+        ..GenerationOptions::default()
+    };
+    let scene = Scene {
+        gravity,
+        at_rest,
         mimic: *pick(rng, &[MimicMode::Constrained, MimicMode::Free]),
         friction: rng.gen_bool(0.3),
-        forward_dynamics: *pick(
-            rng,
-            &[
-                ForwardDynamicsMethod::Auto,
-                ForwardDynamicsMethod::Aba,
-                ForwardDynamicsMethod::Ldlt,
-            ],
-        ),
-        fma: rng.gen_bool(0.2),
-        derivative_lanes: rng.gen_bool(0.2),
         ..Scene::default()
-    }
+    };
+    options.forward_dynamics = *pick(
+        rng,
+        &[
+            ForwardDynamicsMethod::Auto,
+            ForwardDynamicsMethod::Aba,
+            ForwardDynamicsMethod::Ldlt,
+        ],
+    );
+    options.fma = rng.gen_bool(0.2);
+    options.derivative_lanes = rng.gen_bool(0.2);
+    (scene, options)
 }
 
 /// How reading an input ended.
@@ -335,7 +343,7 @@ type Generated = Result<Result<(), String>, String>;
 /// floating base.
 fn read_and_generate(input: &Input) -> (Read, Vec<Generated>) {
     let read = read(input);
-    let (Ok(model), Some(scene)) = (&read.result, &input.scene) else {
+    let (Ok(model), Some((scene, options))) = (&read.result, &input.scene) else {
         return (read, Vec::new());
     };
     if model.links.len() > GENERATE_LINKS {
@@ -352,7 +360,7 @@ fn read_and_generate(input: &Input) -> (Read, Vec<Generated>) {
         .map(|base| {
             let mut model = model.clone();
             model.set_base(base);
-            generate(&model, &scene, &read.origin)
+            generate(&model, &scene, options, &read.origin)
                 .map(|module| module.items().map(drop).map_err(|e| e.to_string()))
                 .map_err(|e| e.to_string())
         })

@@ -12,10 +12,10 @@ use super::parts;
 use super::text::c_comment;
 use super::TEXT;
 use crate::error::CodegenError;
+use crate::generation_options::ParameterMode;
 use crate::kernel::{Input, Kernel, Shape};
 use crate::program::{Instr, Operand, Program};
 use crate::programs::GeneratedPrograms;
-use crate::scene::ParameterMode;
 use crate::split::plan_parts;
 
 /// Programs with more instructions than this are written as a chain of functions of

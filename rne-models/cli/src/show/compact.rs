@@ -11,10 +11,12 @@
 use std::io::Write;
 
 use rne_codegen_core::{Instr, Operand, Program};
+use rne_symbolic::canonical::mathml;
 use rne_symbolic::{ExprGraph, Symbol, SymbolTable};
 
 use super::entries::Section;
-use super::sections::label;
+use super::sections::{label, mathml_label};
+use super::Format;
 use crate::CliError;
 
 /// What was printed of a program.
@@ -26,27 +28,31 @@ pub struct CompactPrinted {
     pub total: usize,
 }
 
-/// Prints the program of `sections` in text or LaTeX, at most `max_size` bytes of it.
+/// Prints the program of `sections` in text, LaTeX or MathML, at most `max_size` bytes of it.
 pub fn print(
     graph: &ExprGraph,
     sections: &[Section],
-    latex: bool,
+    format: Format,
     max_size: usize,
     out: &mut dyn Write,
 ) -> Result<CompactPrinted, CliError> {
     let keys: Vec<_> = sections.iter().flat_map(|s| s.entries.iter()).collect();
     let roots: Vec<_> = keys.iter().map(|(_, id)| *id).collect();
     let program = Program::lower(graph, &roots);
-    let names = Names::new(&program, graph.symbols(), latex, |k| {
-        label(&keys[k].0, latex)
+    let names = Names::new(&program, graph.symbols(), format, |k| match format {
+        Format::Html => mathml_label(&keys[k].0),
+        Format::Text | Format::Latex => label(&keys[k].0, format == Format::Latex),
     });
-    let comment = if latex { "%" } else { "#" };
-    writeln!(
-        out,
-        "\n{comment} {} operations ({}), one a line; s_k = sin q_k, c_k = cos q_k, t_k intermediate quantities",
+    let about = format!(
+        "{} operations ({}), one a line; s_k = sin q_k, c_k = cos q_k, t_k intermediate quantities",
         program.op_count().total(),
         program.op_count()
-    )?;
+    );
+    match format {
+        Format::Text => writeln!(out, "\n# {about}")?,
+        Format::Latex => writeln!(out, "\n% {about}")?,
+        Format::Html => writeln!(out, "<p>{}</p>", mathml::escape(&about))?,
+    }
     let mut lines = names.lines(&program);
     let total = lines.len();
     let mut written = 0;
@@ -72,14 +78,14 @@ struct Names<'a> {
     named_output: Vec<Option<usize>>,
     outputs: Vec<String>,
     symbols: &'a SymbolTable,
-    latex: bool,
+    format: Format,
 }
 
 impl<'a> Names<'a> {
     fn new(
         program: &Program,
         symbols: &'a SymbolTable,
-        latex: bool,
+        format: Format,
         output_label: impl Fn(usize) -> String,
     ) -> Names<'a> {
         let uses = program.use_counts();
@@ -100,14 +106,14 @@ impl<'a> Names<'a> {
             .map(|(t, instr)| match (named_output[t], instr) {
                 (Some(k), _) => outputs[k].clone(),
                 (None, Instr::Sin(Operand::Input(Symbol::Position(j)))) => {
-                    subscript("s", &(j + 1).to_string(), latex)
+                    subscript("s", &(j + 1).to_string(), format)
                 }
                 (None, Instr::Cos(Operand::Input(Symbol::Position(j)))) => {
-                    subscript("c", &(j + 1).to_string(), latex)
+                    subscript("c", &(j + 1).to_string(), format)
                 }
                 _ => {
                     next += 1;
-                    subscript("t", &next.to_string(), latex)
+                    subscript("t", &next.to_string(), format)
                 }
             })
             .collect();
@@ -116,40 +122,48 @@ impl<'a> Names<'a> {
             named_output,
             outputs,
             symbols,
-            latex,
+            format,
         }
     }
 
     /// Every line: one per instruction, then the entries no instruction is named after.
     fn lines(&self, program: &Program) -> Vec<String> {
-        let (equals, end) = if self.latex {
-            (" &= ", " \\\\")
-        } else {
-            (" = ", "")
+        let (equals, end) = match self.format {
+            Format::Text => (" = ".to_owned(), ""),
+            Format::Latex => (" &= ".to_owned(), " \\\\"),
+            Format::Html => (mathml::mo("="), ""),
         };
         let mut lines: Vec<String> = program
             .instrs
             .iter()
             .enumerate()
-            .map(|(t, instr)| format!("{}{equals}{}{end}\n", self.temps[t], self.instr(instr)))
+            .map(|(t, instr)| self.line(&self.temps[t], &equals, &self.instr(instr), end))
             .collect();
         for (k, o) in program.outputs.iter().enumerate() {
             let named = matches!(o, Operand::Temp(t) if self.named_output[*t as usize] == Some(k));
             if !named {
-                lines.push(format!(
-                    "{}{equals}{}{end}\n",
-                    self.outputs[k],
-                    self.operand(*o)
-                ));
+                lines.push(self.line(&self.outputs[k], &equals, &self.operand(*o), end));
             }
         }
         lines
     }
 
+    /// `name = value`, one line of the program.
+    fn line(&self, name: &str, equals: &str, value: &str, end: &str) -> String {
+        match self.format {
+            Format::Html => format!("{}\n", mathml::math(&format!("{name}{equals}{value}"))),
+            Format::Text | Format::Latex => format!("{name}{equals}{value}{end}\n"),
+        }
+    }
+
     fn instr(&self, instr: &Instr) -> String {
+        if self.format == Format::Html {
+            return self.instr_mathml(instr);
+        }
+        let latex = self.format == Format::Latex;
         let o = |x: Operand| self.operand(x);
-        let times = if self.latex { " \\, " } else { " * " };
-        let function = |f: &str, x: Operand| match self.latex {
+        let times = if latex { " \\, " } else { " * " };
+        let function = |f: &str, x: Operand| match latex {
             true => format!("\\{f}({})", o(x)),
             false => format!("{f}({})", o(x)),
         };
@@ -157,14 +171,14 @@ impl<'a> Names<'a> {
             Instr::Add(a, b) => format!("{} + {}", o(a), o(b)),
             Instr::Sub(a, b) => format!("{} - {}", o(a), o(b)),
             Instr::Mul(a, b) => format!("{}{times}{}", o(a), o(b)),
-            Instr::Div(a, b) if self.latex => format!("\\frac{{{}}}{{{}}}", o(a), o(b)),
+            Instr::Div(a, b) if latex => format!("\\frac{{{}}}{{{}}}", o(a), o(b)),
             Instr::Div(a, b) => format!("{} / {}", o(a), o(b)),
             Instr::Neg(a) => format!("-{}", o(a)),
             Instr::Sin(a) => function("sin", a),
             Instr::Cos(a) => function("cos", a),
-            Instr::Sqrt(a) if self.latex => format!("\\sqrt{{{}}}", o(a)),
+            Instr::Sqrt(a) if latex => format!("\\sqrt{{{}}}", o(a)),
             Instr::Sqrt(a) => function("sqrt", a),
-            Instr::Sign(a) if self.latex => format!("\\operatorname{{sign}}({})", o(a)),
+            Instr::Sign(a) if latex => format!("\\operatorname{{sign}}({})", o(a)),
             Instr::Sign(a) => function("sign", a),
             Instr::MulAdd(a, b, c) => format!("{}{times}{} + {}", o(a), o(b), o(c)),
             Instr::MulSub(a, b, c) => format!("{}{times}{} - {}", o(a), o(b), o(c)),
@@ -172,9 +186,37 @@ impl<'a> Names<'a> {
         }
     }
 
+    /// One operation in MathML: `a + b`, `a · b`, a fraction, `sin(a)`, a square root.
+    fn instr_mathml(&self, instr: &Instr) -> String {
+        let o = |x: Operand| self.operand(x);
+        let (plus, minus, times) = (mathml::mo("+"), mathml::minus(), mathml::mo("·"));
+        match *instr {
+            Instr::Add(a, b) => format!("{}{plus}{}", o(a), o(b)),
+            Instr::Sub(a, b) => format!("{}{minus}{}", o(a), o(b)),
+            Instr::Mul(a, b) => format!("{}{times}{}", o(a), o(b)),
+            Instr::Div(a, b) => format!(
+                "<mfrac>{}{}</mfrac>",
+                mathml::mrow(&o(a)),
+                mathml::mrow(&o(b))
+            ),
+            Instr::Neg(a) => format!("{minus}{}", o(a)),
+            Instr::Sin(a) => mathml::function("sin", &o(a)),
+            Instr::Cos(a) => mathml::function("cos", &o(a)),
+            Instr::Sqrt(a) => format!("<msqrt>{}</msqrt>", o(a)),
+            Instr::Sign(a) => mathml::function("sgn", &o(a)),
+            Instr::MulAdd(a, b, c) => format!("{}{times}{}{plus}{}", o(a), o(b), o(c)),
+            Instr::MulSub(a, b, c) => format!("{}{times}{}{minus}{}", o(a), o(b), o(c)),
+            Instr::NegMulAdd(a, b, c) => format!("{}{minus}{}{times}{}", o(c), o(a), o(b)),
+        }
+    }
+
     fn operand(&self, operand: Operand) -> String {
         match operand {
             Operand::Temp(t) | Operand::Lane { temp: t, .. } => self.temps[t as usize].clone(),
+            Operand::Const(c) if self.format == Format::Html && c < 0.0 => mathml::parenthesised(
+                &format!("{}{}", mathml::minus(), mathml::number(&format!("{}", -c))),
+            ),
+            Operand::Const(c) if self.format == Format::Html => mathml::number(&format!("{c}")),
             Operand::Const(c) if c < 0.0 => format!("({c})"),
             Operand::Const(c) => format!("{c}"),
             Operand::Input(s) => self.input(s),
@@ -182,25 +224,30 @@ impl<'a> Names<'a> {
     }
 
     fn input(&self, symbol: Symbol) -> String {
-        let (text, tex, j) = match symbol {
-            Symbol::Position(j) => ("q", "q", j),
-            Symbol::Velocity(j) => ("Dq", "\\dot{q}", j),
-            Symbol::Acceleration(j) => ("DDq", "\\ddot{q}", j),
-            Symbol::Force(j) => ("tau", "\\tau", j),
+        let (text, tex, markup, j) = match symbol {
+            Symbol::Position(j) => ("q", "q", mathml::mi("q"), j),
+            Symbol::Velocity(j) => ("Dq", "\\dot{q}", mathml::accented("q", '\u{2d9}'), j),
+            Symbol::Acceleration(j) => ("DDq", "\\ddot{q}", mathml::accented("q", '\u{a8}'), j),
+            Symbol::Force(j) => ("tau", "\\tau", mathml::mi("τ"), j),
+            Symbol::Parameter(_) if self.format == Format::Html => {
+                return mathml::identifier(&self.symbols.name(symbol))
+            }
             Symbol::Parameter(_) | Symbol::Lane(_) => return self.symbols.name(symbol),
         };
-        subscript(
-            if self.latex { tex } else { text },
-            &(j + 1).to_string(),
-            self.latex,
-        )
+        let index = (j + 1).to_string();
+        match self.format {
+            Format::Text => subscript(text, &index, self.format),
+            Format::Latex => subscript(tex, &index, self.format),
+            Format::Html => mathml::msub(&markup, &mathml::mn(&index)),
+        }
     }
 }
 
-/// `t12` in text, `t_{12}` in LaTeX.
-fn subscript(name: &str, index: &str, latex: bool) -> String {
-    match latex {
-        true => format!("{name}_{{{index}}}"),
-        false => format!("{name}{index}"),
+/// `t12` in text, `t_{12}` in LaTeX, t with subscript 12 in MathML.
+fn subscript(name: &str, index: &str, format: Format) -> String {
+    match format {
+        Format::Text => format!("{name}{index}"),
+        Format::Latex => format!("{name}_{{{index}}}"),
+        Format::Html => mathml::msub(&mathml::mi(name), &mathml::mn(index)),
     }
 }

@@ -5,11 +5,12 @@
 
 use std::io::Write;
 
-use rne_symbolic::canonical::{Polynomial, Printer};
+use rne_symbolic::canonical::{mathml, Polynomial, Printer};
 use rne_symbolic::ExprGraph;
 
 use super::entries::{EntryKey, Section};
-use super::sections::label;
+use super::sections::{label, mathml_label};
+use super::Format;
 use crate::progress::Progress;
 use crate::CliError;
 
@@ -20,6 +21,10 @@ use crate::CliError;
 /// than the budget is not expanded further, so a robot whose equations run to megabytes costs
 /// seconds; an entry of short terms refused at the limit is printed by raising it.
 const MIN_TERM_BYTES: usize = 24;
+
+/// The same in MathML, whose elements take about twice the bytes of the text
+/// (`<mo>+</mo><mn>0.5</mn><msub><mi>c</mi><mn>1</mn></msub>`).
+const MIN_TERM_BYTES_MATHML: usize = 48;
 
 /// Bytes left below which the remaining sections are not expanded at all.
 const MIN_LINE_BYTES: usize = 64;
@@ -46,10 +51,10 @@ pub struct Printed {
 
 /// How the entries are printed.
 pub struct Style<'a> {
-    /// The polynomial printer (text or LaTeX, digits).
+    /// The polynomial printer (text, LaTeX or MathML, digits).
     pub printer: Printer<'a>,
-    /// LaTeX labels and line ends.
-    pub latex: bool,
+    /// The labels, line ends and section titles around the printed polynomials.
+    pub format: Format,
     /// The most bytes to write.
     pub max_size: usize,
 }
@@ -75,11 +80,15 @@ pub fn print(
             printed.omitted.extend(rest);
             continue;
         }
+        let term_bytes = match style.format {
+            Format::Html => MIN_TERM_BYTES_MATHML,
+            Format::Text | Format::Latex => MIN_TERM_BYTES,
+        };
         print_section(
             graph,
             section,
             style,
-            left / MIN_TERM_BYTES + 1,
+            left / term_bytes + 1,
             what,
             out,
             &mut printed,
@@ -105,11 +114,7 @@ fn print_section(
             CliError::Argument(format!("cannot expand the dynamics for printing: {e}"))
         })?
     };
-    let (comment, equals, end) = match style.latex {
-        true => ("%", " &= ", " \\\\"),
-        false => ("#", " = ", ""),
-    };
-    let mut title = Some(format!("\n{comment} {}\n", section.title));
+    let (mut title, close) = frame(style.format, &section.title);
     for ((key, _), form) in section.entries.iter().zip(forms) {
         let Some(form) = form else {
             printed.omitted.push(Omitted {
@@ -118,12 +123,8 @@ fn print_section(
             });
             continue;
         };
-        let line = format!(
-            "{}{equals}{}{end}\n",
-            label(key, style.latex),
-            style.printer.print(&form)
-        );
-        let title_bytes = title.as_ref().map_or(0, String::len);
+        let line = entry(style.format, key, &style.printer.print(&form));
+        let title_bytes = title.as_ref().map_or(0, |t| t.len() + close.len());
         if printed.bytes + title_bytes + line.len() > style.max_size {
             printed.omitted.push(Omitted {
                 key: key.clone(),
@@ -139,7 +140,39 @@ fn print_section(
         printed.bytes += line.len();
         printed.entries += 1;
     }
+    if title.is_none() {
+        out.write_all(close.as_bytes())?;
+    }
     Ok(())
+}
+
+/// What comes before a section's first printed entry (its title) and after its last.
+fn frame(format: Format, title: &str) -> (Option<String>, &'static str) {
+    match format {
+        Format::Text => (Some(format!("\n# {title}\n")), ""),
+        Format::Latex => (Some(format!("\n% {title}\n")), ""),
+        Format::Html => (
+            Some(format!("<section>\n<h2>{}</h2>\n", mathml::escape(title))),
+            "</section>\n",
+        ),
+    }
+}
+
+/// One entry's line: `M[1,2] = …`, `M_{12} &= … \\`, or a collapsible block of MathML.
+fn entry(format: Format, key: &EntryKey, printed: &str) -> String {
+    match format {
+        Format::Text => format!("{} = {printed}\n", label(key, false)),
+        Format::Latex => format!("{} &= {printed} \\\\\n", label(key, true)),
+        Format::Html => format!(
+            "<details open><summary>{}</summary>{}</details>\n",
+            mathml::escape(&key.text()),
+            mathml::math(&format!(
+                "{}{}{printed}",
+                mathml_label(key),
+                mathml::mo("=")
+            ))
+        ),
+    }
 }
 
 /// `12.3 KB`, `4.5 MB`, `812 bytes`.

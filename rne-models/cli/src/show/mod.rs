@@ -1,25 +1,27 @@
 //! `rne show MODEL`: the dynamics printed for people, in the thesis's notation — expanded
 //! (`expanded`) within a size limit, one entry (`--entry`), or as a program with named
-//! intermediate quantities (`compact`).
+//! intermediate quantities (`compact`); as text, LaTeX, or a web page (`html`).
 
 mod compact;
 mod entries;
 mod expanded;
+mod html;
 mod sections;
 mod size;
 mod summary;
 
 use std::io::Write;
+use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use rne_symbolic::canonical::{PrintFormat, Printer};
-use rne_symbolic::SymbolicDynamics;
+use rne_symbolic::{ExprGraph, SymbolicDynamics};
 
 use rne_identify::BaseSet;
 use rne_reference::Reference;
 use rne_symbolic::RobotModel;
 
-use self::entries::EntryKey;
+use self::entries::{EntryKey, Section};
 use crate::model::ModelOptions;
 use crate::progress::Progress;
 use crate::CliError;
@@ -57,13 +59,16 @@ pub enum Part {
     All,
 }
 
-/// Text or LaTeX.
+/// Text, LaTeX or a web page.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
     /// Plain text with the abbreviations s1, c12, Dq1, DDq1.
     Text,
     /// LaTeX (`\dot{q}_{1}`, `c_{12}`), one equation per line.
     Latex,
+    /// A self-contained web page, `index.html` in `--out DIR`: each entry collapsible, the
+    /// mathematics in MathML (rendered by the browser, offline), the compact program after.
+    Html,
 }
 
 /// Arguments of `rne show`.
@@ -95,17 +100,24 @@ pub struct ShowArgs {
     /// computed once and named (s1 = sin q1, t12 = ...), as for models too large to expand.
     #[arg(long)]
     pub compact: bool,
+    /// The directory `--format html` writes its page to (created if needed, checked first).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
-/// Prints the requested parts of the dynamics.
+/// The robot's name and joints, as each form's header gives them.
+struct Header {
+    name: String,
+    /// Degrees of freedom (a floating base's six included).
+    dofs: usize,
+    joints: Vec<String>,
+}
+
+/// Prints the requested parts of the dynamics, or writes them as a web page.
 pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
-    if args.what == Part::BaseParameters && args.symbolic_params {
-        return Err(CliError::Argument(
-            "--symbolic-params with --what base-parameters: the base parameters are found \
-             numerically at the spec's parameter values (their coefficients come from the \
-             geometry), so they cannot be kept as symbols; leave out --symbolic-params"
-                .into(),
-        ));
+    check(args)?;
+    if let Some(dir) = &args.out {
+        crate::long_run::prepare_out(dir)?;
     }
     let source = RobotSource::resolve(&args.model);
     let model = args.options.load(&source, args.symbolic_params)?;
@@ -121,40 +133,88 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         Some(entry) => entries::select(sections, &EntryKey::parse(entry)?)?,
         None => sections,
     };
+    let header = Header {
+        name: source.display_name(),
+        dofs: dynamics.layout().nv(),
+        joints: model.joint_names(),
+    };
+    let graph = &dynamics.model.graph;
+    match &args.out {
+        Some(dir) => html::write(args, &header, graph, &sections, dir, out),
+        None => print(args, &header, graph, &sections, out),
+    }
+}
+
+/// Refuses combinations of options that cannot be honoured, before any work.
+fn check(args: &ShowArgs) -> Result<(), CliError> {
+    let refuse = |message: &str| Err(CliError::Argument(message.to_owned()));
+    let html = args.format == Format::Html;
+    if args.what == Part::BaseParameters && args.symbolic_params {
+        return refuse(
+            "--symbolic-params with --what base-parameters: the base parameters are found \
+             numerically at the spec's parameter values (their coefficients come from the \
+             geometry), so they cannot be kept as symbols; leave out --symbolic-params",
+        );
+    }
+    if html && args.what == Part::BaseParameters {
+        return refuse(
+            "--format html with --what base-parameters: the page shows the equations; \
+             print the base parameters as text or LaTeX",
+        );
+    }
+    match (html, &args.out) {
+        (true, None) => refuse("--format html writes a page: give the directory with --out DIR"),
+        (false, Some(_)) => refuse("--out DIR is where --format html writes its page: add --format html, or leave out --out to print"),
+        _ => Ok(()),
+    }
+}
+
+/// Prints the sections as text or LaTeX: the header line, then the expanded equations or the
+/// program, then what was left out.
+fn print(
+    args: &ShowArgs,
+    header: &Header,
+    graph: &ExprGraph,
+    sections: &[Section],
+    out: &mut dyn Write,
+) -> Result<(), CliError> {
     let latex = args.format == Format::Latex;
     let comment = if latex { "%" } else { "#" };
-    let n = dynamics.layout().nv();
     writeln!(
         out,
         "{comment} {} ({} joints: {})",
-        source.display_name(),
-        n,
-        model.joint_names().join(", ")
+        header.name,
+        header.dofs,
+        header.joints.join(", ")
     )?;
-    let graph = &dynamics.model.graph;
     if args.compact {
-        let printed = compact::print(graph, &sections, latex, args.max_size, out)?;
-        return summary::compact(args, comment, printed, out);
+        let printed = compact::print(graph, sections, args.format, args.max_size, out)?;
+        return summary::compact(args, printed, out);
     }
     let format = if latex {
         PrintFormat::Latex
     } else {
         PrintFormat::Text
     };
+    let style = expanded::Style {
+        printer: printer(args, graph, format),
+        format: args.format,
+        max_size: args.max_size,
+    };
+    let what = format!("the equations of {}", header.name);
+    let printed = expanded::print(graph, sections, &style, &what, out)?;
+    summary::expanded(args, &printed, out)
+}
+
+/// The polynomial printer: numbers to six significant digits unless the parameters are kept
+/// as symbols.
+fn printer<'g>(args: &ShowArgs, graph: &'g ExprGraph, format: PrintFormat) -> Printer<'g> {
     let printer = Printer::new(graph.symbols(), format);
-    let printer = if args.symbolic_params {
+    if args.symbolic_params {
         printer
     } else {
         printer.significant_digits(6)
-    };
-    let style = expanded::Style {
-        printer,
-        latex,
-        max_size: args.max_size,
-    };
-    let what = format!("the equations of {}", source.display_name());
-    let printed = expanded::print(graph, &sections, &style, &what, out)?;
-    summary::expanded(args, comment, &printed, out)
+    }
 }
 
 /// Prints each base parameter as a combination of standard ones, with its value.

@@ -1,6 +1,7 @@
 //! The parts of the dynamics `rne show` prints, built in the symbolic engine: each a titled
 //! list of named entries and their expressions.
 
+use rne_symbolic::canonical::mathml;
 use rne_symbolic::{Id, SymbolicDynamics};
 
 use super::entries::{EntryKey, Section};
@@ -126,5 +127,29 @@ pub fn label(key: &EntryKey, latex: bool) -> String {
         (true, [i]) => format!("{name}_{{{i}}}"),
         (true, [i, j]) => format!("{name}_{{{i}{j}}}"),
         (_, index) => format!("{name}{index:?}"),
+    }
+}
+
+/// The label in MathML: `M` with subscript `1,2`, `τ₁`, `∂τ/∂q` with subscript, `T`, a
+/// reaction `f` or `τ` with its link and axis as subscript.
+pub fn mathml_label(key: &EntryKey) -> String {
+    let name = match key.name.as_str() {
+        "tau" => mathml::mi("τ"),
+        "dtau_dq" => mathml::mi("∂τ/∂q"),
+        "dtau_dqd" => format!("{}{}", mathml::mi("∂τ/∂"), mathml::mi("q̇")),
+        name => match name.split_once('_') {
+            Some(("tau", link)) => mathml::msub(&mathml::mi("τ"), &mathml::mi(link)),
+            Some((letter, link)) => mathml::msub(&mathml::mi(letter), &mathml::mi(link)),
+            None => mathml::mi(name),
+        },
+    };
+    let index: Vec<String> = key
+        .index
+        .iter()
+        .map(|i| mathml::mn(&i.to_string()))
+        .collect();
+    match index.as_slice() {
+        [] => name,
+        index => mathml::msub(&name, &index.join(&mathml::mo(","))),
     }
 }

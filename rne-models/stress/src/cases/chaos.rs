@@ -19,7 +19,7 @@ use std::time::Instant;
 
 use crate::error::StressError;
 use crate::report::CaseReport;
-use crate::Effort;
+use crate::Settings;
 use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
 use rne_figures::{sci, Table};
 use rne_models::generated::planar_elbow::Model as PlanarElbow;
@@ -408,7 +408,8 @@ fn plots(all: &[&Run], divergence_series: Vec<Series>, duration: f64) -> Vec<Log
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let effort = settings.effort;
     let duration = effort.pick(1000.0, 10.0);
     let h = effort.pick(1e-3, 2e-3);
     let runs = simulate_releases(duration, h)?;

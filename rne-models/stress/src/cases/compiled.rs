@@ -14,7 +14,7 @@ use super::{builtin_model, symbol};
 use crate::error::StressError;
 use crate::report::CaseReport;
 use crate::states::{generator, uniform};
-use crate::Effort;
+use crate::Settings;
 use rne_codegen::Kernel;
 use rne_figures::Table;
 use rne_interpreted::{evaluate, Interpreted, JointState};
@@ -123,7 +123,8 @@ impl Visitor for Bitwise<'_> {
 }
 
 /// The report section: one row per built-in robot.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let effort = settings.effort;
     let states = effort.pick(2000, 20);
     let mut table = Table::new(
         format!(

@@ -20,13 +20,14 @@ use super::chain_model;
 use crate::chain::Chain;
 use crate::error::StressError;
 use crate::measure::{Spread, EPSILON};
+use crate::probe::{Engine, Probe};
 use crate::report::CaseReport;
 use crate::states::{generator, uniform};
 use crate::sweep::{conditions, deviation};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
 use rne_figures::{sci, Table};
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
 
 /// The case's name.
 pub const SLUG: &str = "conditioning";
@@ -95,9 +96,19 @@ pub struct Point {
 
 /// Forward dynamics' error for `family` at parameter `x`, over `samples` states with
 /// |q| ≤ π, |q̇| ≤ 1 rad/s and |τ| ≤ 1 N·m.
-pub fn measure(family: Family, x: f64, samples: usize) -> Result<Vec<Point>, StressError> {
+pub fn measure(
+    engine: Engine,
+    family: Family,
+    x: f64,
+    samples: usize,
+) -> Result<Vec<Point>, StressError> {
     let kernels = [Kernel::MassMatrix, Kernel::ForwardDynamics];
-    let probe = Interpreted::with_kernels(&chain_model(&family.robot(x))?, &kernels);
+    let probe = Probe::new(
+        &chain_model(&family.robot(x))?,
+        &kernels,
+        engine,
+        &family.robot(x).name,
+    )?;
     let n = probe.dof();
     let mut rng = generator(SEED);
     let points = (0..samples)
@@ -125,6 +136,7 @@ pub fn measure(family: Family, x: f64, samples: usize) -> Result<Vec<Point>, Str
 /// One family's table (a row per parameter value) and its points of error against cond(M),
 /// the points also added to `all`.
 fn family_rows(
+    engine: Engine,
     family: Family,
     samples: usize,
     all: &mut Vec<(Family, Point)>,
@@ -143,7 +155,7 @@ fn family_rows(
     );
     let mut points = Vec::new();
     for x in family.values() {
-        let row = measure(family, x, samples)?;
+        let row = measure(engine, family, x, samples)?;
         let cond = Spread::of(row.iter().map(|p| p.condition));
         let error = Spread::of(row.iter().map(|p| p.error));
         let ratio = Spread::of(row.iter().map(|p| p.error / (EPSILON * p.condition)));
@@ -244,13 +256,14 @@ fn findings(all: &[(Family, Point)]) -> String {
 }
 
 /// The report section: a table per family and the plot of error against cond(M).
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let samples = effort.pick(200, 4);
     let mut tables = Vec::new();
     let mut series = Vec::new();
     let mut all: Vec<(Family, Point)> = Vec::new();
     for family in Family::ALL {
-        let (table, points) = family_rows(family, samples, &mut all)?;
+        let (table, points) = family_rows(engine, family, samples, &mut all)?;
         tables.push(table);
         series.push(points);
     }

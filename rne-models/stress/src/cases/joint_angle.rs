@@ -13,13 +13,14 @@ use rne_symbolic::DoubleDouble;
 use super::{builtin_model, kernel_cells, kernel_table, largest, sweep_cells, SWEEP_HEADINGS};
 use crate::error::StressError;
 use crate::measure::Spread;
+use crate::probe::{Engine, Probe};
 use crate::report::CaseReport;
 use crate::states::{generator, magnitudes, uniform};
 use crate::sweep::{sweep, torque_for, Sweep};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::sci;
 use rne_figures::{ulp, Deviation, Format};
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
 
 /// The case's name.
 pub const SLUG: &str = "joint-angle";
@@ -66,8 +67,8 @@ fn angles(rng: &mut ChaCha8Rng, n: usize, magnitude: f64) -> Vec<f64> {
 
 /// The errors of [`KERNELS`] on the PUMA 560 at `samples` states with angles of size
 /// `magnitude`, |q̇| ≤ 2, |q̈| ≤ 2, τ from inverse dynamics.
-pub fn measure(magnitude: f64, samples: usize) -> Result<AngleRow, StressError> {
-    let probe = Interpreted::with_kernels(&builtin_model(ROBOT)?, &KERNELS);
+pub fn measure(engine: Engine, magnitude: f64, samples: usize) -> Result<AngleRow, StressError> {
+    let probe = Probe::new(&builtin_model(ROBOT)?, &KERNELS, engine, ROBOT)?;
     let n = probe.dof();
     let mut rng = generator(SEED);
     let states: Vec<JointState> = (0..samples)
@@ -103,7 +104,8 @@ pub fn measure(magnitude: f64, samples: usize) -> Result<AngleRow, StressError> 
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let samples = effort.pick(1000, 10);
     let mut headings = vec![
         "Q (rad)",
@@ -121,7 +123,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
     );
     let mut rows = Vec::new();
     for magnitude in MAGNITUDES {
-        let row = measure(magnitude, samples)?;
+        let row = measure(engine, magnitude, samples)?;
         let mut cells = vec![
             sci(magnitude),
             sci(ulp(magnitude) / 2.0),

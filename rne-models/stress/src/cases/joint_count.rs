@@ -9,14 +9,15 @@ use rne_codegen::Kernel;
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
 use crate::error::StressError;
 use crate::measure::{ErrorsByKernel, KernelErrors, Spread, EPSILON};
+use crate::probe::{Engine, Probe};
 use crate::random_robot::random_robot;
 use crate::report::CaseReport;
 use crate::states::generator;
 use crate::sweep::{deviation, eval_f64, sweep, Sweep};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::log_plot::{Axis, LogPlot, Mark, Series};
 use rne_figures::sci;
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
 
 /// The case's name.
 pub const SLUG: &str = "joint-count";
@@ -55,13 +56,18 @@ pub struct JointCountRow {
 
 /// The errors of [`KERNELS`] over `robots` random robots of `joints` joints, `samples` states
 /// each (τ from inverse dynamics).
-pub fn measure(joints: usize, robots: usize, samples: usize) -> Result<JointCountRow, StressError> {
+pub fn measure(
+    engine: Engine,
+    joints: usize,
+    robots: usize,
+    samples: usize,
+) -> Result<JointCountRow, StressError> {
     let mut rng = generator(SEED ^ joints as u64);
     let mut sweeps = Vec::with_capacity(robots);
     let mut against_terms = Vec::with_capacity(robots * samples);
     for _ in 0..robots {
         let robot = random_robot(&mut rng, joints);
-        let probe = Interpreted::with_kernels(&chain_model(&robot)?, &KERNELS);
+        let probe = Probe::new(&chain_model(&robot)?, &KERNELS, engine, &robot.name)?;
         let states = driven_states(&probe, &mut rng, samples, STATE);
         against_terms.extend(states.iter().filter_map(|s| tau_against_terms(&probe, s)));
         sweeps.push(sweep(&probe, &KERNELS, &states));
@@ -75,7 +81,7 @@ pub fn measure(joints: usize, robots: usize, samples: usize) -> Result<JointCoun
 }
 
 /// τ's absolute error at `state` over ‖M q̈‖∞ + ‖C q̇ + g‖∞.
-fn tau_against_terms(probe: &Interpreted, state: &JointState) -> Option<f64> {
+fn tau_against_terms(probe: &Probe, state: &JointState) -> Option<f64> {
     let norm = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let n = probe.dof();
     let m = eval_f64(probe, Kernel::MassMatrix, state)?;
@@ -198,7 +204,8 @@ fn findings(rows: &[JointCountRow]) -> String {
 }
 
 /// The report section: a row per number of joints and the plot of errors against it.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let (robots, samples) = effort.pick((8, 100), (1, 3));
     let counts: Vec<usize> = effort.pick((1..=MAX_JOINTS).collect(), vec![1, MAX_JOINTS]);
     let mut table = sweep_table(
@@ -211,7 +218,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
     );
     let mut rows = Vec::new();
     for &n in &counts {
-        let row = measure(n, robots, samples)?;
+        let row = measure(engine, n, robots, samples)?;
         table.push(sweep_row(n.to_string(), &row.sweep, &KERNELS));
         rows.push(row);
     }

@@ -10,12 +10,12 @@ use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
 use crate::chain::Chain;
 use crate::error::StressError;
 use crate::measure::EPSILON;
+use crate::probe::{Engine, Probe};
 use crate::report::CaseReport;
 use crate::states::generator;
 use crate::sweep::{sweep, Sweep};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::sci;
-use rne_interpreted::Interpreted;
 
 /// The case's name.
 pub const SLUG: &str = "link-length";
@@ -68,14 +68,20 @@ pub fn robot(scales: &[f64; 4]) -> Chain {
 }
 
 /// The errors of [`KERNELS`] for the length scales `scales` over `samples` seeded states.
-pub fn measure(scales: &[f64; 4], samples: usize) -> Result<Sweep, StressError> {
-    let probe = Interpreted::with_kernels(&chain_model(&robot(scales))?, &KERNELS);
+pub fn measure(engine: Engine, scales: &[f64; 4], samples: usize) -> Result<Sweep, StressError> {
+    let probe = Probe::new(
+        &chain_model(&robot(scales))?,
+        &KERNELS,
+        engine,
+        &robot(scales).name,
+    )?;
     let states = driven_states(&probe, &mut generator(SEED), samples, STATE);
     Ok(sweep(&probe, &KERNELS, &states))
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let samples = effort.pick(1000, 10);
     let mut table = sweep_table(
         format!("Length scale of links 1–4, {samples} states per row."),
@@ -85,7 +91,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
     let mut uniform = Vec::new();
     let mut mixed = Vec::new();
     for scales in &SCALES {
-        let sweep = measure(scales, samples)?;
+        let sweep = measure(engine, scales, samples)?;
         let same = scales.iter().all(|&s| s == scales[0]);
         let label = if same {
             sci(scales[0])

@@ -10,12 +10,12 @@ use rne_codegen::Kernel;
 use super::{chain_model, driven_states, largest, sweep_row, sweep_table};
 use crate::chain::Chain;
 use crate::error::StressError;
+use crate::probe::{Engine, Probe};
 use crate::report::CaseReport;
 use crate::states::generator;
 use crate::sweep::{sweep, Sweep};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::sci;
-use rne_interpreted::Interpreted;
 
 /// The case's name.
 pub const SLUG: &str = "mass-ratio";
@@ -62,14 +62,15 @@ pub fn robot(r: f64) -> Chain {
 
 /// The errors of [`KERNELS`] for mass ratio `r` over `samples` seeded states (τ of the
 /// states from inverse dynamics, see [`driven_states`]).
-pub fn measure(r: f64, samples: usize) -> Result<Sweep, StressError> {
-    let probe = Interpreted::with_kernels(&chain_model(&robot(r))?, &KERNELS);
+pub fn measure(engine: Engine, r: f64, samples: usize) -> Result<Sweep, StressError> {
+    let probe = Probe::new(&chain_model(&robot(r))?, &KERNELS, engine, &robot(r).name)?;
     let states = driven_states(&probe, &mut generator(SEED), samples, STATE);
     Ok(sweep(&probe, &KERNELS, &states))
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let samples = effort.pick(1000, 10);
     let mut table = sweep_table(
         format!("Mass ratio r between neighbouring links, {samples} states per row."),
@@ -78,7 +79,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
     );
     let mut sweeps = Vec::new();
     for r in RATIOS {
-        let sweep = measure(r, samples)?;
+        let sweep = measure(engine, r, samples)?;
         table.push(sweep_row(sci(r), &sweep, &KERNELS));
         sweeps.push(sweep);
     }

@@ -22,7 +22,9 @@ use crate::measure::ErrorsByKernel;
 use crate::states::uniform;
 use crate::sweep::{torque_for, Sweep};
 use rne_figures::{sci, ulps, Table};
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
+
+use crate::probe::Probe;
 use rne_models::{builtin, RobotSource};
 
 /// The model of the built-in robot `name`.
@@ -64,7 +66,7 @@ pub fn symbol(kernel: Kernel) -> &'static str {
 /// accelerations of the size of `qdd`, whatever the masses and lengths of the robot (random
 /// torques would make a light link's acceleration swamp every other one).
 pub fn driven_states(
-    probe: &Interpreted,
+    probe: &Probe,
     rng: &mut ChaCha8Rng,
     samples: usize,
     (q, qd, qdd): (f64, f64, f64),

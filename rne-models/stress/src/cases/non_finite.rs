@@ -27,7 +27,7 @@ use super::builtin_model;
 use crate::error::StressError;
 use crate::report::CaseReport;
 use crate::states::{generator, uniform};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::Table;
 use rne_interpreted::Interpreted;
 use rne_interpreted::{evaluate, StateRef};
@@ -220,7 +220,8 @@ fn integrator_table() -> Table {
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let effort = settings.effort;
     let states = effort.pick(20, 1);
     let mut table = Table::new(
         format!(

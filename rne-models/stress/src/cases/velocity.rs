@@ -9,12 +9,13 @@ use rne_codegen::Kernel;
 
 use super::{builtin_model, largest, sweep_row, sweep_table};
 use crate::error::StressError;
+use crate::probe::{Engine, Probe};
 use crate::report::CaseReport;
 use crate::states::{generator, magnitudes, uniform};
 use crate::sweep::{sweep, torque_for, Sweep};
-use crate::Effort;
+use crate::Settings;
 use rne_figures::sci;
-use rne_interpreted::{Interpreted, JointState};
+use rne_interpreted::JointState;
 
 /// The case's name.
 pub const SLUG: &str = "velocity";
@@ -40,8 +41,8 @@ const SEED: u64 = 0x5eed_0004;
 
 /// The errors of [`KERNELS`] on the PUMA 560 at `samples` states with |q̇| ∈ [V/2, V],
 /// |q| ≤ π, |q̈| ≤ 10 rad/s², τ from inverse dynamics.
-pub fn measure(speed: f64, samples: usize) -> Result<Sweep, StressError> {
-    let probe = Interpreted::with_kernels(&builtin_model(ROBOT)?, &KERNELS);
+pub fn measure(engine: Engine, speed: f64, samples: usize) -> Result<Sweep, StressError> {
+    let probe = Probe::new(&builtin_model(ROBOT)?, &KERNELS, engine, ROBOT)?;
     let n = probe.dof();
     let mut rng = generator(SEED);
     let states: Vec<JointState> = (0..samples)
@@ -60,7 +61,8 @@ pub fn measure(speed: f64, samples: usize) -> Result<Sweep, StressError> {
 }
 
 /// The report section.
-pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
     let samples = effort.pick(1000, 10);
     let mut table = sweep_table(
         format!(
@@ -73,7 +75,7 @@ pub fn report(effort: Effort) -> Result<CaseReport, StressError> {
     );
     let mut rows = Vec::new();
     for speed in SPEEDS {
-        let sweep = measure(speed, samples)?;
+        let sweep = measure(engine, speed, samples)?;
         table.push(sweep_row(sci(speed), &sweep, &KERNELS));
         rows.push((speed, sweep));
     }

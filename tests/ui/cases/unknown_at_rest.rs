@@ -1,0 +1,8 @@
+rne_codegen::derive_dynamics! {
+    mod arm {
+        robot: "specs/two_links.toml",
+        at_rest: maybe,
+    }
+}
+
+fn main() {}
