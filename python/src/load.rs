@@ -10,8 +10,9 @@ use pyo3::types::PyDict;
 use rne_codegen_core::{GenerationOptions, Kernel, MimicMode, ParameterMode, Scene};
 use rne_jit::JitModel;
 use rne_symbolic::model::Base;
-use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+use rne_symbolic::spec::{LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 use crate::builtin::builtin;
 use crate::errors;
@@ -65,7 +66,7 @@ pub(crate) fn read_and_compile(
         };
         let format = RobotFormat::from_path(Path::new(&origin))
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
-        parse_robot(&text, &origin, format, &load_options)
+        read_robot(Description::text(&text, format, &origin), &load_options)
             .map_err(|e| PyValueError::new_err(e.to_string()))
     };
     let numeric = scene.apply(&read(false)?).map_err(errors::codegen)?;

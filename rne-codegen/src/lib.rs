@@ -59,7 +59,12 @@
 //!
 //! # Build scripts
 //! With the feature `builder` (in `[build-dependencies]`), `Builder` writes the same module
-//! to `OUT_DIR`:
+//! to `OUT_DIR`. The feature adds the build-script API and nothing of the generator behind it:
+//! `Builder` and `generate_from_path`, their settings (`Scene`, `GenerationOptions`,
+//! `ScalarType`, `ParameterMode`, `MimicMode`, `ForwardDynamicsMethod`, `Base`), what they
+//! return (`GeneratedModule`,
+//! `KernelReport`, `ForwardDynamicsChoice`, `SpecWarning`) and their error (`CodegenError`).
+//! The generator's own API (kernels, programs, the C emitter) is `rne-codegen-core`'s.
 //! ```toml
 //! [build-dependencies]
 //! rne-codegen = { version = "0.1", features = ["builder"] }
@@ -83,14 +88,22 @@ pub use rne_runtime::{F32x8, F64x4};
 #[cfg(feature = "nalgebra")]
 pub use rne_runtime::convert;
 
+// The build-script API, and nothing of the generator behind it: the builder, the function it
+// runs, their settings, what they return and their error. Kernel construction, programs and the
+// C emitter are rne-codegen-core's own API, which the workspace's tools use directly
+// (docs/architecture.md, "The API boundary").
 #[cfg(feature = "builder")]
 pub use rne_codegen_core::{
-    build_kernel, build_kernel_with, c_identifier, emit_c, generate, generate_c,
-    generate_from_path, generate_programs, kernel_program, Builder, BuiltKernel, CModule,
-    CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod, GeneratedModule, GeneratedPrograms,
-    GenerationOptions, Instr, KernelProgram, KernelReport, KernelSetup, MimicMode, Operand,
-    ParameterMode, Program, ScalarType, Scene, KEEP_GENERATED_ENV,
+    generate_from_path, Builder, CodegenError, ForwardDynamicsChoice, ForwardDynamicsMethod,
+    GeneratedModule, GenerationOptions, KernelReport, MimicMode, ParameterMode, ScalarType, Scene,
+    KEEP_GENERATED_ENV,
 };
+/// How the robot's root is attached to the world ([`Builder::base`]).
+#[cfg(feature = "builder")]
+pub use rne_symbolic::model::Base;
+/// A warning about the robot file ([`Builder::generate_with_warnings`]).
+#[cfg(feature = "builder")]
+pub use rne_symbolic::spec::SpecWarning;
 
 /// What generated code reaches the runtime by (`::rne_codegen::__private::Real`, ...); not
 /// an API.

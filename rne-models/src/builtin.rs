@@ -2,8 +2,9 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{load_robot, LoadOptions, SpecError};
+use rne_symbolic::spec::{LoadOptions, SpecError};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 use crate::generated;
 use crate::robot_file::parse_embedded;
@@ -129,7 +130,7 @@ impl RobotSource {
     pub fn load(&self, options: &LoadOptions) -> Result<RobotModel, SpecError> {
         match self {
             RobotSource::Builtin(robot) => parse_embedded(robot.source, robot.file, options),
-            RobotSource::File(path) => load_robot(path, options),
+            RobotSource::File(path) => read_robot(Description::file(path), options),
         }
     }
 

@@ -4,8 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat, SpecError};
+use rne_symbolic::spec::{LoadOptions, RobotFormat, SpecError};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 /// The `robots/` directory of the source tree this crate was built from.
 pub fn robots_dir() -> &'static Path {
@@ -52,5 +53,5 @@ pub(crate) fn parse_embedded(
     options: &LoadOptions,
 ) -> Result<RobotModel, SpecError> {
     let format = RobotFormat::from_path(Path::new(file))?;
-    parse_robot(source, file, format, options)
+    read_robot(Description::text(source, format, file), options)
 }

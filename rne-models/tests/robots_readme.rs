@@ -1,6 +1,7 @@
 //! The TOML examples of `robots/README.md` are valid links.
 
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 
 #[test]
 fn readme_examples_parse() {
@@ -14,8 +15,11 @@ fn readme_examples_parse() {
     assert_eq!(blocks.len(), 3);
     for block in blocks {
         let text = format!("name = \"example\"\n{block}");
-        let model = spec::parse_str(&text, "example.toml", &LoadOptions::default())
-            .unwrap_or_else(|e| panic!("{e}"));
+        let model = read_robot(
+            Description::toml(&text, "example.toml"),
+            &LoadOptions::default(),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(model.dof(), 1);
     }
 }

@@ -16,10 +16,11 @@ pub mod model;
 pub mod motion;
 pub mod newton_euler;
 pub mod spec;
-pub mod urdf;
+mod urdf;
 
 pub use dynamics::SymbolicDynamics;
 pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
+pub use input::{read_robot, Description, LoadOptions, RobotFormat};
 pub use model::{JointKind, Link, NumericLink, NumericModel, RobotModel};
 /// Sine and cosine for the kernels (`rne_runtime::trig`).
 pub use rne_runtime::trig;

@@ -4,7 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use rne_symbolic::spec::{self, LoadOptions, RobotFormat, SpecErrorKind};
+use rne_symbolic::spec::{LoadOptions, SpecErrorKind};
+use rne_symbolic::RobotFormat;
+use rne_symbolic::{read_robot, Description};
 
 fn regression(file: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -40,18 +42,14 @@ fn mimic_chain_urdf(n: usize, closing_loop: bool) -> String {
 #[test]
 fn a_long_chain_of_mimic_joints_loads_at_once() {
     let start = Instant::now();
-    let model = spec::parse_robot(
-        &mimic_chain_urdf(3000, false),
-        "chain.urdf",
-        RobotFormat::Urdf,
+    let model = read_robot(
+        Description::urdf(&mimic_chain_urdf(3000, false), "chain.urdf"),
         &LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(model.dof(), 3000);
-    let error = spec::parse_robot(
-        &mimic_chain_urdf(3000, true),
-        "loop.urdf",
-        RobotFormat::Urdf,
+    let error = read_robot(
+        Description::urdf(&mimic_chain_urdf(3000, true), "loop.urdf"),
         &LoadOptions::default(),
     )
     .unwrap_err();
@@ -81,7 +79,7 @@ fn a_long_chain_of_mimic_joints_loads_at_once() {
 #[test]
 fn a_stray_byte_names_its_line_and_column() {
     let path = regression("stray_byte.urdf");
-    let error = spec::load_robot(&path, &LoadOptions::default()).unwrap_err();
+    let error = read_robot(Description::file(&path), &LoadOptions::default()).unwrap_err();
     assert_eq!(error.kind(), SpecErrorKind::Io);
     assert_eq!(error.line(), Some(3));
     assert_eq!(
@@ -94,14 +92,19 @@ fn a_stray_byte_names_its_line_and_column() {
     );
 }
 
-/// Found by the toml target: a spec truncated inside a UTF-8 character, read by
-/// `spec::load_file` (the TOML-only entry point) as well as `load_robot`.
+/// Found by the toml target: a spec truncated inside a UTF-8 character, located when read
+/// from its file and when read from the bytes a caller read (`Description::bytes`).
 #[test]
 fn a_file_truncated_inside_a_character_names_its_line_and_column() {
     let path = regression("truncated_character.toml");
+    let (bytes, origin) = (std::fs::read(&path).unwrap(), path.display().to_string());
     for error in [
-        spec::load_file(&path, &LoadOptions::default()).unwrap_err(),
-        spec::load_robot(&path, &LoadOptions::default()).unwrap_err(),
+        read_robot(Description::file(&path), &LoadOptions::default()).unwrap_err(),
+        read_robot(
+            Description::bytes(&bytes, RobotFormat::Toml, &origin),
+            &LoadOptions::default(),
+        )
+        .unwrap_err(),
     ] {
         assert_eq!(
             error.to_string(),
@@ -138,10 +141,8 @@ fn triangle_chain_toml(n: usize) -> String {
 fn thousands_of_warnings_are_located_at_once() {
     let start = Instant::now();
     let text = triangle_chain_toml(3000);
-    let model = spec::parse_robot(
-        &text,
-        "chain.toml",
-        RobotFormat::Toml,
+    let model = read_robot(
+        Description::toml(&text, "chain.toml"),
         &LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
@@ -175,10 +176,8 @@ fn thousands_of_urdf_warnings_are_located_at_once() {
         ));
     }
     text.push_str("</robot>\n");
-    let model = spec::parse_robot(
-        &text,
-        "chain.urdf",
-        RobotFormat::Urdf,
+    let model = read_robot(
+        Description::urdf(&text, "chain.urdf"),
         &LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));

@@ -2,7 +2,8 @@
 //! resist, section 5.4 — checked against statics: at rest, the base carries the whole weight,
 //! and the moment about joint 1 is the moment of every link's weight about it.
 
-use rne_symbolic::spec::{load_file, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{Symbol, SymbolicDynamics};
 
 fn irb140() -> SymbolicDynamics {
@@ -10,7 +11,9 @@ fn irb140() -> SymbolicDynamics {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/fixtures/robots/irb140-3dof.toml"
     );
-    SymbolicDynamics::new(&load_file(path.as_ref(), &LoadOptions::default()).unwrap())
+    SymbolicDynamics::new(
+        &read_robot(Description::file(path.as_ref()), &LoadOptions::default()).unwrap(),
+    )
 }
 
 #[test]

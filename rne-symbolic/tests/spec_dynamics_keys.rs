@@ -5,6 +5,7 @@
 
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::{self, LoadOptions, SpecErrorKind};
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{Id, RobotModel, Symbol};
 
 const ARM: &str = r#"name = "arm"
@@ -31,7 +32,7 @@ fn read(text: &str, symbolic: bool) -> Result<RobotModel, spec::SpecError> {
         symbolic_parameters: symbolic,
         ..LoadOptions::default()
     };
-    spec::parse_str(text, "robots/arm.toml", &options)
+    read_robot(Description::toml(text, "robots/arm.toml"), &options)
 }
 
 /// `ARM` with `line` added to link l2.

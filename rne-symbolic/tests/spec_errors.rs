@@ -3,7 +3,8 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{self, LoadOptions, SpecError, SpecErrorKind};
+use rne_symbolic::spec::{LoadOptions, SpecError, SpecErrorKind};
+use rne_symbolic::{read_robot, Description};
 
 /// A valid two-link spec; each test breaks one thing in it.
 const VALID: &str = r#"name = "arm"
@@ -27,7 +28,11 @@ inertia = { xx = 0.1, yy = 0.1, zz = 0.1 }
 "#;
 
 fn read(text: &str) -> Result<(), SpecError> {
-    spec::parse_str(text, "robots/arm.toml", &LoadOptions::default()).map(|_| ())
+    read_robot(
+        Description::toml(text, "robots/arm.toml"),
+        &LoadOptions::default(),
+    )
+    .map(|_| ())
 }
 
 /// The error of `VALID` with `from` replaced by `to` (which must occur in it).
@@ -57,9 +62,8 @@ fn check(error: SpecError, kind: SpecErrorKind, message: &str) {
 fn the_valid_spec_is_valid() {
     read(VALID).unwrap_or_else(|e| panic!("{e}"));
     for symbolic_parameters in [false, true] {
-        spec::parse_str(
-            VALID,
-            "robots/arm.toml",
+        read_robot(
+            Description::toml(VALID, "robots/arm.toml"),
             &LoadOptions {
                 symbolic_parameters,
                 ..LoadOptions::default()
@@ -159,7 +163,7 @@ fn triangle_inequality_broken_under_strict_validation() {
         ..LoadOptions::default()
     };
     check(
-        spec::parse_str(&text, "robots/arm.toml", &strict).unwrap_err(),
+        read_robot(Description::toml(&text, "robots/arm.toml"), &strict).unwrap_err(),
         SpecErrorKind::Strict,
         "robots/arm.toml:18: link 'link2', field 'inertia': inertia breaks the triangle inequality: principal \
          moments 0.0125 + 0.066 < 0.086 (a TOML spec may set triangle_inequality = false for published data \
@@ -532,8 +536,8 @@ fn urdf_axis_must_not_be_zero() {
 
 #[test]
 fn unreadable_file() {
-    let error = spec::load_file(
-        Path::new("/nonexistent/robot.toml"),
+    let error = read_robot(
+        Description::file(Path::new("/nonexistent/robot.toml")),
         &LoadOptions::default(),
     )
     .unwrap_err();
@@ -541,7 +545,7 @@ fn unreadable_file() {
     assert!(
         error
             .to_string()
-            .starts_with("/nonexistent/robot.toml: cannot read the spec: "),
+            .starts_with("/nonexistent/robot.toml: cannot read the robot file: "),
         "{error}"
     );
 }

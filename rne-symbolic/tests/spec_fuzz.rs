@@ -6,8 +6,9 @@
 use std::path::PathBuf;
 
 use proptest::prelude::*;
-use rne_symbolic::spec::{self, LoadOptions, RobotFormat};
+use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 fn robot(file: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -198,9 +199,8 @@ fn assert_well_formed(model: &RobotModel) {
 }
 
 fn read(text: &str, symbolic_parameters: bool) {
-    if let Ok(model) = spec::parse_str(
-        text,
-        "fuzz.toml",
+    if let Ok(model) = read_robot(
+        Description::toml(text, "fuzz.toml"),
         &LoadOptions {
             symbolic_parameters,
             ..LoadOptions::default()
@@ -219,9 +219,8 @@ fn the_seed_specs_are_valid() {
         CONVENTIONS.to_owned(),
     ] {
         for symbolic in [false, true] {
-            let model = spec::parse_str(
-                &text,
-                "seed.toml",
+            let model = read_robot(
+                Description::toml(&text, "seed.toml"),
                 &LoadOptions {
                     symbolic_parameters: symbolic,
                     ..LoadOptions::default()
@@ -432,7 +431,7 @@ fn read_urdf(text: &str, strict: bool) {
         strict,
         ..LoadOptions::default()
     };
-    if let Ok(model) = spec::parse_robot(text, "fuzz.urdf", RobotFormat::Urdf, &options) {
+    if let Ok(model) = read_robot(Description::urdf(text, "fuzz.urdf"), &options) {
         assert_well_formed(&model);
     }
 }
@@ -440,10 +439,8 @@ fn read_urdf(text: &str, strict: bool) {
 #[test]
 fn the_seed_urdfs_are_valid() {
     for file in ["ur5.urdf", "panda.urdf", "panda-arm.urdf"] {
-        let model = spec::parse_robot(
-            &robot(file),
-            file,
-            RobotFormat::Urdf,
+        let model = read_robot(
+            Description::urdf(&robot(file), file),
             &LoadOptions::default(),
         )
         .unwrap_or_else(|e| panic!("{e}"));

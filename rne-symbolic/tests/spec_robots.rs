@@ -6,7 +6,8 @@ use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
 use rne_symbolic::model::NumericModel;
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{Id, JointKind, RobotModel};
 
 fn robot_path(file: &str) -> PathBuf {
@@ -20,11 +21,15 @@ fn load(file: &str, symbolic_parameters: bool) -> RobotModel {
         symbolic_parameters,
         ..LoadOptions::default()
     };
-    spec::load_file(&robot_path(file), &options).unwrap_or_else(|e| panic!("{e}"))
+    read_robot(Description::file(&robot_path(file)), &options).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn parse(text: &str) -> RobotModel {
-    spec::parse_str(text, "test.toml", &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    read_robot(
+        Description::toml(text, "test.toml"),
+        &LoadOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Exact constant values of expressions (panics on a non-constant).
@@ -668,9 +673,8 @@ fn parameters_are_defined_in_any_order() {
     let numeric = parse(text);
     assert_eq!(constants(&numeric, &[numeric.links[0].mass]), [1.0]);
     assert!(numeric.graph.symbols().parameters().is_empty());
-    let symbolic = spec::parse_str(
-        text,
-        "p.toml",
+    let symbolic = read_robot(
+        Description::toml(text, "p.toml"),
         &LoadOptions {
             symbolic_parameters: true,
             ..LoadOptions::default()

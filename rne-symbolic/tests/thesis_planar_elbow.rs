@@ -4,7 +4,8 @@
 //! the Christoffel C that rne generates does, exactly.
 
 use rne_symbolic::canonical::Polynomial;
-use rne_symbolic::spec::{load_file, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{ExprGraph, Id, SymbolicDynamics};
 
 fn planar_elbow() -> SymbolicDynamics {
@@ -12,8 +13,8 @@ fn planar_elbow() -> SymbolicDynamics {
         env!("CARGO_MANIFEST_DIR"),
         "/tests/fixtures/robots/planar-elbow.toml"
     );
-    let model = load_file(
-        path.as_ref(),
+    let model = read_robot(
+        Description::file(path.as_ref()),
         &LoadOptions {
             symbolic_parameters: true,
             ..LoadOptions::default()

@@ -4,7 +4,8 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{self, LoadOptions, RobotFormat, SpecError, SpecErrorKind};
+use rne_symbolic::spec::{LoadOptions, SpecError, SpecErrorKind};
+use rne_symbolic::{read_robot, Description};
 
 /// A valid robot: a base, two revolute joints and a fixed tool; each test breaks one thing.
 const VALID: &str = r#"<?xml version="1.0"?>
@@ -46,7 +47,7 @@ const VALID: &str = r#"<?xml version="1.0"?>
 const FILE: &str = "robots/arm.urdf";
 
 fn read(text: &str) -> Result<(), SpecError> {
-    spec::parse_robot(text, FILE, RobotFormat::Urdf, &LoadOptions::default()).map(|_| ())
+    read_robot(Description::urdf(text, FILE), &LoadOptions::default()).map(|_| ())
 }
 
 /// The error of `VALID` with `from` replaced by `to` (which must occur in it).
@@ -133,7 +134,7 @@ fn mimic_on_a_fixed_joint_is_ignored() {
         r#"<child link="tool"/>"#,
         r#"<child link="tool"/><mimic joint="elbow"/>"#,
     );
-    let model = spec::parse_robot(&text, FILE, RobotFormat::Urdf, &LoadOptions::default())
+    let model = read_robot(Description::urdf(&text, FILE), &LoadOptions::default())
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(model.links.iter().all(|l| l.mimic.is_none()));
     assert_eq!(model.joint_names(), ["shoulder", "elbow"]);
@@ -338,7 +339,7 @@ fn no_links() {
 #[test]
 fn nothing_moves_on_a_fixed_base() {
     let text = VALID.replace(r#"type="revolute""#, r#"type="fixed""#);
-    let mut model = spec::parse_robot(&text, FILE, RobotFormat::Urdf, &LoadOptions::default())
+    let mut model = read_robot(Description::urdf(&text, FILE), &LoadOptions::default())
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(model.dof(), 0);
     assert_eq!(
@@ -406,7 +407,7 @@ fn triangle_inequality_broken_under_strict_validation() {
         ..LoadOptions::default()
     };
     check(
-        spec::parse_robot(&text, FILE, RobotFormat::Urdf, &strict).unwrap_err(),
+        read_robot(Description::urdf(&text, FILE), &strict).unwrap_err(),
         SpecErrorKind::Strict,
         "robots/arm.urdf:10: link 'upper', field 'inertial.inertia': inertia breaks the triangle \
          inequality: principal moments 0.01 + 0.02 < 0.04 (a TOML spec may set \
@@ -437,7 +438,11 @@ fn missing_element() {
 
 #[test]
 fn unknown_file_extension() {
-    let error = spec::load_robot(Path::new("robots/arm.obj"), &LoadOptions::default()).unwrap_err();
+    let error = read_robot(
+        Description::file(Path::new("robots/arm.obj")),
+        &LoadOptions::default(),
+    )
+    .unwrap_err();
     check_file(
         error,
         SpecErrorKind::UnknownFormat,
@@ -449,7 +454,11 @@ fn unknown_file_extension() {
 /// A MuJoCo model is named as such, by its extension or its root element.
 #[test]
 fn mjcf_is_not_supported_yet() {
-    let error = spec::load_robot(Path::new("robots/arm.xml"), &LoadOptions::default()).unwrap_err();
+    let error = read_robot(
+        Description::file(Path::new("robots/arm.xml")),
+        &LoadOptions::default(),
+    )
+    .unwrap_err();
     assert_eq!(error.kind(), SpecErrorKind::UnknownFormat);
     assert!(error.to_string().contains("MJCF"), "{error}");
     let error = read("<mujoco model=\"arm\"><worldbody/></mujoco>").unwrap_err();
@@ -463,8 +472,11 @@ fn mjcf_is_not_supported_yet() {
 
 #[test]
 fn missing_file() {
-    let error =
-        spec::load_robot(Path::new("robots/missing.urdf"), &LoadOptions::default()).unwrap_err();
+    let error = read_robot(
+        Description::file(Path::new("robots/missing.urdf")),
+        &LoadOptions::default(),
+    )
+    .unwrap_err();
     assert_eq!(error.kind(), SpecErrorKind::Io);
     assert!(
         error

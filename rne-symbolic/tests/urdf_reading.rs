@@ -4,14 +4,13 @@
 //! elements and attributes, xacro leftovers — ignored, never a reason to fail.
 
 use rne_symbolic::canonical::{format_polynomial, Polynomial, PrintFormat};
-use rne_symbolic::spec::{self, LoadOptions, RobotFormat};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{JointKind, RobotModel, SymbolicDynamics};
 
 fn read(text: &str) -> RobotModel {
-    spec::parse_robot(
-        text,
-        "robots/odd.urdf",
-        RobotFormat::Urdf,
+    read_robot(
+        Description::urdf(text, "robots/odd.urdf"),
         &LoadOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"))

@@ -7,7 +7,8 @@ mod urdf_oracle;
 
 use std::path::{Path, PathBuf};
 
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{JointKind, RobotModel, Symbol, SymbolicDynamics};
 use urdf_oracle::Oracle;
 
@@ -24,7 +25,7 @@ fn builtin(name: &str) -> PathBuf {
 }
 
 fn load(path: &Path) -> RobotModel {
-    spec::load_robot(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    read_robot(Description::file(path), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// A small seeded generator of states in [−2, 2).

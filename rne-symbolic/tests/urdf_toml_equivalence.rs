@@ -8,7 +8,8 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{ExprGraph, Id, Node, RobotModel, Symbol, SymbolicDynamics};
 
 fn fixture(name: &str) -> PathBuf {
@@ -18,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 fn load(path: &Path) -> RobotModel {
-    spec::load_robot(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    read_robot(Description::file(path), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Whether `a` in `ga` and `b` in `gb` are the same expression, node for node (memoised on
@@ -270,15 +271,10 @@ fn a_fixed_link_merged_by_hand_gives_the_same_dynamics() {
     let text = std::fs::read_to_string(fixture("fixed_link.urdf")).unwrap();
     let merged_text = merged_by_hand(&text);
     let options = LoadOptions::default();
-    let fixed = spec::parse_robot(&text, "fixed_link.urdf", spec::RobotFormat::Urdf, &options)
+    let fixed = read_robot(Description::urdf(&text, "fixed_link.urdf"), &options)
         .unwrap_or_else(|e| panic!("{e}"));
-    let merged = spec::parse_robot(
-        &merged_text,
-        "merged.urdf",
-        spec::RobotFormat::Urdf,
-        &options,
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let merged = read_robot(Description::urdf(&merged_text, "merged.urdf"), &options)
+        .unwrap_or_else(|e| panic!("{e}"));
     // The root, l1, l2, the bracket and l3; without the bracket once merged by hand.
     assert_eq!(fixed.links.len(), 5);
     assert_eq!(merged.links.len(), 4);

@@ -5,8 +5,9 @@
 //! principal moment stays an error.
 
 use rne_symbolic::input::NEGLIGIBLE_INERTIA;
-use rne_symbolic::spec::{self, LoadOptions, RobotFormat, SpecErrorKind, SpecWarningKind};
+use rne_symbolic::spec::{self, LoadOptions, SpecErrorKind, SpecWarningKind};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 const STRICT: LoadOptions = LoadOptions {
     symbolic_parameters: false,
@@ -46,7 +47,7 @@ fn urdf(upper: &str, fore: &str) -> String {
 const GOOD: &str = r#"ixx="0.5" ixy="0" ixz="0" iyy="0.5" iyz="0" izz="0.5""#;
 
 fn read_urdf(text: &str, options: &LoadOptions) -> Result<RobotModel, spec::SpecError> {
-    spec::parse_robot(text, "robots/arm.urdf", RobotFormat::Urdf, options)
+    read_robot(Description::urdf(text, "robots/arm.urdf"), options)
 }
 
 fn warnings(model: &RobotModel) -> Vec<(SpecWarningKind, String)> {
@@ -170,7 +171,11 @@ inertia = { xx = 0.1, yy = 0.1, zz = 0.1 }
 
 #[test]
 fn triangle_inequality_is_a_warning_in_a_toml_spec_unless_turned_off() {
-    let model = spec::parse_str(TOML, "robots/arm.toml", &LoadOptions::default()).unwrap();
+    let model = read_robot(
+        Description::toml(TOML, "robots/arm.toml"),
+        &LoadOptions::default(),
+    )
+    .unwrap();
     assert_eq!(
         warnings(&model),
         [(
@@ -185,9 +190,9 @@ fn triangle_inequality_is_a_warning_in_a_toml_spec_unless_turned_off() {
         "mass = 1\ninertia = { xx = 0.066",
         "mass = 1\ntriangle_inequality = false\ninertia = { xx = 0.066",
     );
-    let model = spec::parse_str(&off, "robots/arm.toml", &STRICT).unwrap();
+    let model = read_robot(Description::toml(&off, "robots/arm.toml"), &STRICT).unwrap();
     assert!(model.warnings.is_empty());
-    let error = spec::parse_str(TOML, "robots/arm.toml", &STRICT).unwrap_err();
+    let error = read_robot(Description::toml(TOML, "robots/arm.toml"), &STRICT).unwrap_err();
     assert_eq!(error.kind(), SpecErrorKind::Strict);
 }
 
@@ -201,7 +206,11 @@ fn a_massless_moving_link_is_a_warning_in_a_toml_spec() {
         "mass = 1\ninertia = { xx = 0.066",
         "mass = 1\ntriangle_inequality = false\ninertia = { xx = 0.066",
     );
-    let model = spec::parse_str(&text, "robots/arm.toml", &LoadOptions::default()).unwrap();
+    let model = read_robot(
+        Description::toml(&text, "robots/arm.toml"),
+        &LoadOptions::default(),
+    )
+    .unwrap();
     let found = warnings(&model);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, SpecWarningKind::MasslessSubtree);
@@ -229,8 +238,7 @@ fn a_mimic_of_a_missing_joint_is_dropped_with_a_warning_when_mimic_joints_are_fr
     <mimic joint="finger_q1" multiplier="1"/>
   </joint>
 </robot>"#;
-    let read =
-        |options: LoadOptions| spec::parse_robot(text, "hand.urdf", RobotFormat::Urdf, &options);
+    let read = |options: LoadOptions| read_robot(Description::urdf(text, "hand.urdf"), &options);
     let refused = read(LoadOptions::default()).unwrap_err();
     assert!(
         refused.to_string().contains("follows 'finger_q1'"),

@@ -11,7 +11,8 @@ use rand::Rng;
 use rne_codegen_core::{distribute_constants, kernel_program, Kernel, Program};
 use rne_models::{RobotSource, BUILTIN_ROBOTS};
 use rne_reference::Reference;
-use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{OpCount, RobotModel, Symbol, SymbolicDynamics};
 
 /// How a random chain's joint frames sit in their parents'.
@@ -70,7 +71,11 @@ fn random_axis_chain(
              inertia = {{ xx = 0.01, yy = 0.012, zz = 0.009, xy = 0.001, xz = -0.0005 }}\n"
         ));
     }
-    parse_str(&text, "random-axis.toml", &LoadOptions::default()).expect("a valid chain")
+    read_robot(
+        Description::toml(&text, "random-axis.toml"),
+        &LoadOptions::default(),
+    )
+    .expect("a valid chain")
 }
 
 /// The values of forward-dynamics outputs `qdd` of `d`'s graph at the state `(q, q̇, τ)`.

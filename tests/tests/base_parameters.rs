@@ -9,8 +9,9 @@ mod common;
 
 use common::{rel_err, state};
 use rne_reference::Reference;
-use rne_symbolic::spec::{load_file, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::NumericModel;
+use rne_symbolic::{read_robot, Description};
 
 rne_codegen::derive_dynamics! {
     /// Constant parameters.
@@ -38,7 +39,7 @@ fn planar_elbow() -> NumericModel {
         env!("CARGO_MANIFEST_DIR"),
         "/fixtures/robots/planar-elbow.toml"
     );
-    load_file(spec.as_ref(), &LoadOptions::default())
+    read_robot(Description::file(spec.as_ref()), &LoadOptions::default())
         .expect("the planar elbow loads")
         .to_numeric()
 }

@@ -20,13 +20,14 @@ use std::process::Command;
 
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use rne_codegen::{
-    emit_c, generate_programs, CModule, Dynamics, GeneratedPrograms, GenerationOptions, Kernel,
-    ParameterMode, Scene,
+use rne_codegen::{Dynamics, Kernel};
+use rne_codegen_core::{
+    emit_c, generate_programs, CModule, GeneratedPrograms, GenerationOptions, ParameterMode,
+    Program, Scene, Shape,
 };
-use rne_codegen_core::{Program, Shape};
 use rne_models::{RobotSource, Visitor, BUILTIN_ROBOTS};
-use rne_symbolic::spec::{load_robot, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{RobotModel, Symbol};
 
 rne_codegen::derive_dynamics! {
@@ -240,7 +241,7 @@ fn driver(name: &str, module: &GeneratedPrograms) -> String {
         ParameterMode::Constant => String::new(),
         _ => format!("&{name}_default_params, "),
     };
-    for rne_codegen::KernelProgram {
+    for rne_codegen_core::KernelProgram {
         kernel, program, ..
     } in &module.kernels
     {
@@ -365,7 +366,7 @@ impl Case {
             .arg("-o")
             .arg(&exe));
         let mut input: Vec<u8> = Vec::new();
-        for (rne_codegen::KernelProgram { kernel, .. }, states) in
+        for (rne_codegen_core::KernelProgram { kernel, .. }, states) in
             self.module.kernels.iter().zip(&self.states)
         {
             for state in states {
@@ -434,7 +435,7 @@ impl Case {
         let mut compared = 0;
         for (
             (
-                rne_codegen::KernelProgram {
+                rne_codegen_core::KernelProgram {
                     kernel, program, ..
                 },
                 states,
@@ -496,7 +497,7 @@ fn fixture(file: &str, symbolic_parameters: bool) -> RobotModel {
         symbolic_parameters,
         ..LoadOptions::default()
     };
-    load_robot(&path, &options).expect("it loads")
+    read_robot(Description::file(&path), &options).expect("it loads")
 }
 
 /// `outputs` with the default options and `parameters`.
@@ -1143,7 +1144,7 @@ fn optimisation_and_gnu_c_change_no_result() {
         case.run_c(&compilers, &strict, "-strict"),
         case.run_c(&compilers, &gnu, "-gnu"),
     );
-    for (rne_codegen::KernelProgram { kernel, .. }, (a, b)) in
+    for (rne_codegen_core::KernelProgram { kernel, .. }, (a, b)) in
         case.module.kernels.iter().zip(a.iter().zip(&b))
     {
         for (s, (a, b)) in a.iter().zip(b).enumerate() {
@@ -1161,8 +1162,9 @@ fn optimisation_and_gnu_c_change_no_result() {
 fn the_c_is_the_same_every_time() {
     let model = builtin("panda", false);
     let options = options(&Kernel::ALL, ParameterMode::Constant);
-    let first = rne_codegen::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
-    let second = rne_codegen::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
+    let first = rne_codegen_core::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
+    let second =
+        rne_codegen_core::generate_c(&model, &Scene::default(), &options, "panda").unwrap();
     assert!(first == second, "two runs wrote different C");
     assert!(
         first.source.contains("RNE_NOINLINE"),

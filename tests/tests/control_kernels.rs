@@ -11,7 +11,8 @@ use nalgebra::DMatrix;
 use rne_codegen::{Dynamics, Identification, Kinematics};
 use rne_codegen_core::{build_kernel_with, GenerationOptions, Kernel, KernelSetup, Program, Scene};
 use rne_reference::Reference;
-use rne_symbolic::spec::{load_robot, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
 rne_codegen::derive_dynamics! {
@@ -66,7 +67,8 @@ fn fixture(name: &str) -> RobotModel {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("fixtures/robots")
         .join(name);
-    let model = load_robot(&path, &LoadOptions::default()).expect("the fixture loads");
+    let model =
+        read_robot(Description::file(&path), &LoadOptions::default()).expect("the fixture loads");
     Scene::default().apply(&model).unwrap()
 }
 

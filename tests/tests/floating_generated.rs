@@ -7,7 +7,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rne_codegen::Dynamics;
 use rne_reference::Reference;
-use rne_symbolic::spec::{load_robot, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 
 rne_codegen::derive_dynamics! {
     /// The floating hopper, every kernel.
@@ -25,7 +26,8 @@ fn a_floating_module_has_the_free_flyer_in_front_and_agrees_with_the_reference()
     assert!(floating(&hopper::Model));
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("fixtures/robots/hopper-floating.toml");
-    let model = load_robot(&path, &LoadOptions::default()).expect("the fixture loads");
+    let model =
+        read_robot(Description::file(&path), &LoadOptions::default()).expect("the fixture loads");
     let mut reference = Reference::new(&model.to_numeric());
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_f10a);
     for _ in 0..200 {

@@ -12,7 +12,8 @@ use proptest::prelude::*;
 use rne_codegen::Kernel;
 use rne_interpreted::{Interpreted, StateRef};
 use rne_reference::Reference;
-use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 
 /// One random link: DH geometry, joint kind, mass, COM and principal moments with a rotation.
 #[derive(Clone, Debug)]
@@ -134,7 +135,7 @@ proptest! {
         states in prop::collection::vec(state(8), 4),
     ) {
         let text = spec(&links, gravity);
-        let model = parse_str(&text, "random.toml", &LoadOptions::default())
+        let model = read_robot(Description::toml(&text, "random.toml"), &LoadOptions::default())
             .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let n = model.dof();
         let symbolic = Interpreted::new(&model);
@@ -215,7 +216,11 @@ fn forward_dynamics_of_three_coaxial_joints_with_a_dense_mass_matrix() {
         link("b"),
         link("c")
     );
-    let model = parse_str(&text, "coaxial.toml", &LoadOptions::default()).unwrap();
+    let model = read_robot(
+        Description::toml(&text, "coaxial.toml"),
+        &LoadOptions::default(),
+    )
+    .unwrap();
     let symbolic = Interpreted::new(&model);
     let mut reference = Reference::new(&model.to_numeric());
     let (q, qd, tau) = ([0.1, 0.2, 0.3], [1.0, 2.0, 3.0], [2e-5, 1e-5, 3e-5]);
@@ -255,12 +260,12 @@ proptest! {
         states in prop::collection::vec(state(8), 3),
     ) {
         let text = spec(&links, gravity);
-        let model = parse_str(&text, "random.toml", &LoadOptions::default())
+        let model = read_robot(Description::toml(&text, "random.toml"), &LoadOptions::default())
             .map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         let n = model.dof();
-        let options = rne_codegen::GenerationOptions {
+        let options = rne_codegen_core::GenerationOptions {
             outputs: Kernel::ALL.to_vec(),
-            ..rne_codegen::GenerationOptions::default()
+            ..rne_codegen_core::GenerationOptions::default()
         };
         let scene = rne_codegen::Scene::default();
         let jit = rne_jit::JitModel::compile(&model, &scene, &options, "random.toml")

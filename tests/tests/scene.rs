@@ -5,8 +5,10 @@
 mod common;
 
 use common::{rel_err, rel_err_floor, state};
-use rne_codegen::{generate, GenerationOptions, Kernel, ParameterMode, Scene};
-use rne_symbolic::spec::{load_file, LoadOptions};
+use rne_codegen::Kernel;
+use rne_codegen_core::{generate, GenerationOptions, ParameterMode, Scene};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 
 rne_codegen::derive_dynamics! {
     /// Every kernel of the IRB 140's first three joints.
@@ -208,8 +210,8 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
         m3: 44.0,
         ..tunable::Params::default()
     };
-    let mut model = load_file(
-        SPEC.as_ref(),
+    let mut model = read_robot(
+        Description::file(SPEC.as_ref()),
         &LoadOptions {
             symbolic_parameters: true,
             ..LoadOptions::default()
@@ -239,7 +241,7 @@ fn runtime_parameters_default_to_the_spec_and_follow_edits() {
 
 #[test]
 fn specialised_scenes_cost_fewer_operations() {
-    let model = load_file(SPEC.as_ref(), &LoadOptions::default()).unwrap();
+    let model = read_robot(Description::file(SPEC.as_ref()), &LoadOptions::default()).unwrap();
     let in_scene =
         |scene: Scene| generate(&model, &scene, &GenerationOptions::default(), "irb140").unwrap();
     let full = in_scene(Scene::default());

@@ -7,7 +7,8 @@ mod common;
 use common::state;
 use rne_codegen_core::{generate_from_path, GenerationOptions, Kernel, Scene};
 use rne_interpreted::{Interpreted, StateRef};
-use rne_symbolic::spec::{load_robot, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 
 rne_codegen::derive_dynamics! {
     /// A 20-joint chain: its Coriolis matrix is split, its potential energy is not.
@@ -55,7 +56,8 @@ fn the_large_kernels_of_the_chain_are_emitted_in_parts() {
 #[test]
 fn split_kernels_equal_their_programs_bit_for_bit() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(FIXTURE);
-    let model = load_robot(&path, &LoadOptions::default()).expect("the fixture loads");
+    let model =
+        read_robot(Description::file(&path), &LoadOptions::default()).expect("the fixture loads");
     let interpreted = Interpreted::new(&model);
     let mut rng = common::rng(0x5eed_5917);
     let bits = |v: Vec<f64>| v.into_iter().map(f64::to_bits).collect::<Vec<_>>();

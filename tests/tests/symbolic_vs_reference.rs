@@ -9,7 +9,8 @@ use rne_models::{RobotSource, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::expr::Id;
 use rne_symbolic::model::{Base, Mimic};
-use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 
 const STATES: usize = 30;
@@ -76,8 +77,11 @@ inertia = { xx = 0.0001, yy = 0.0001, zz = 0.0001 }
 "#;
 
 fn biped(floating: bool) -> RobotModel {
-    let mut model =
-        parse_str(QUADRUPED_HALF, "biped.toml", &LoadOptions::default()).expect("valid spec");
+    let mut model = read_robot(
+        Description::toml(QUADRUPED_HALF, "biped.toml"),
+        &LoadOptions::default(),
+    )
+    .expect("valid spec");
     let g = &mut model.graph;
     model.links[4].mimic = Some(Mimic {
         leader: "knee1".into(),

@@ -227,7 +227,8 @@ fn write_file(path: &Path, contents: &str) -> Result<(), CodegenError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rne_symbolic::spec::{parse_robot, LoadOptions, RobotFormat};
+    use rne_symbolic::spec::LoadOptions;
+    use rne_symbolic::Description;
 
     #[test]
     fn a_warning_becomes_one_cargo_warning_line_naming_file_link_and_field() {
@@ -236,8 +237,9 @@ mod tests {
                     <link name=\"b\"><inertial><mass value=\"1\"/>\
                     <inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.05\"/>\
                     </inertial></link>\n</robot>";
-        let model = parse_robot(text, "r.urdf", RobotFormat::Urdf, &LoadOptions::default())
-            .expect("a warning, not an error");
+        let model =
+            rne_symbolic::read_robot(Description::urdf(text, "r.urdf"), &LoadOptions::default())
+                .expect("a warning, not an error");
         let [warning] = &model.warnings[..] else {
             panic!("one warning: {:?}", model.warnings)
         };

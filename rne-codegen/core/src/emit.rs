@@ -37,7 +37,7 @@ use crate::split::{self, SplitPlan, Statement};
 
 /// What the emitter needs besides the program.
 #[derive(Clone, Copy, Debug)]
-pub struct EmitContext<'a> {
+pub(crate) struct EmitContext<'a> {
     /// The `Params` field of each parameter symbol, by index (`parameter_fields`).
     pub fields: &'a [String],
     /// The scalar type.
@@ -417,13 +417,13 @@ pub fn is_valid_parameter_name(name: &str) -> bool {
 
 /// The return type of `kernel`'s function in scalar `t` (docs/design.md §4), naming the module's
 /// sizes `NV`, `NF`, `NP`, `NB`.
-pub fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
+pub(crate) fn return_type(kernel: Kernel, t: &TokenStream) -> TokenStream {
     Layout::of(kernel, Dims::default()).type_tokens(t)
 }
 
 /// The argument `input` of a kernel, in scalar `t`: `q: &[t; NQ]`, `standard: &[t; NP]`, or a
 /// velocity-sized array.
-pub fn argument(input: Input, t: &TokenStream) -> TokenStream {
+pub(crate) fn argument(input: Input, t: &TokenStream) -> TokenStream {
     argument_text(input, &t.to_string())
         .parse()
         .expect("an argument is Rust")
@@ -451,7 +451,12 @@ fn arguments(kernel: Kernel, t: &str) -> String {
 /// Emits `kernel` as a function computing `program`'s outputs, in a module of sizes `dims`,
 /// as Rust source: one straight-line function, or for a large program a function calling its
 /// parts in turn (module `split`: parts of about 1000 instructions above 15000).
-pub fn emit_kernel(kernel: Kernel, program: &Program, dims: Dims, ctx: EmitContext<'_>) -> String {
+pub(crate) fn emit_kernel(
+    kernel: Kernel,
+    program: &Program,
+    dims: Dims,
+    ctx: EmitContext<'_>,
+) -> String {
     let layout = Layout::of(kernel, dims);
     assert_eq!(
         layout.len(),

@@ -64,7 +64,7 @@ pub struct Dims {
 /// # Panics
 /// For an identification kernel when `setup` has no base parameters ([`KernelSetup::new`]
 /// finds them whenever they are needed).
-pub fn build_outputs(
+pub(crate) fn build_outputs(
     kernel: Kernel,
     dynamics: &mut SymbolicDynamics,
     setup: &KernelSetup,
@@ -146,7 +146,7 @@ pub fn build_outputs(
 
 /// Whether the articulated-body algorithm builds this model's forward dynamics: a fixed base,
 /// no mimic couplings and no armature (the recursion does not add reflected rotor inertia).
-pub fn articulated_applies(dynamics: &SymbolicDynamics) -> bool {
+pub(crate) fn articulated_applies(dynamics: &SymbolicDynamics) -> bool {
     let model = &dynamics.model;
     !model.is_floating()
         && !model.has_couplings()

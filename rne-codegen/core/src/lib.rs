@@ -73,20 +73,14 @@ mod split;
 pub use builder::{Builder, KEEP_GENERATED_ENV};
 pub use built::{build_kernel, build_kernel_with, kernel_program, BuiltKernel};
 pub use dispatch::DISPATCH_FROM;
-pub use emit::{argument, emit_kernel, return_type, EmitContext};
 pub use emit_c::{c_identifier, emit_c, generate_c, CModule};
 pub use error::CodegenError;
-pub use generation_options::{
-    ForwardDynamicsMethod, GenerationOptions, ParameterMode, ScalarType, DEFAULT_CRATE_PATH,
-};
-pub use kernel::{
-    articulated_applies, build_outputs, Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel,
-};
+pub use generation_options::{ForwardDynamicsMethod, GenerationOptions, ParameterMode, ScalarType};
+pub use kernel::{Dims, Input, Kernel, KernelSetup, Shape, UnknownKernel};
 pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
 pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
 pub use scene::{MimicMode, Scene};
-pub use shape::{Layout, Size};
 pub use split::{PART_LEN, SPLIT_ABOVE};

@@ -2,18 +2,19 @@
 
 use std::path::Path;
 
-use rne_symbolic::spec::{decode, parse_robot, LoadOptions, RobotFormat};
-use rne_symbolic::RobotModel;
+use rne_symbolic::spec::{LoadOptions, RobotFormat};
+use rne_symbolic::{Description, RobotModel};
 
 use crate::error::CodegenError;
 use crate::generation_options::{GenerationOptions, ParameterMode};
 use crate::module::{generate, GeneratedModule};
 use crate::scene::{MimicMode, Scene};
 
-/// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension), naming it
-/// `origin` in error messages, with parameters kept symbolic when `options` want them at run
-/// time, warnings made errors when they ask for strict validation and mimic tags without a
-/// leader dropped when the `scene`'s mimic joints are free. The model's
+/// Reads the robot file at `path` (`.toml` spec or `.urdf`, by its extension) through
+/// rne-symbolic's one entry point ([`rne_symbolic::read_robot`]), naming it `origin` in error
+/// messages, with parameters kept symbolic when `options` want them at run time, warnings made
+/// errors when they ask for strict validation and mimic tags without a leader dropped when the
+/// `scene`'s mimic joints are free. The model's
 /// [`warnings`](RobotModel::warnings) are what the Builder prints and the macro documents.
 pub fn read_robot(
     path: &Path,
@@ -32,8 +33,8 @@ pub fn read_robot(
         file: origin.to_owned(),
         cause,
     })?;
-    let text = decode(bytes, origin)?;
-    Ok(parse_robot(&text, origin, format, &load)?)
+    let description = Description::bytes(&bytes, format, origin);
+    Ok(rne_symbolic::read_robot(description, &load)?)
 }
 
 /// Reads a robot file and generates the module `options` ask for, in `scene`.

@@ -7,7 +7,7 @@ use crate::kernel::{Dims, Kernel, Shape};
 
 /// A return type, as a tree.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Layout {
+pub(crate) enum Layout {
     /// One scalar.
     Scalar,
     /// `[element; N]`, N named by a module constant (`NV`, `NF`, ...) or a literal size.
@@ -18,7 +18,7 @@ pub enum Layout {
 
 /// The length of an array.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct Size {
+pub(crate) struct Size {
     /// The module constant naming it, or `None` for a literal.
     pub name: Option<&'static str>,
     /// Its value in this module.
@@ -71,11 +71,6 @@ impl Layout {
             Layout::Array(element, size) => element.len() * size.value,
             Layout::Tuple(parts) => parts.iter().map(Layout::len).sum(),
         }
-    }
-
-    /// Whether it holds no scalar.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// The Rust type, with scalar `t` ([`Layout::type_text`] lexed).

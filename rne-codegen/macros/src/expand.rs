@@ -127,14 +127,19 @@ fn warning_docs(warnings: &[SpecWarning]) -> Vec<proc_macro2::TokenStream> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rne_symbolic::spec::{parse_str, LoadOptions};
+    use rne_symbolic::spec::LoadOptions;
+    use rne_symbolic::Description;
 
     #[test]
     fn each_warning_is_an_item_of_a_warnings_section_of_the_module_docs() {
         let text = "name = \"t\"\n[[link]]\nname = \"upper\"\njoint = \"revolute\"\n\
                     origin = { xyz = [0, 0, 0] }\naxis = [0, 0, 1]\nmass = 2\n\
                     inertia = { xx = 0.01, yy = 0.01, zz = 0.05 }\n";
-        let model = parse_str(text, "specs/t.toml", &LoadOptions::default()).expect("warns");
+        let model = rne_symbolic::read_robot(
+            Description::toml(text, "specs/t.toml"),
+            &LoadOptions::default(),
+        )
+        .expect("warns");
         assert_eq!(model.warnings.len(), 1);
         let docs: Vec<String> = warning_docs(&model.warnings)
             .iter()

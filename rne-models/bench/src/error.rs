@@ -1,6 +1,6 @@
 //! Why a benchmark could not run or its report could not be written.
 
-use rne_codegen::CodegenError;
+use rne_codegen_core::CodegenError;
 use rne_symbolic::spec::SpecError;
 
 use rne_figures::FigureError;

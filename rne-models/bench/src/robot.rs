@@ -11,7 +11,8 @@
 mod calls;
 mod peers;
 
-use rne_codegen::{GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, Engine as Agreement};
 use rne_interpreted::Interpreted;
 use rne_jit::{JitModel, Tier};

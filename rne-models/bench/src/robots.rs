@@ -9,7 +9,8 @@
 //! inlined, as user code calls them), the interpreted programs and the reference (through its
 //! allocation-free `*_into` methods) as [`RuntimeModel`]s.
 
-use rne_codegen::{DoubleDouble, Dynamics, Kernel, OrderedReal, Scene};
+use rne_codegen::{DoubleDouble, Dynamics, Kernel, OrderedReal};
+use rne_codegen_core::Scene;
 use rne_interpreted::{Interpreted, RuntimeModel, StateRef};
 use rne_models::generated::{self, variants};
 use rne_models::{BuiltinRobot, RobotSource};

@@ -7,7 +7,8 @@
 //! `inverse_dynamics` (or `gravity_torques`) with [`generate`]; times from timing the
 //! five generated functions together ([`time_interleaved`](super::timing::time_interleaved)).
 
-use rne_codegen::{generate, GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{generate, GenerationOptions, Scene};
 use rne_symbolic::OpCount;
 
 use super::error::BenchError;

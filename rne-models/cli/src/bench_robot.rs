@@ -14,7 +14,8 @@ use rne_bench::robot::{
     bench_robot, Engine, PeerScripts, RobotBench, RobotBenchSettings, DEFAULT_KERNELS,
 };
 use rne_bench::Effort;
-use rne_codegen::{GenerationOptions, Kernel};
+use rne_codegen::Kernel;
+use rne_codegen_core::GenerationOptions;
 use rne_jit::Tier;
 use rne_models::builtin::RobotSource;
 use serde_json::json;
@@ -119,7 +120,11 @@ fn kernels(names: &[String]) -> Result<Vec<Kernel>, CliError> {
             .iter()
             .map(|name| {
                 name.parse::<Kernel>()
-                    .map_err(|e| CliError::Argument(format!("--kernels: `{name}`: {e}")))
+                    .map_err(|cause| CliError::UnknownKernel {
+                        what: "kernel (--kernels)",
+                        name: name.clone(),
+                        cause,
+                    })
             })
             .collect(),
     }
@@ -135,8 +140,10 @@ fn peers(source: &RobotSource, args: &BenchArgs) -> Result<Option<PeerScripts>, 
         RobotSource::File(path) if is_urdf(path) => path.clone(),
         RobotSource::Builtin(robot) if robot.file.ends_with(".urdf") => {
             let path = std::env::temp_dir().join(format!("rne-bench-{}.urdf", robot.name));
-            std::fs::write(&path, robot.source)
-                .map_err(|e| CliError::Argument(format!("cannot write {}: {e}", path.display())))?;
+            std::fs::write(&path, robot.source).map_err(|cause| CliError::Write {
+                path: path.clone(),
+                cause,
+            })?;
             path
         }
         _ => {

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
-use rne_codegen::{c_identifier, generate, generate_c, CodegenError, ParameterMode};
+use rne_codegen_core::{c_identifier, generate, generate_c, CodegenError, ParameterMode};
 
 use super::model::ModelOptions;
 use super::options::scene_and_options;

@@ -12,7 +12,8 @@ use super::eval_kernels::{self, Group, Names, State};
 use super::model::ModelOptions;
 use super::options::parse_list;
 use super::CliError;
-use rne_codegen::{Dynamics, GenerationOptions, Kernel, Scene, Shape};
+use rne_codegen::{Dynamics, Kernel, Shape};
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::{evaluate, Interpreted, StateRef};
 use rne_jit::{JitError, JitModel};
 use rne_models::{RobotSource, Visitor};
@@ -177,8 +178,11 @@ pub fn run(args: &EvalArgs, out: &mut dyn Write) -> Result<(), CliError> {
     // Forward dynamics of a model with a joint that moves no mass is undefined: an error when
     // asked for by name, left out (and said why) otherwise.
     let singular = model.check_mass_matrix_invertible().err();
-    if let (Some(e), true) = (&singular, args.what.contains(&Quantity::Fd)) {
-        return Err(CliError::Argument(format!("{}: {e}", args.model)));
+    if let (Some(cause), true) = (&singular, args.what.contains(&Quantity::Fd)) {
+        return Err(CliError::Massless {
+            model: args.model.clone(),
+            cause: cause.clone(),
+        });
     }
     let wanted = Wanted::new(&args.what, singular.is_some());
     let (engine, mut results) = match args.engine {

@@ -4,7 +4,8 @@
 //! independent numeric reference.
 
 use nalgebra::DMatrix;
-use rne_codegen::{build_kernel_with, Kernel, KernelSetup, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{build_kernel_with, KernelSetup, Scene};
 use rne_reference::Reference;
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 use serde_json::{json, Value};

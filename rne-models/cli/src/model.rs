@@ -4,7 +4,7 @@
 //! printed to stderr.
 
 use clap::{Args, ValueEnum};
-use rne_codegen::{MimicMode, Scene};
+use rne_codegen_core::{MimicMode, Scene};
 use rne_symbolic::model::Base;
 use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::RobotModel;

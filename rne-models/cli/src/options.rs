@@ -1,6 +1,7 @@
 //! Argument parsing shared by the subcommands, and the command's error type.
 
-use rne_codegen::{GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{GenerationOptions, Scene};
 
 /// Why a command failed; printed as `error: ...` with a non-zero exit code. Every library
 /// error is kept whole in a variant of its own, so that the message says what failed (a bad
@@ -14,7 +15,7 @@ pub enum CliError {
     Spec(#[from] rne_symbolic::spec::SpecError),
     /// Code generation failed.
     #[error(transparent)]
-    Codegen(#[from] rne_codegen::CodegenError),
+    Codegen(#[from] rne_codegen_core::CodegenError),
     /// A model could not be evaluated at the given state (a state of the wrong length, a
     /// kernel the engine does not have).
     #[error(transparent)]
@@ -65,6 +66,24 @@ pub enum CliError {
         model: String,
         /// The robot's own error.
         cause: rne_symbolic::model::NothingMoves,
+    },
+    /// A kernel name that is not a kernel's.
+    #[error("unknown {what} `{name}`; {cause}")]
+    UnknownKernel {
+        /// What the name was given as: "output", "kernel (--kernels)".
+        what: &'static str,
+        /// The name.
+        name: String,
+        /// The runtime's error, which lists the names.
+        cause: rne_codegen::UnknownKernel,
+    },
+    /// Forward dynamics asked of a model whose mass matrix is singular.
+    #[error("{model}: {cause}")]
+    Massless {
+        /// The model as the command names it.
+        model: String,
+        /// The joint that moves no mass.
+        cause: rne_symbolic::model::MasslessJoint,
     },
     /// Identification, its data or its excitation failed.
     #[error(transparent)]
@@ -222,7 +241,11 @@ pub fn scene_and_options(
             .map(|name| {
                 let name = name.trim();
                 name.parse::<Kernel>()
-                    .map_err(|e| CliError::Argument(format!("unknown output `{name}`; {e}")))
+                    .map_err(|cause| CliError::UnknownKernel {
+                        what: "output",
+                        name: name.to_owned(),
+                        cause,
+                    })
             })
             .collect::<Result<_, _>>()?;
     }

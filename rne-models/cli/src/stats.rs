@@ -3,7 +3,8 @@
 use std::io::Write;
 
 use clap::{Args, ValueEnum};
-use rne_codegen::{generate, GenerationOptions, Kernel, ParameterMode};
+use rne_codegen::Kernel;
+use rne_codegen_core::{generate, GenerationOptions, ParameterMode};
 
 use super::model::ModelOptions;
 use super::CliError;

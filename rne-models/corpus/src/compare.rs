@@ -15,8 +15,9 @@ use std::time::{Duration, Instant};
 use rne_codegen::Kernel;
 use rne_reference::Reference;
 use rne_symbolic::model::Base;
-use rne_symbolic::spec::{load_robot, LoadOptions, SpecWarningKind};
+use rne_symbolic::spec::{LoadOptions, SpecWarningKind};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 use super::kernels::{check_every_kernel, KernelCheck};
 use super::values::{BaseValues, RobotValues, State};
@@ -135,7 +136,7 @@ impl Errors {
 /// (`mimic` = `free`), as rne reads the file with [`LoadOptions::free_mimic`].
 pub fn check_robot(dir: &Path, values: &RobotValues) -> RobotReport {
     let path = dir.join(&values.file);
-    let read = load_robot(&path, &LoadOptions::default());
+    let read = read_robot(Description::file(&path), &LoadOptions::default());
     let free = LoadOptions {
         free_mimic: true,
         ..LoadOptions::default()
@@ -143,7 +144,7 @@ pub fn check_robot(dir: &Path, values: &RobotValues) -> RobotReport {
     let read_free = [&values.fixed, &values.floating]
         .iter()
         .any(|v| v.mimic.as_deref() == Some(FREE))
-        .then(|| load_robot(&path, &free));
+        .then(|| read_robot(Description::file(&path), &free));
     // Messages name the file relative to the robots directory, as the table does.
     let prefix = format!("{}/", dir.display());
     let relative = |e: &dyn std::fmt::Display| e.to_string().replace(&prefix, "");

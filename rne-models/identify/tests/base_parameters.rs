@@ -12,8 +12,9 @@ use rne_identify::BaseSet;
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
 use rne_reference::Reference;
 use rne_symbolic::model::NumericFriction;
-use rne_symbolic::spec::{parse_str, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::NumericModel;
+use rne_symbolic::{read_robot, Description};
 
 /// Seeded states, distinct from the ones `BaseSet::find` uses.
 fn states(nv: usize, count: usize, seed: u64) -> Vec<(Vec<f64>, Vec<f64>, Vec<f64>)> {
@@ -177,9 +178,8 @@ fn the_planar_elbows_base_parameters_are_the_thesiss_groups() {
 /// they are within rounding of a short number, and Y_b π_b = τ holds.
 #[test]
 fn a_coefficient_near_a_short_decimal_is_not_rounded_to_it() {
-    let model = parse_str(
-        &near_short_decimal(),
-        "near_short_decimal.toml",
+    let model = read_robot(
+        Description::toml(&near_short_decimal(), "near_short_decimal.toml"),
         &LoadOptions::default(),
     )
     .expect("valid spec")
@@ -327,7 +327,7 @@ proptest! {
         gravity in prop::array::uniform3(-10.0..10.0f64),
     ) {
         let text = spec(&links, gravity);
-        let model = parse_str(&text, "random.toml", &LoadOptions::default()).expect("valid spec");
+        let model = read_robot(Description::toml(&text, "random.toml"), &LoadOptions::default()).expect("valid spec");
         check(&model.to_numeric(), &text);
     }
 }

@@ -17,8 +17,9 @@
 
 use std::sync::OnceLock;
 
-use rne_codegen::{build_kernel, BuiltKernel, DoubleDouble, Input, Kernel, Program, Real};
+use rne_codegen::{DoubleDouble, Input, Kernel, Real};
 use rne_codegen_core::Operand;
+use rne_codegen_core::{build_kernel, BuiltKernel, Program};
 use rne_symbolic::expr::Evaluator;
 use rne_symbolic::{RobotModel, Symbol, SymbolicDynamics};
 

@@ -37,7 +37,7 @@ use super::error::ScenarioError;
 use super::figures::{energies, joint_angles, lyapunov, torques};
 use super::outcome::{Finding, Outcome, Table};
 use super::progress::WithProgress;
-use rne_codegen::{GenerationOptions, Scene};
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_figures::time_series::Figure;
 use rne_interpreted::{visit_jit, Interpreted};
 use rne_jit::{JitError, JitModel};

@@ -213,6 +213,230 @@ impl<const N: usize> DenseStep<N> {
     }
 }
 
+/// One trial step of the embedded pair from `(t, x)` with first stage `k1`: the other six
+/// stages, the fifth-order solution and the difference between the two orders' solutions.
+struct Trial<const N: usize> {
+    k: [State<N>; 6],
+    y1: State<N>,
+    error: State<N>,
+}
+
+impl<const N: usize> Trial<N> {
+    /// The stages k₂ … k₇ of a step of size `h` from `(t, x)`, k₇ at `t_new` (t + h, or the
+    /// output the step was shortened to land on exactly).
+    fn new(
+        f: &impl Fn(f64, &State<N>) -> State<N>,
+        (t, x, k1): (f64, &State<N>, &State<N>),
+        h: f64,
+        t_new: f64,
+    ) -> Self {
+        let k2 = f(t + C2 * h, &x.add_combination(h, &[(A21, k1)]));
+        let k3 = f(t + C3 * h, &x.add_combination(h, &[(A31, k1), (A32, &k2)]));
+        let k4 = f(
+            t + C4 * h,
+            &x.add_combination(h, &[(A41, k1), (A42, &k2), (A43, &k3)]),
+        );
+        let k5 = f(
+            t + C5 * h,
+            &x.add_combination(h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]),
+        );
+        let k6 = f(
+            t + h,
+            &x.add_combination(
+                h,
+                &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)],
+            ),
+        );
+        let y1 = x.add_combination(h, &[(B1, k1), (B3, &k3), (B4, &k4), (B5, &k5), (B6, &k6)]);
+        let k7 = f(t_new, &y1);
+        let zero = State::at_rest([0.0; N]);
+        let error = zero.add_combination(
+            h,
+            &[
+                (E1, k1),
+                (E3, &k3),
+                (E4, &k4),
+                (E5, &k5),
+                (E6, &k6),
+                (E7, &k7),
+            ],
+        );
+        Trial {
+            k: [k2, k3, k4, k5, k6, k7],
+            y1,
+            error,
+        }
+    }
+
+    /// The continuous extension over the accepted step from `x` with first stage `k1`.
+    fn dense(&self, h: f64, x: &State<N>, k1: &State<N>) -> DenseStep<N> {
+        let [_, k3, k4, k5, k6, k7] = &self.k;
+        DenseStep::new(h, x, &self.y1, k1, k3, k4, k5, k6, k7)
+    }
+}
+
+/// Where the integration stands between steps: time, state, first stage of the next step
+/// (the last stage of the previous one: first same as last) and the next step size.
+struct Position<const N: usize> {
+    t: f64,
+    x: State<N>,
+    k1: State<N>,
+    h: f64,
+}
+
+/// The step-size controller's memory (Hairer, Nørsett and Wanner's DOPRI5 with Gustafsson's
+/// PI control): the previous accepted error and whether the last trial was rejected.
+struct Control {
+    fac_old: f64,
+    last_rejected: bool,
+}
+
+impl Control {
+    /// The step after an accepted step of size `h` whose error factor proposes `h_new`; `h` was
+    /// shortened from `h_planned` to land on an output when `clipped`.
+    fn after_accept(&mut self, h_new: f64, h: f64, h_planned: f64, clipped: bool, max: f64) -> f64 {
+        let (mut h_new, mut h_done) = (h_new, h);
+        if clipped {
+            // A step shortened to land on an output says little about the scale of the
+            // solution: resume from the step planned before shortening.
+            h_done = h.max(h_planned);
+            h_new = h_new.max(h_planned);
+        }
+        h_new = h_new.min(max);
+        if self.last_rejected {
+            h_new = h_new.min(h_done);
+        }
+        self.last_rejected = false;
+        h_new
+    }
+
+    /// Records a rejected trial and returns the step to try instead.
+    fn after_reject(&mut self, h_retry: f64, stats: &mut Stats) -> f64 {
+        stats.rejected += 1;
+        self.last_rejected = true;
+        h_retry
+    }
+}
+
+/// Hands `sink` every output time the accepted step from `t` to `t_new` (of size `h`) reaches:
+/// its end as computed, the times inside it from the continuous extension.
+fn emit_outputs<const N: usize>(
+    times: &[f64],
+    next_out: &mut usize,
+    (t, t_new, h): (f64, f64, f64),
+    (y1, dense): (&State<N>, &DenseStep<N>),
+    sink: &mut impl FnMut(f64, &State<N>),
+) {
+    while *next_out < times.len() && times[*next_out] <= t_new {
+        let t_out = times[*next_out];
+        if t_out == t_new {
+            sink(t_out, y1);
+        } else {
+            sink(t_out, &dense.eval((t_out - t) / h));
+        }
+        *next_out += 1;
+    }
+}
+
+impl Dopri5 {
+    /// The settings' error: tolerances negative or both zero, a step bound or initial step
+    /// that is not positive.
+    fn check_settings(&self) -> Result<(), SimError> {
+        let tolerances_ok = self.rtol >= 0.0 && self.atol >= 0.0 && self.rtol + self.atol > 0.0;
+        if !tolerances_ok || self.max_step.is_nan() || self.max_step <= 0.0 {
+            return Err(SimError::InvalidSetting(
+                "Dormand-Prince needs rtol, atol >= 0 (not both 0) and max_step > 0",
+            ));
+        }
+        if self
+            .initial_step
+            .is_some_and(|h| !(h > 0.0 && h.is_finite()))
+        {
+            return Err(SimError::InvalidSetting(
+                "Dormand-Prince initial step must be positive",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The error that ends the integration before a step from `t` of size `h`: too many
+    /// steps, or a step too small to move `t`.
+    fn check_progress(&self, stats: &Stats, t: f64, h: f64) -> Result<(), SimError> {
+        if stats.steps + stats.rejected >= self.max_steps {
+            return Err(SimError::TooManySteps {
+                t,
+                steps: self.max_steps,
+            });
+        }
+        if 0.1 * h.abs() <= t.abs() * f64::EPSILON {
+            return Err(SimError::StepSizeTooSmall { t, h });
+        }
+        Ok(())
+    }
+
+    /// Steps from `at` to the last of `times`, accepting or rejecting each trial by its error
+    /// and handing `sink` the state at every output time after the first.
+    fn march<const N: usize>(
+        &self,
+        f: &impl Fn(f64, &State<N>) -> State<N>,
+        times: &[f64],
+        mut at: Position<N>,
+        mut stats: Stats,
+        sink: &mut impl FnMut(f64, &State<N>),
+    ) -> Result<Stats, SimError> {
+        let t_end = times[times.len() - 1];
+        let expo1 = 0.2 - BETA * 0.75;
+        let mut control = Control {
+            fac_old: 1e-4,
+            last_rejected: false,
+        };
+        let mut next_out = 1;
+        loop {
+            self.check_progress(&stats, at.t, at.h)?;
+            // The time this step must not pass: the next output, or the end.
+            let target = if self.step_to_outputs {
+                times[next_out]
+            } else {
+                t_end
+            };
+            let h_planned = at.h;
+            let clipped = at.t + 1.01 * at.h >= target;
+            let h = if clipped { target - at.t } else { at.h };
+            let t_new = if clipped { target } else { at.t + h };
+            let trial = Trial::new(f, (at.t, &at.x, &at.k1), h, t_new);
+            stats.evaluations += 6;
+            let err = self.error_norm(&trial.error, &at.x, &trial.y1);
+            if !err.is_finite() {
+                // A blown-up stage: retreat hard and try again.
+                at.h = control.after_reject(h * FAC_MIN, &mut stats);
+                continue;
+            }
+            let fac11 = err.powf(expo1);
+            if err > 1.0 {
+                at.h = control.after_reject(h / (fac11 / SAFE).min(1.0 / FAC_MIN), &mut stats);
+                continue;
+            }
+            let fac =
+                (fac11 / control.fac_old.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
+            control.fac_old = err.max(1e-4);
+            stats.steps += 1;
+            let dense = trial.dense(h, &at.x, &at.k1);
+            emit_outputs(
+                times,
+                &mut next_out,
+                (at.t, t_new, h),
+                (&trial.y1, &dense),
+                sink,
+            );
+            (at.t, at.x, at.k1) = (t_new, trial.y1, trial.k[5]);
+            if at.t == t_end {
+                return Ok(stats);
+            }
+            at.h = control.after_accept(h / fac, h, h_planned, clipped, self.max_step);
+        }
+    }
+}
+
 impl<const N: usize> Integrator<N> for Dopri5 {
     fn integrate<D, C, F>(
         &self,
@@ -228,148 +452,33 @@ impl<const N: usize> Integrator<N> for Dopri5 {
         F: FnMut(f64, &State<N>),
     {
         validate_times(times)?;
-        let tolerances_ok = self.rtol >= 0.0 && self.atol >= 0.0 && self.rtol + self.atol > 0.0;
-        if !tolerances_ok || self.max_step.is_nan() || self.max_step <= 0.0 {
-            return Err(SimError::InvalidSetting(
-                "Dormand-Prince needs rtol, atol >= 0 (not both 0) and max_step > 0",
-            ));
-        }
-        if self
-            .initial_step
-            .is_some_and(|h| !(h > 0.0 && h.is_finite()))
-        {
-            return Err(SimError::InvalidSetting(
-                "Dormand-Prince initial step must be positive",
-            ));
-        }
+        self.check_settings()?;
         let mut stats = Stats::default();
         let (t0, t_end) = (times[0], times[times.len() - 1]);
-        let mut t = t0;
-        let mut x = *x0;
-        sink(t0, &x);
+        sink(t0, x0);
         if times.len() == 1 {
             return Ok(stats);
         }
         let f = |t: f64, x: &State<N>| derivative(model, controller, t, x);
-        let mut k1 = f(t, &x);
+        let k1 = f(t0, x0);
         stats.evaluations += 1;
-        if !(x.is_finite() && k1.is_finite()) {
-            return Err(SimError::NonFinite { t });
+        if !(x0.is_finite() && k1.is_finite()) {
+            return Err(SimError::NonFinite { t: t0 });
         }
-        let mut h = match self.initial_step {
+        let h = match self.initial_step {
             Some(h) => h.min(self.max_step),
             None => {
                 stats.evaluations += 1;
-                self.initial_step_size(model, controller, t, &x, &k1, t_end - t0)
+                self.initial_step_size(model, controller, t0, x0, &k1, t_end - t0)
             }
         };
-        let expo1 = 0.2 - BETA * 0.75;
-        let mut fac_old: f64 = 1e-4;
-        let mut last_rejected = false;
-        let mut next_out = 1;
-        loop {
-            if stats.steps + stats.rejected >= self.max_steps {
-                return Err(SimError::TooManySteps {
-                    t,
-                    steps: self.max_steps,
-                });
-            }
-            if 0.1 * h.abs() <= t.abs() * f64::EPSILON {
-                return Err(SimError::StepSizeTooSmall { t, h });
-            }
-            // The time this step must not pass: the next output, or the end.
-            let target = if self.step_to_outputs {
-                times[next_out]
-            } else {
-                t_end
-            };
-            let h_planned = h;
-            let clipped = t + 1.01 * h >= target;
-            if clipped {
-                h = target - t;
-            }
-            let k2 = f(t + C2 * h, &x.add_combination(h, &[(A21, &k1)]));
-            let k3 = f(t + C3 * h, &x.add_combination(h, &[(A31, &k1), (A32, &k2)]));
-            let k4 = f(
-                t + C4 * h,
-                &x.add_combination(h, &[(A41, &k1), (A42, &k2), (A43, &k3)]),
-            );
-            let k5 = f(
-                t + C5 * h,
-                &x.add_combination(h, &[(A51, &k1), (A52, &k2), (A53, &k3), (A54, &k4)]),
-            );
-            let k6 = f(
-                t + h,
-                &x.add_combination(
-                    h,
-                    &[(A61, &k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)],
-                ),
-            );
-            let y1 = x.add_combination(h, &[(B1, &k1), (B3, &k3), (B4, &k4), (B5, &k5), (B6, &k6)]);
-            let t_new = if clipped { target } else { t + h };
-            let k7 = f(t_new, &y1);
-            stats.evaluations += 6;
-            let zero = State::at_rest([0.0; N]);
-            let e = zero.add_combination(
-                h,
-                &[
-                    (E1, &k1),
-                    (E3, &k3),
-                    (E4, &k4),
-                    (E5, &k5),
-                    (E6, &k6),
-                    (E7, &k7),
-                ],
-            );
-            let err = self.error_norm(&e, &x, &y1);
-            if !err.is_finite() {
-                // A blown-up stage: retreat hard and try again.
-                stats.rejected += 1;
-                last_rejected = true;
-                h *= FAC_MIN;
-                continue;
-            }
-            let fac11 = err.powf(expo1);
-            let fac = (fac11 / fac_old.powf(BETA) / SAFE).clamp(1.0 / FAC_MAX, 1.0 / FAC_MIN);
-            let mut h_new = h / fac;
-            if err <= 1.0 {
-                fac_old = err.max(1e-4);
-                stats.steps += 1;
-                let dense = DenseStep::new(h, &x, &y1, &k1, &k3, &k4, &k5, &k6, &k7);
-                while next_out < times.len() && times[next_out] <= t_new {
-                    let t_out = times[next_out];
-                    if t_out == t_new {
-                        sink(t_out, &y1);
-                    } else {
-                        sink(t_out, &dense.eval((t_out - t) / h));
-                    }
-                    next_out += 1;
-                }
-                k1 = k7;
-                x = y1;
-                t = t_new;
-                if t == t_end {
-                    return Ok(stats);
-                }
-                let mut h_done = h;
-                if clipped {
-                    // A step shortened to land on an output says little about the scale of
-                    // the solution: resume from the step planned before shortening.
-                    h_done = h.max(h_planned);
-                    h_new = h_new.max(h_planned);
-                }
-                h_new = h_new.min(self.max_step);
-                if last_rejected {
-                    h_new = h_new.min(h_done);
-                }
-                last_rejected = false;
-            } else {
-                h_new = h / (fac11 / SAFE).min(1.0 / FAC_MIN);
-                stats.rejected += 1;
-                last_rejected = true;
-            }
-            h = h_new;
-        }
+        let at = Position {
+            t: t0,
+            x: *x0,
+            k1,
+            h,
+        };
+        self.march(&f, times, at, stats, &mut sink)
     }
 }
 

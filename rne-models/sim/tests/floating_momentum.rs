@@ -14,8 +14,9 @@ use rne_runtime::Dynamics;
 use rne_sim::{
     integrate, output_times, world_momentum, LieVariational, ManifoldState, Momentum, Stats,
 };
-use rne_symbolic::spec::{load_robot, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
 use rne_symbolic::NumericModel;
+use rne_symbolic::{read_robot, Description};
 
 rne_codegen::derive_dynamics! {
     /// The arm in zero gravity.
@@ -43,7 +44,7 @@ const G: [f64; 3] = [0.0, 0.0, -9.81];
 fn numeric_model() -> NumericModel {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/robots/floating-arm.toml");
-    load_robot(&path, &LoadOptions::default())
+    read_robot(Description::file(&path), &LoadOptions::default())
         .expect("the spec loads")
         .to_numeric()
 }

@@ -8,8 +8,9 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use rne_symbolic::spec::{parse_str, LoadOptions, SpecError};
+use rne_symbolic::spec::{LoadOptions, SpecError};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 /// How a link moves relative to its parent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -194,9 +195,8 @@ impl Chain {
 
     /// The robot model, through the spec reader.
     pub fn model(&self) -> Result<RobotModel, SpecError> {
-        parse_str(
-            &self.to_toml(),
-            &format!("{}.toml", self.name),
+        read_robot(
+            Description::toml(&self.to_toml(), &format!("{}.toml", self.name)),
             &LoadOptions::default(),
         )
     }

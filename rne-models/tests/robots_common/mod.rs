@@ -7,13 +7,14 @@
 
 use std::path::{Path, PathBuf};
 
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rne_codegen::{Dynamics, Kernel};
 use rne_interpreted::{evaluate, StateRef};
 use rne_models::Visitor;
 use rne_reference::Reference;
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{Id, RobotModel, Symbol, SymbolicDynamics};
 
 /// A robot file of `rne-models/robots/`.
@@ -32,17 +33,19 @@ pub fn fixture(name: &str) -> PathBuf {
 }
 
 pub fn load(path: &Path) -> RobotModel {
-    spec::load_robot(path, &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    read_robot(Description::file(path), &LoadOptions::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
 pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// `n` values uniform in `[-bound, bound]`.
-pub fn uniform(rng: &mut ChaCha8Rng, n: usize, bound: f64) -> Vec<f64> {
-    (0..n).map(|_| rng.gen_range(-bound..=bound)).collect()
-}
+/// The stress cases' seeded values (`rne_stress::states`), included rather than depended on
+/// (rne-stress builds every generated robot): the one home of `uniform`, `n` values uniform in
+/// `[-bound, bound]`.
+#[path = "../../stress/src/states.rs"]
+mod states;
+pub use states::uniform;
 
 /// A random state: |q| ≤ π, |q̇| ≤ 3, |q̈| ≤ 3.
 pub fn state(rng: &mut ChaCha8Rng, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {

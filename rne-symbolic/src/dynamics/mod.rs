@@ -769,8 +769,11 @@ fn fixture_robot(file: &str) -> RobotModel {
         "{}/tests/fixtures/robots/{file}",
         env!("CARGO_MANIFEST_DIR")
     );
-    crate::input::load_robot(std::path::Path::new(&path), &Default::default())
-        .unwrap_or_else(|e| panic!("fixture {file}: {e}"))
+    crate::read_robot(
+        crate::Description::file(std::path::Path::new(&path)),
+        &Default::default(),
+    )
+    .unwrap_or_else(|e| panic!("fixture {file}: {e}"))
 }
 
 /// The partials `forward` or `reverse` builds in lanes, whichever costs fewer operations

@@ -3,16 +3,14 @@
 
 use std::path::Path;
 
-use super::LoadOptions;
 use crate::spec::{SpecError, SpecErrorKind};
-use crate::RobotModel;
 
 /// The format of a robot description.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum RobotFormat {
-    /// The TOML spec of docs/design.md §2.1 (`.toml`), read by [`crate::spec::parse_str`].
+    /// The TOML spec of docs/design.md §2.1 (`.toml`), read by the spec reader ([`crate::spec`]).
     Toml,
-    /// A URDF file (`.urdf`), read by [`crate::urdf::parse_str`].
+    /// A URDF file (`.urdf`), read by the URDF reader.
     Urdf,
 }
 
@@ -51,28 +49,23 @@ impl RobotFormat {
     }
 }
 
-/// Reads the robot file at `path`, a TOML spec or a URDF as its extension says
-/// ([`RobotFormat::from_path`]); errors name the file as `path` displays.
-pub fn load_robot(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
-    let format = RobotFormat::from_path(path)?;
-    let origin = path.display().to_string();
-    let text = read_text(path, &origin, "robot file")?;
-    parse_robot(&text, &origin, format, options)
-}
-
-/// The text of the file at `path`, named `origin` in errors (`what` says what it is: "robot
-/// file", "spec"): an error when it cannot be read, and one naming the line and column of
-/// the first byte that is not UTF-8 when it is not UTF-8 text.
-pub(crate) fn read_text(path: &Path, origin: &str, what: &str) -> Result<String, SpecError> {
+/// The text of the robot file at `path`, named `origin` in errors: an error when it cannot be
+/// read, and one naming the line and column of the first byte that is not UTF-8 when it is
+/// not UTF-8 text.
+pub(crate) fn read_text(path: &Path, origin: &str) -> Result<String, SpecError> {
     let bytes = std::fs::read(path).map_err(|e| {
-        SpecError::new(SpecErrorKind::Io, format!("cannot read the {what}: {e}")).locate(origin, "")
+        SpecError::new(
+            SpecErrorKind::Io,
+            format!("cannot read the robot file: {e}"),
+        )
+        .locate(origin, "")
     })?;
     decode(bytes, origin)
 }
 
 /// `bytes` as UTF-8 text, or an error naming `origin` and the line and column of the first
 /// byte that is not UTF-8.
-pub fn decode(bytes: Vec<u8>, origin: &str) -> Result<String, SpecError> {
+pub(crate) fn decode(bytes: Vec<u8>, origin: &str) -> Result<String, SpecError> {
     String::from_utf8(bytes).map_err(|e| {
         let error = e.utf8_error();
         let bytes = e.as_bytes();
@@ -95,20 +88,6 @@ pub fn decode(bytes: Vec<u8>, origin: &str) -> Result<String, SpecError> {
             .at_span(Some(valid..valid))
             .locate(origin, before)
     })
-}
-
-/// Reads a robot description in `format` from `text`; `origin` names the file in error
-/// messages.
-pub fn parse_robot(
-    text: &str,
-    origin: &str,
-    format: RobotFormat,
-    options: &LoadOptions,
-) -> Result<RobotModel, SpecError> {
-    match format {
-        RobotFormat::Toml => crate::spec::parse_str(text, origin, options),
-        RobotFormat::Urdf => crate::urdf::parse_str(text, origin, options),
-    }
 }
 
 #[cfg(test)]

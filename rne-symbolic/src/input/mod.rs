@@ -12,19 +12,21 @@
 //! warnings name the link and field (or, for a URDF, the joint); each reader adds the file and
 //! line, then `enforce` applies strict validation.
 //!
-//! [`load_robot`] and [`parse_robot`] dispatch on the file format ([`RobotFormat`]).
+//! [`read_robot`] reads a [`Description`] (a file, or text in a [`RobotFormat`]) with either
+//! reader: the crate's one entry point for robot files.
 
 mod format;
 pub(crate) mod frames;
 pub(crate) mod inertia;
 pub(crate) mod mimic;
 mod options;
+mod read;
 pub(crate) mod transplant;
 pub(crate) mod validate;
 
-pub(crate) use format::read_text;
-pub use format::{decode, load_robot, parse_robot, RobotFormat};
+pub use format::RobotFormat;
 pub use options::LoadOptions;
+pub use read::{read_robot, Description};
 pub use validate::NEGLIGIBLE_INERTIA;
 
 use self::frames::JointFrames;

@@ -16,10 +16,9 @@
 //! inertia = { box = ["l1", 0.08, 0.08] }
 //! ```
 //!
-//! [`load_robot`] and [`parse_robot`] (of [`crate::input`], re-exported here) read either
-//! format of docs/design.md §2, a TOML spec (this module) or a URDF ([`crate::urdf`]), as the
-//! file's extension says ([`RobotFormat`]); [`load_file`] and [`parse_str`] read TOML only. Both
-//! readers build the shared input model of [`crate::input`], which validates it and assembles
+//! [`read_robot`](crate::read_robot) reads either format of docs/design.md §2, a TOML spec
+//! (this module's reader, private behind it) or a URDF, as the file's extension or the caller
+//! says ([`RobotFormat`]). Both readers build the shared input model of [`crate::input`], which validates it and assembles
 //! the [`RobotModel`]; the errors ([`SpecError`]) and warnings ([`SpecWarning`]) of both are
 //! defined here.
 //!
@@ -92,10 +91,8 @@ mod scope;
 mod tree;
 mod warning;
 
-use std::path::Path;
-
-/// The readers' common entry points, re-exported where callers have always found them.
-pub use crate::input::{decode, load_robot, parse_robot, LoadOptions, RobotFormat};
+/// How a robot is read, re-exported where callers have always found it.
+pub use crate::input::{LoadOptions, RobotFormat};
 pub use diagnostic::Diagnostic;
 pub use error::{SpecError, SpecErrorKind};
 pub use warning::{SpecWarning, SpecWarningKind};
@@ -110,15 +107,12 @@ use crate::input::{self, InputLink, RobotInput};
 use crate::model::Transform;
 use crate::RobotModel;
 
-/// Reads the spec file at `path` (docs/design.md §2.1); errors name the file as `path` displays.
-pub fn load_file(path: &Path, options: &LoadOptions) -> Result<RobotModel, SpecError> {
-    let origin = path.display().to_string();
-    let text = input::read_text(path, &origin, "spec")?;
-    parse_str(&text, &origin, options)
-}
-
 /// Reads a spec from `text`; `origin` names the file in error and warning messages.
-pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+pub(crate) fn parse_str(
+    text: &str,
+    origin: &str,
+    options: &LoadOptions,
+) -> Result<RobotModel, SpecError> {
     let root = document::parse(text).map_err(|e| e.locate(origin, text))?;
     let mut model = read(&root, options).map_err(|mut e| {
         with_position(e.location_mut(), &root, &LinkTables::new(&root));

@@ -83,7 +83,7 @@ use crate::spec::location::Lines;
 
 /// What reading a MuJoCo model (MJCF: a `.xml` file, root element `<mujoco>`) says: rne reads
 /// URDF and its own TOML specs only.
-pub const MJCF_UNSUPPORTED: &str =
+pub(crate) const MJCF_UNSUPPORTED: &str =
     "MJCF (a MuJoCo <mujoco> model) is not supported yet: rne reads \
      URDF (.urdf) and its TOML robot specs (.toml); a URDF of the robot (most MuJoCo Menagerie \
      robots have one upstream) can be read instead";
@@ -94,7 +94,11 @@ use self::elements::UrdfRobot;
 
 /// Reads a URDF robot from `text`; `origin` names the file in error and warning messages.
 /// [`LoadOptions::strict`] and [`LoadOptions::free_mimic`] matter: a URDF has no parameters.
-pub fn parse_str(text: &str, origin: &str, options: &LoadOptions) -> Result<RobotModel, SpecError> {
+pub(crate) fn parse_str(
+    text: &str,
+    origin: &str,
+    options: &LoadOptions,
+) -> Result<RobotModel, SpecError> {
     let robot = document::read(text).map_err(|e| e.locate(origin, text))?;
     let mut model = read(&robot, origin, options).map_err(|e| {
         let span = Elements::new(&robot).span(e.joint(), e.link());

@@ -2,7 +2,7 @@
 
 #![allow(dead_code)]
 
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rne_codegen::{Dynamics, Kernel};
 use rne_interpreted::{evaluate, Error as EvalError, Interpreted, StateRef};
@@ -13,10 +13,12 @@ pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// `n` values uniform in `[-bound, bound]`.
-pub fn uniform(rng: &mut ChaCha8Rng, n: usize, bound: f64) -> Vec<f64> {
-    (0..n).map(|_| rng.gen_range(-bound..=bound)).collect()
-}
+/// The stress cases' seeded values (`rne_stress::states`), included rather than depended on
+/// (rne-stress builds every generated robot): the one home of `uniform`, `n` values uniform in
+/// `[-bound, bound]`.
+#[path = "../../../rne-models/stress/src/states.rs"]
+mod states;
+pub use states::uniform;
 
 /// A random state: |q| ≤ π, |q̇| ≤ 10, |q̈| ≤ 10.
 pub fn state(rng: &mut ChaCha8Rng, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {

@@ -6,8 +6,7 @@
 //!   removed, duplicated or renamed, joints relinked into cycles and orphans, joint types
 //!   changed, odd numbers in attributes, entities, deep nesting) and as bytes
 //!   ([`mutate::bytes`]: truncation, stray bytes, NUL, invalid UTF-8), read by
-//!   `rne_symbolic::spec::parse_robot` (or, when the bytes are not UTF-8, `load_robot` from a
-//!   file);
+//!   `rne_symbolic::read_robot` (from memory, or, when the bytes are not UTF-8, from a file);
 //! - `toml`: every committed fixture TOML spec, mutated as a spec ([`mutate::toml`]: links
 //!   removed, duplicated or moved, parents relinked, joint kinds changed, odd values, keys
 //!   removed, duplicated or renamed, parameter cycles) and as bytes;

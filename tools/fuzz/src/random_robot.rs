@@ -255,7 +255,8 @@ fn words(values: [f64; 3]) -> String {
 mod tests {
     use super::*;
     use rand::SeedableRng;
-    use rne_symbolic::spec::{parse_robot, LoadOptions};
+    use rne_symbolic::spec::LoadOptions;
+    use rne_symbolic::{read_robot, Description};
 
     /// Nearly every random robot loads (a robot whose moving subtree is massless, or whose
     /// values are extreme, may be rejected; none may panic), and each is reproducible.
@@ -273,7 +274,10 @@ mod tests {
                     RobotFormat::Toml => "random.toml",
                     RobotFormat::Urdf => "random.urdf",
                 };
-                match parse_robot(&text, name, format, &LoadOptions::default()) {
+                match read_robot(
+                    Description::text(&text, format, name),
+                    &LoadOptions::default(),
+                ) {
                     Ok(model) => {
                         loaded += 1;
                         assert!(model.dof() <= 4);

@@ -13,8 +13,9 @@ use rne_codegen_core::{
     ScalarType, Scene,
 };
 use rne_symbolic::model::Base;
-use rne_symbolic::spec::{load_robot, parse_robot, LoadOptions, RobotFormat};
+use rne_symbolic::spec::{LoadOptions, RobotFormat};
 use rne_symbolic::RobotModel;
+use rne_symbolic::{read_robot, Description};
 
 use crate::clarity::naming;
 use crate::harness::{self, Outcome};
@@ -277,8 +278,11 @@ fn read(input: &Input) -> Read {
     match std::str::from_utf8(&input.bytes) {
         Ok(text) => Read {
             origin: input.file.clone(),
-            result: parse_robot(text, &input.file, input.format, &input.options)
-                .map_err(|e| e.to_string()),
+            result: read_robot(
+                Description::text(text, input.format, &input.file),
+                &input.options,
+            )
+            .map_err(|e| e.to_string()),
         },
         Err(_) => read_from_disk(input),
     }
@@ -294,7 +298,7 @@ fn read_from_disk(input: &Input) -> Read {
     let origin = path.display().to_string();
     let written = std::fs::create_dir_all(&dir).and_then(|()| std::fs::write(&path, &input.bytes));
     let result = match written {
-        Ok(()) => load_robot(&path, &input.options).map_err(|e| e.to_string()),
+        Ok(()) => read_robot(Description::file(&path), &input.options).map_err(|e| e.to_string()),
         Err(e) => Err(format!(
             "{origin}: the harness could not write the input: {e}"
         )),

@@ -10,7 +10,7 @@
 
 use std::io::Write;
 
-use rne_codegen::{Instr, Operand, Program};
+use rne_codegen_core::{Instr, Operand, Program};
 use rne_symbolic::canonical::mathml;
 use rne_symbolic::{ExprGraph, Symbol, SymbolTable};
 

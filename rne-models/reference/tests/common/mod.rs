@@ -6,10 +6,11 @@
 use std::path::Path;
 
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion, Vector3};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rne_symbolic::model::{Base, NumericFriction, NumericLink};
-use rne_symbolic::spec::{self, LoadOptions};
+use rne_symbolic::spec::LoadOptions;
+use rne_symbolic::{read_robot, Description};
 use rne_symbolic::{JointKind, NumericModel};
 
 pub const G: f64 = 9.81;
@@ -28,7 +29,7 @@ pub fn fixture(name: &str) -> NumericModel {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/fixtures")
         .join(name);
-    spec::load_robot(&path, &LoadOptions::default())
+    read_robot(Description::file(&path), &LoadOptions::default())
         .unwrap_or_else(|e| panic!("{e}"))
         .to_numeric()
 }
@@ -37,10 +38,12 @@ pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
 
-/// `n` values uniform in `[-bound, bound]`.
-pub fn uniform(rng: &mut ChaCha8Rng, n: usize, bound: f64) -> Vec<f64> {
-    (0..n).map(|_| rng.gen_range(-bound..=bound)).collect()
-}
+/// The stress cases' seeded values (`rne_stress::states`), included rather than depended on
+/// (rne-stress builds every generated robot): the one home of `uniform`, `n` values uniform in
+/// `[-bound, bound]`.
+#[path = "../../../stress/src/states.rs"]
+mod states;
+pub use states::uniform;
 
 /// A uniformly random unit quaternion `[x, y, z, w]`.
 pub fn unit_quaternion(rng: &mut ChaCha8Rng) -> [f64; 4] {

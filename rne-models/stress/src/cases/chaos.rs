@@ -230,19 +230,8 @@ fn envelope(t: &[f64], y: &[f64], buckets: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The report section.
-pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
-    let effort = settings.effort;
-    let duration = effort.pick(1000.0, 10.0);
-    let h = effort.pick(1e-3, 2e-3);
-    let runs = simulate_releases(duration, h)?;
-    let all = [
-        &runs.gauss,
-        &runs.gauss_fine,
-        &runs.gauss_perturbed,
-        &runs.dopri_loose,
-        &runs.dopri_tight,
-    ];
+/// The table of each run's energy error, its range over the tenths of the run and its growth.
+fn energy_table(all: &[&Run], duration: f64) -> Table {
     let mut energy = Table::new(
         format!(
             "Planar elbow released from q = 0, {duration} s, energy E = T + V (E(0) = 0); the \
@@ -281,6 +270,21 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
             format!("{:.1}", run.energy_growth()),
         ]);
     }
+    energy
+}
+
+/// How fast pairs of runs part: the table, the plotted divergences, the rounding-size
+/// perturbation's Lyapunov exponent (or the first pair's that grew enough in a short run) and
+/// when the perturbed run is lost.
+struct Predictability {
+    table: Table,
+    series: Vec<Series>,
+    lambda: f64,
+    horizon: Option<f64>,
+}
+
+/// The divergence between the runs of each pair, and the exponent of its growth.
+fn predictability(runs: &ChaosRuns) -> Predictability {
     let t = &runs.gauss.record.t;
     let pairs = [
         (
@@ -291,16 +295,14 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         ("DP 1e-10 vs DP 1e-12", &runs.dopri_loose, &runs.dopri_tight),
         ("GL vs DP 1e-12", &runs.gauss, &runs.dopri_tight),
     ];
-    let mut predictability = Table::new(
+    let mut table = Table::new(
         format!(
             "Divergence |Δq|∞ between runs: the first time it exceeds 1e-6 and {LOST} rad, and \
              the Lyapunov exponent λ from its growth between 1e-12 and 1e-3 rad."
         ),
         &["runs", "|Δq| > 1e-6 at (s)", "|Δq| > 0.1 at (s)", "λ (1/s)"],
     );
-    let mut divergence_series = Vec::new();
-    let mut exponents = Vec::new();
-    let mut horizons = Vec::new();
+    let (mut series, mut exponents, mut horizons) = (Vec::new(), Vec::new(), Vec::new());
     for (label, a, b) in pairs {
         let d = divergence(a, b);
         let time = |level| {
@@ -312,38 +314,36 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         } else {
             "not reached".to_string()
         };
-        predictability.push(vec![label.to_string(), time(1e-6), time(LOST), exponent]);
+        table.push(vec![label.to_string(), time(1e-6), time(LOST), exponent]);
         exponents.push(lambda);
         horizons.push(first_time_above(t, &d, LOST));
         let shown = t.partition_point(|&time| time <= DIVERGENCE_WINDOW);
-        divergence_series.push(Series::new(
+        series.push(Series::new(
             label,
             Mark::Line,
             envelope(&t[..shown], &d[..shown], DIVERGENCE_POINTS),
         ));
     }
-    let energy_series = all
-        .iter()
-        .map(|run| {
-            Series::new(
-                run.label.clone(),
-                Mark::Line,
-                envelope(t, &run.energy_error(), PLOT_POINTS),
-            )
-        })
-        .collect();
-    // The rounding-size perturbation's λ, or the first pair that grew enough in a short run.
-    let lambda = exponents
-        .iter()
-        .copied()
-        .find(|l| l.is_finite())
-        .unwrap_or(f64::NAN);
-    let horizon = horizons[0].map_or("after the end of this run".to_string(), |t| {
+    Predictability {
+        table,
+        series,
+        lambda: exponents
+            .iter()
+            .copied()
+            .find(|l| l.is_finite())
+            .unwrap_or(f64::NAN),
+        horizon: horizons[0],
+    }
+}
+
+/// What the runs show, with their figures.
+fn findings(runs: &ChaosRuns, lambda: f64, horizon: Option<f64>, duration: f64) -> String {
+    let horizon = horizon.map_or("after the end of this run".to_string(), |t| {
         format!("at {t:.1} s")
     });
     let relative = |run: &Run| sci(run.energy_drift() / run.energy_scale());
     let growth = |run: &Run| format!("{:.1}", run.energy_growth());
-    let findings = format!(
+    format!(
         "**The trajectory is lost after tens of seconds whatever the precision; the energy is \
          kept.** A perturbation of 1e-15 rad — the size of one rounding error of the kernels — \
          grows like e^(λt) with λ ≈ {lambda:.2} 1/s and reaches {LOST} rad {horizon}; \
@@ -371,6 +371,62 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         dt_growth = growth(&runs.dopri_tight),
         ideal = (LOST / 1e-16).ln() / lambda,
         dd = (LOST / 1e-32).ln() / lambda,
+    )
+}
+
+/// The two plots: every run's energy error, and the divergences of the pairs.
+fn plots(all: &[&Run], divergence_series: Vec<Series>, duration: f64) -> Vec<LogPlot> {
+    let t = &all[0].record.t;
+    let energy_series = all
+        .iter()
+        .map(|run| {
+            Series::new(
+                run.label.clone(),
+                Mark::Line,
+                envelope(t, &run.energy_error(), PLOT_POINTS),
+            )
+        })
+        .collect();
+    vec![
+        LogPlot {
+            file: "stress-chaos-energy".into(),
+            title: format!("Double pendulum, {duration} s: energy error"),
+            x_label: "t (s)".into(),
+            y_label: "|E(t) − E(0)| (J)".into(),
+            x_axis: Axis::Linear,
+            series: energy_series,
+        },
+        LogPlot {
+            file: "stress-chaos-divergence".into(),
+            title: format!("Double pendulum: divergence between runs, first {DIVERGENCE_WINDOW} s"),
+            x_label: "t (s)".into(),
+            y_label: "|Δq|∞ (rad)".into(),
+            x_axis: Axis::Linear,
+            series: divergence_series,
+        },
+    ]
+}
+
+/// The report section.
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let effort = settings.effort;
+    let duration = effort.pick(1000.0, 10.0);
+    let h = effort.pick(1e-3, 2e-3);
+    let runs = simulate_releases(duration, h)?;
+    let all = [
+        &runs.gauss,
+        &runs.gauss_fine,
+        &runs.gauss_perturbed,
+        &runs.dopri_loose,
+        &runs.dopri_tight,
+    ];
+    let energy = energy_table(&all, duration);
+    let predictability = predictability(&runs);
+    let findings = findings(
+        &runs,
+        predictability.lambda,
+        predictability.horizon,
+        duration,
     );
     Ok(CaseReport {
         slug: SLUG,
@@ -385,27 +441,8 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
              rtol 1e-12 / atol 1e-14.",
             half = h / 2.0
         ),
-        tables: vec![energy, predictability],
-        plots: vec![
-            LogPlot {
-                file: "stress-chaos-energy".into(),
-                title: format!("Double pendulum, {duration} s: energy error"),
-                x_label: "t (s)".into(),
-                y_label: "|E(t) − E(0)| (J)".into(),
-                x_axis: Axis::Linear,
-                series: energy_series,
-            },
-            LogPlot {
-                file: "stress-chaos-divergence".into(),
-                title: format!(
-                    "Double pendulum: divergence between runs, first {DIVERGENCE_WINDOW} s"
-                ),
-                x_label: "t (s)".into(),
-                y_label: "|Δq|∞ (rad)".into(),
-                x_axis: Axis::Linear,
-                series: divergence_series,
-            },
-        ],
+        tables: vec![energy, predictability.table],
+        plots: plots(&all, predictability.series, duration),
         findings,
     })
 }

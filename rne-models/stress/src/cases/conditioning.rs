@@ -133,65 +133,73 @@ pub fn measure(
     Ok(points)
 }
 
-/// The report section: a table per family and the plot of error against cond(M).
-pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
-    let Settings { effort, engine } = settings;
-    let samples = effort.pick(200, 4);
-    let mut tables = Vec::new();
-    let mut series = Vec::new();
-    let mut all: Vec<(Family, Point)> = Vec::new();
-    for family in Family::ALL {
-        let mut table = Table::new(
-            format!("{}, {samples} states per row.", family.name()),
-            &[
-                family.parameter(),
-                "cond(M) median",
-                "cond(M) max",
-                "scaled cond max",
-                "q̈ error max",
-                "q̈ error median",
-                "max error / (ε cond)",
-            ],
-        );
-        let mut points = Vec::new();
-        for x in family.values() {
-            let row = measure(engine, family, x, samples)?;
-            let cond = Spread::of(row.iter().map(|p| p.condition));
-            let error = Spread::of(row.iter().map(|p| p.error));
-            let ratio = Spread::of(row.iter().map(|p| p.error / (EPSILON * p.condition)));
-            table.push(vec![
-                sci(x),
-                sci(cond.median),
-                sci(cond.max),
-                sci(Spread::of(row.iter().map(|p| p.scaled_condition)).max),
-                sci(error.max),
-                sci(error.median),
-                sci(ratio.max),
-            ]);
-            points.extend(row.iter().map(|p| (p.condition, p.error)));
-            all.extend(row.into_iter().map(|p| (family, p)));
-        }
-        tables.push(table);
-        series.push(Series::new(family.name(), Mark::Points, points));
+/// One family's table (a row per parameter value) and its points of error against cond(M),
+/// the points also added to `all`.
+fn family_rows(
+    engine: Engine,
+    family: Family,
+    samples: usize,
+    all: &mut Vec<(Family, Point)>,
+) -> Result<(Table, Series), StressError> {
+    let mut table = Table::new(
+        format!("{}, {samples} states per row.", family.name()),
+        &[
+            family.parameter(),
+            "cond(M) median",
+            "cond(M) max",
+            "scaled cond max",
+            "q̈ error max",
+            "q̈ error median",
+            "max error / (ε cond)",
+        ],
+    );
+    let mut points = Vec::new();
+    for x in family.values() {
+        let row = measure(engine, family, x, samples)?;
+        let cond = Spread::of(row.iter().map(|p| p.condition));
+        let error = Spread::of(row.iter().map(|p| p.error));
+        let ratio = Spread::of(row.iter().map(|p| p.error / (EPSILON * p.condition)));
+        table.push(vec![
+            sci(x),
+            sci(cond.median),
+            sci(cond.max),
+            sci(Spread::of(row.iter().map(|p| p.scaled_condition)).max),
+            sci(error.max),
+            sci(error.median),
+            sci(ratio.max),
+        ]);
+        points.extend(row.iter().map(|p| (p.condition, p.error)));
+        all.extend(row.into_iter().map(|p| (family, p)));
     }
+    Ok((table, Series::new(family.name(), Mark::Points, points)))
+}
+
+/// The reference lines of the plot, ε·cond(M) and ε, over the conditions reached.
+fn reference_lines(all: &[(Family, Point)]) -> [Series; 2] {
     let conditions = Spread::of(all.iter().map(|(_, p)| p.condition));
     let lowest = all
         .iter()
         .map(|(_, p)| p.condition)
         .fold(f64::INFINITY, f64::min);
-    series.push(Series::new(
-        "ε·cond(M)",
-        Mark::Reference,
-        vec![
-            (lowest, EPSILON * lowest),
-            (conditions.max, EPSILON * conditions.max),
-        ],
-    ));
-    series.push(Series::new(
-        "ε",
-        Mark::Reference,
-        vec![(lowest, EPSILON), (conditions.max, EPSILON)],
-    ));
+    [
+        Series::new(
+            "ε·cond(M)",
+            Mark::Reference,
+            vec![
+                (lowest, EPSILON * lowest),
+                (conditions.max, EPSILON * conditions.max),
+            ],
+        ),
+        Series::new(
+            "ε",
+            Mark::Reference,
+            vec![(lowest, EPSILON), (conditions.max, EPSILON)],
+        ),
+    ]
+}
+
+/// What the measurements show, with their figures.
+fn findings(all: &[(Family, Point)]) -> String {
     let ratio = |f: Family| {
         Spread::of(
             all.iter()
@@ -204,7 +212,7 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         all.iter()
             .map(|(_, p)| p.error / (EPSILON * p.scaled_condition)),
     );
-    let findings = format!(
+    format!(
         "**Forward dynamics loses log₁₀ of the scaled condition number of M in digits (when \
          its input does not cancel, cases 2 and 4).** With a short middle link (near-dependent joints) the error follows the \
          ε·cond(M) line: at most {short_ratio} × ε·cond(M), reaching {short_max} where \
@@ -244,7 +252,23 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         ),
         tip_ratio = sci(ratio(Family::LightTip).max),
         scaled_ratio = sci(scaled_ratio.max),
-    );
+    )
+}
+
+/// The report section: a table per family and the plot of error against cond(M).
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
+    let samples = effort.pick(200, 4);
+    let mut tables = Vec::new();
+    let mut series = Vec::new();
+    let mut all: Vec<(Family, Point)> = Vec::new();
+    for family in Family::ALL {
+        let (table, points) = family_rows(engine, family, samples, &mut all)?;
+        tables.push(table);
+        series.push(points);
+    }
+    series.extend(reference_lines(&all));
+    let findings = findings(&all);
     Ok(CaseReport {
         slug: SLUG,
         title: "5. Near-singular mass matrices (cond(M) up to 1e12)".into(),

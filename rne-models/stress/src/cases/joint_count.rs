@@ -130,25 +130,8 @@ fn merge(sweeps: &[Sweep]) -> Sweep {
     }
 }
 
-/// The report section: a row per number of joints and the plot of errors against it.
-pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
-    let Settings { effort, engine } = settings;
-    let (robots, samples) = effort.pick((8, 100), (1, 3));
-    let counts: Vec<usize> = effort.pick((1..=MAX_JOINTS).collect(), vec![1, MAX_JOINTS]);
-    let mut table = sweep_table(
-        format!(
-            "Random robots, {robots} per row, {samples} states each (medians: the median of \
-             the robots' medians)."
-        ),
-        "joints",
-        &KERNELS,
-    );
-    let mut rows = Vec::new();
-    for &n in &counts {
-        let row = measure(engine, n, robots, samples)?;
-        table.push(sweep_row(n.to_string(), &row.sweep, &KERNELS));
-        rows.push(row);
-    }
+/// The plotted errors against the number of joints, with the line ε.
+fn series(rows: &[JointCountRow], counts: &[usize]) -> Vec<Series> {
     let line = |label: &str, value: &dyn Fn(&JointCountRow) -> f64| {
         Series::new(
             label,
@@ -156,7 +139,7 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
             rows.iter().map(|r| (r.joints as f64, value(r))).collect(),
         )
     };
-    let series = vec![
+    vec![
         line("τ max", &|r| r.sweep.errors.max(Kernel::InverseDynamics)),
         line("M max", &|r| r.sweep.errors.max(Kernel::MassMatrix)),
         line("forward dynamics max", &|r| {
@@ -176,13 +159,17 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
                 (counts.last().copied().unwrap_or(1) as f64, EPSILON),
             ],
         ),
-    ];
+    ]
+}
+
+/// What the sweep shows, with its figures.
+fn findings(rows: &[JointCountRow]) -> String {
     let worst = |k: Kernel| largest(rows.iter().map(|r| r.sweep.errors.max(k)));
     let (first, last) = (rows.first(), rows.last());
     let median = |row: Option<&JointCountRow>, k: Kernel| {
         sci(row.map_or(f64::NAN, |r| r.sweep.errors.median(k)))
     };
-    let findings = format!(
+    format!(
         "**τ, M and g keep 15 digits up to 12 joints; forward dynamics follows each robot's \
          conditioning.** The median τ error grows slowly with the number of joints, from \
          {tau_first} at {n_first} joint(s) to {tau_last} at {n_last} (M: {m_last} at {n_last}): \
@@ -213,7 +200,30 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         cond = sci(largest(rows.iter().map(|r| r.sweep.condition.max))),
         scaled = sci(largest(rows.iter().map(|r| r.sweep.scaled_condition.max))),
         ratio = largest(rows.iter().map(|r| r.sweep.fd_over_estimate.max)),
+    )
+}
+
+/// The report section: a row per number of joints and the plot of errors against it.
+pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
+    let Settings { effort, engine } = settings;
+    let (robots, samples) = effort.pick((8, 100), (1, 3));
+    let counts: Vec<usize> = effort.pick((1..=MAX_JOINTS).collect(), vec![1, MAX_JOINTS]);
+    let mut table = sweep_table(
+        format!(
+            "Random robots, {robots} per row, {samples} states each (medians: the median of \
+             the robots' medians)."
+        ),
+        "joints",
+        &KERNELS,
     );
+    let mut rows = Vec::new();
+    for &n in &counts {
+        let row = measure(engine, n, robots, samples)?;
+        table.push(sweep_row(n.to_string(), &row.sweep, &KERNELS));
+        rows.push(row);
+    }
+    let series = series(&rows, &counts);
+    let findings = findings(&rows);
     Ok(CaseReport {
         slug: SLUG,
         title: "7. Random robots up to 12 joints".into(),

@@ -194,6 +194,31 @@ pub fn integrate_from_nan<I: Integrator<2>>(integrator: &I) -> Result<(), SimErr
     .map(|_| ())
 }
 
+/// What each integrator does when started from a non-finite state.
+fn integrator_table() -> Table {
+    let mut table = Table::new(
+        "The planar elbow integrated from q = (NaN, 0), q̇ = (0, ∞) over 1 s.",
+        &["integrator", "outcome"],
+    );
+    let outcome = |r: Result<(), SimError>| match r {
+        Ok(()) => "returned a record (no error)".to_string(),
+        Err(e) => format!("error: {e}"),
+    };
+    table.push(vec![
+        "RK4, h = 1e-3".into(),
+        outcome(integrate_from_nan(&Rk4::new(1e-3))),
+    ]);
+    table.push(vec![
+        "Dormand–Prince, rtol 1e-10".into(),
+        outcome(integrate_from_nan(&Dopri5::new(1e-10, 1e-12))),
+    ]);
+    table.push(vec![
+        "Gauss–Legendre 4, h = 1e-3".into(),
+        outcome(integrate_from_nan(&GaussLegendre::new(1e-3))),
+    ]);
+    table
+}
+
 /// The report section.
 pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
     let effort = settings.effort;
@@ -229,26 +254,7 @@ pub fn report(settings: Settings) -> Result<CaseReport, StressError> {
         totals.2 += c.panics;
         violations.extend(c.violations);
     }
-    let mut integrators = Table::new(
-        "The planar elbow integrated from q = (NaN, 0), q̇ = (0, ∞) over 1 s.",
-        &["integrator", "outcome"],
-    );
-    let outcome = |r: Result<(), SimError>| match r {
-        Ok(()) => "returned a record (no error)".to_string(),
-        Err(e) => format!("error: {e}"),
-    };
-    integrators.push(vec![
-        "RK4, h = 1e-3".into(),
-        outcome(integrate_from_nan(&Rk4::new(1e-3))),
-    ]);
-    integrators.push(vec![
-        "Dormand–Prince, rtol 1e-10".into(),
-        outcome(integrate_from_nan(&Dopri5::new(1e-10, 1e-12))),
-    ]);
-    integrators.push(vec![
-        "Gauss–Legendre 4, h = 1e-3".into(),
-        outcome(integrate_from_nan(&GaussLegendre::new(1e-3))),
-    ]);
+    let integrators = integrator_table();
     let findings = if totals.1 == 0 && totals.2 == 0 {
         format!(
             "**NaN in gives NaN out, ±∞ in gives NaN or ±∞ out, exactly where the output \
