@@ -85,6 +85,14 @@ fn main() -> ExitCode {
 /// Prints the iterations and the summary: cost, final state, saturation, and where the time
 /// went (`timings` per iteration, each phase the shortest of `runs` runs).
 fn report(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings], runs: usize) {
+    print_iterations(problem, solution, timings);
+    print_outcome(solution);
+    print_time(solution, timings, runs);
+}
+
+/// The problem, then each iteration's cost, step, regularisation, predicted reduction and
+/// time.
+fn print_iterations(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings]) {
     let h = problem.time_step;
     println!(
         "planar elbow swing-up: RK4 h = {} ms, N = {} ({} s), |u| <= {TORQUE_LIMIT} N m",
@@ -107,6 +115,11 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings], run
             ms(time.total)
         );
     }
+}
+
+/// Why the optimiser stopped, the cost, the final state's distance from upright and the
+/// torques' saturation.
+fn print_outcome(solution: &Solution<4, 2>) {
     let trajectory = &solution.trajectory;
     let last = trajectory.states.last().expect("N + 1 states");
     let error: Vec<f64> = (0..4).map(|i| last[i] - UPRIGHT[i]).collect();
@@ -141,6 +154,11 @@ fn report(problem: &SwingUp, solution: &Solution<4, 2>, timings: &[Timings], run
         "torque: peak {peak:.2} N m, {at_limit} of {} controls at the limit",
         2 * trajectory.controls.len()
     );
+}
+
+/// Where the time went per iteration: the derivative kernels, the rest of the linearisation,
+/// the backward and forward passes, and the rest.
+fn print_time(solution: &Solution<4, 2>, timings: &[Timings], runs: usize) {
     let t: Timings = timings.iter().copied().sum();
     let count = solution.iterations.len().max(1) as f64;
     let other = t

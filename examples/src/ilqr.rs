@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 use nalgebra::SVector;
 
 use crate::backward_pass::{backward_pass, Bounds, Gains};
+use crate::box_qp::NotPositiveDefinite;
 use crate::cost::QuadraticCost;
 use crate::discretisation::{Discretisation, Linearisation};
 use crate::error::Error;
@@ -242,25 +243,97 @@ pub fn solve<D: Discretisation<NX, NU>, const NX: usize, const NU: usize>(
         .iter()
         .map(|u| problem.bounds.clamp(u))
         .collect();
-    let mut trajectory = Trajectory {
+    let trajectory = Trajectory {
         states: rollout(problem.dynamics, &problem.initial_state, &controls)
             .ok_or(Error::DivergentInitialRollout)?,
         controls,
     };
     let initial_cost = problem.cost.total(&trajectory.states, &trajectory.controls);
-    let mut cost = initial_cost;
-    let mut regularisation = Regularisation {
-        mu: options.initial_regularisation,
-        rate: 1.0,
+    let mut search = Search {
+        warm_start: vec![SVector::zeros(); trajectory.controls.len()],
+        trajectory,
+        cost: initial_cost,
+        regularisation: Regularisation {
+            mu: options.initial_regularisation,
+            rate: 1.0,
+        },
+        linearisation: None,
+        iterations: Vec::new(),
     };
-    let mut linearisation: Option<Linearisation<NX, NU>> = None;
-    let mut warm_start = vec![SVector::zeros(); trajectory.controls.len()];
-    let mut iterations = Vec::new();
-    let mut stop = Stop::IterationLimit;
-    for _ in 0..options.max_iterations {
+    let stop = (0..options.max_iterations)
+        .find_map(|_| search.iterate(problem, options))
+        .unwrap_or(Stop::IterationLimit);
+    Ok(Solution {
+        trajectory: search.trajectory,
+        initial_cost,
+        iterations: search.iterations,
+        stop,
+    })
+}
+
+/// The optimisation between iterations: the current trajectory and its cost, the
+/// regularisation, the dynamics' Jacobians along the trajectory (until it changes), the
+/// feedforward of the last backward pass (its next warm start) and the iterations so far.
+struct Search<const NX: usize, const NU: usize> {
+    trajectory: Trajectory<NX, NU>,
+    cost: f64,
+    regularisation: Regularisation,
+    linearisation: Option<Linearisation<NX, NU>>,
+    warm_start: Vec<SVector<f64, NU>>,
+    iterations: Vec<Iteration>,
+}
+
+impl<const NX: usize, const NU: usize> Search<NX, NU> {
+    /// One iteration (Tassa, Erez & Todorov 2012, section II): the backward pass at the
+    /// current regularisation, then the line search; `Some` with the reason when the
+    /// optimiser stops.
+    fn iterate<D: Discretisation<NX, NU>>(
+        &mut self,
+        problem: &Problem<'_, D, NX, NU>,
+        options: &Options,
+    ) -> Option<Stop> {
         let started = Instant::now();
         let mut timings = Timings::default();
-        let jacobians = linearisation.get_or_insert_with(|| {
+        let mu = self.regularisation.mu;
+        let at = (started, mu);
+        let Ok(gains) = self.gains(problem, &mut timings) else {
+            self.record(at, None, 0.0, self.cost, timings);
+            return self.increase(options);
+        };
+        self.warm_start.clone_from(&gains.feedforward);
+        if gains.relative_step(&self.trajectory.controls) < options.step_tolerance
+            && mu < options.converged_regularisation
+        {
+            self.record(at, None, gains.expected_reduction(1.0), self.cost, timings);
+            return Some(Stop::StepConverged);
+        }
+        let start = Instant::now();
+        let accepted = line_search(problem, &self.trajectory, &gains, self.cost, options);
+        timings.forward_pass = start.elapsed();
+        let Some((alpha, next, next_cost)) = accepted else {
+            self.record(at, None, gains.expected_reduction(1.0), self.cost, timings);
+            return self.increase(options);
+        };
+        let reduction = gains.expected_reduction(alpha);
+        self.record(at, Some(alpha), reduction, next_cost, timings);
+        let reduction = self.cost - next_cost;
+        self.trajectory = next;
+        self.cost = next_cost;
+        self.linearisation = None;
+        self.regularisation.decrease(options);
+        (reduction < options.cost_tolerance * self.cost.abs()).then_some(Stop::CostConverged)
+    }
+
+    /// The backward pass's gains along the current trajectory at the current
+    /// regularisation, linearising the dynamics first when the trajectory has changed; the
+    /// time each step takes goes to `timings`.
+    fn gains<D: Discretisation<NX, NU>>(
+        &mut self,
+        problem: &Problem<'_, D, NX, NU>,
+        timings: &mut Timings,
+    ) -> Result<Gains<NX, NU>, NotPositiveDefinite> {
+        let trajectory = &self.trajectory;
+        let jacobians = self.linearisation.get_or_insert_with(|| {
             let start = Instant::now();
             let l = problem
                 .dynamics
@@ -270,7 +343,6 @@ pub fn solve<D: Discretisation<NX, NU>, const NX: usize, const NU: usize>(
             timings.derivative_kernel_calls = l.derivative_kernel_calls;
             l
         });
-        let mu = regularisation.mu;
         let start = Instant::now();
         let gains = backward_pass(
             jacobians,
@@ -278,74 +350,39 @@ pub fn solve<D: Discretisation<NX, NU>, const NX: usize, const NU: usize>(
             &trajectory.controls,
             problem.cost,
             &problem.bounds,
-            mu,
-            &warm_start,
+            self.regularisation.mu,
+            &self.warm_start,
         );
         timings.backward_pass = start.elapsed();
-        let mut record = |step, expected_reduction, cost, mut timings: Timings| {
-            timings.total = started.elapsed();
-            iterations.push(Iteration {
-                cost,
-                step,
-                regularisation: mu,
-                expected_reduction,
-                timings,
-            });
-        };
-        let Ok(gains) = gains else {
-            record(None, 0.0, cost, timings);
-            regularisation.increase(options);
-            if regularisation.mu > options.max_regularisation {
-                stop = Stop::RegularisationLimit;
-                break;
-            }
-            continue;
-        };
-        warm_start.clone_from(&gains.feedforward);
-        if gains.relative_step(&trajectory.controls) < options.step_tolerance
-            && mu < options.converged_regularisation
-        {
-            record(None, gains.expected_reduction(1.0), cost, timings);
-            stop = Stop::StepConverged;
-            break;
-        }
-        let start = Instant::now();
-        let accepted = line_search(problem, &trajectory, &gains, cost, options);
-        timings.forward_pass = start.elapsed();
-        match accepted {
-            Some((alpha, next, next_cost)) => {
-                record(
-                    Some(alpha),
-                    gains.expected_reduction(alpha),
-                    next_cost,
-                    timings,
-                );
-                let reduction = cost - next_cost;
-                trajectory = next;
-                cost = next_cost;
-                linearisation = None;
-                regularisation.decrease(options);
-                if reduction < options.cost_tolerance * cost.abs() {
-                    stop = Stop::CostConverged;
-                    break;
-                }
-            }
-            None => {
-                record(None, gains.expected_reduction(1.0), cost, timings);
-                regularisation.increase(options);
-                if regularisation.mu > options.max_regularisation {
-                    stop = Stop::RegularisationLimit;
-                    break;
-                }
-            }
-        }
+        gains
     }
-    Ok(Solution {
-        trajectory,
-        initial_cost,
-        iterations,
-        stop,
-    })
+
+    /// Records an iteration started at `at.0` with regularisation `at.1`: its step (`None`
+    /// when none was taken), the reduction its gains predicted, the cost after it and where
+    /// its time went.
+    fn record(
+        &mut self,
+        (started, mu): (Instant, f64),
+        step: Option<f64>,
+        expected_reduction: f64,
+        cost: f64,
+        mut timings: Timings,
+    ) {
+        timings.total = started.elapsed();
+        self.iterations.push(Iteration {
+            cost,
+            step,
+            regularisation: mu,
+            expected_reduction,
+            timings,
+        });
+    }
+
+    /// Raises the regularisation after a failed iteration; `Some` when it passes its limit.
+    fn increase(&mut self, options: &Options) -> Option<Stop> {
+        self.regularisation.increase(options);
+        (self.regularisation.mu > options.max_regularisation).then_some(Stop::RegularisationLimit)
+    }
 }
 
 /// The first step α of the line search whose rollout of

@@ -134,7 +134,6 @@ impl OmegaProducts {
 /// coupled coordinate and passes its force to its leader times the multiplier; armature adds
 /// `I_a q̈` to a joint's force.
 pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3) -> NewtonEuler {
-    let n = model.links.len();
     let layout = model.state_layout();
     let g = &mut model.graph;
     let links = &model.links;
@@ -144,110 +143,10 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         .iter()
         .map(|link| LinkCoordinate::of(g, link, motion))
         .collect();
-
-    // Forward recursion.
-    let zero = g.zero_vec();
-    let base_accel = g.vneg(gravity);
-    let mut out: Vec<LinkMotion> = Vec::with_capacity(n);
-    let mut products: Vec<OmegaProducts> = Vec::with_capacity(n);
-    let base_products = OmegaProducts::new(g, zero);
-    for (i, link) in links.iter().enumerate() {
-        let (omega_p, alpha_p, accel_p, products_p) = match link.parent {
-            Some(p) => (out[p].omega, out[p].alpha, out[p].accel, products[p]),
-            None => (zero, zero, base_accel, base_products),
-        };
-        let rot = &placements[i];
-        let joint = coordinates[i].map(|c| (link.kind, c.q, c.qd, c.qdd));
-
-        // (3.26): ω_i = (R_i^{i−1})ᵀ ω_{i−1} + b_i q̇_i.
-        let mut omega = rot.to_child(g, omega_p);
-        let mut alpha = rot.to_child(g, alpha_p);
-        if let Some((JointKind::Revolute, _, qd, qdd)) = joint {
-            let spin = g.vscale(qd, link.axis);
-            omega = g.vadd(omega, spin);
-            // (3.30): α_i = (R_i^{i−1})ᵀ α_{i−1} + b_i q̈_i + ω_i × b_i q̇_i.
-            let spin_up = g.vscale(qdd, link.axis);
-            let gyroscopic = g.cross(omega, spin);
-            alpha = g.vadd(alpha, spin_up);
-            alpha = g.vadd(alpha, gyroscopic);
-        }
-
-        // (3.35) evaluated in the parent for the point where link i is attached, then
-        // rotated into frame i: the (R_i^{i−1})ᵀ a_{e,i−1} of (3.34).
-        let s = link.translation;
-        let tangential = g.cross(alpha_p, s);
-        let centripetal = products_p.centripetal(g, s);
-        let attach_accel = {
-            let a = g.vadd(accel_p, tangential);
-            g.vadd(a, centripetal)
-        };
-        let mut accel = rot.to_child(g, attach_accel);
-        if let (JointKind::FreeFlyer, Some(base)) = (link.kind, motion.base) {
-            // The free-flyer's velocity and acceleration are its coordinates' (body frame):
-            // ω, ω̇, and the classical acceleration of the origin v̇ + ω × v.
-            let [vx, vy, vz, wx, wy, wz] = base.velocity;
-            let [ax, ay, az, bx, by, bz] = base.acceleration;
-            omega = [wx, wy, wz];
-            alpha = [bx, by, bz];
-            let transport = g.cross(omega, [vx, vy, vz]);
-            accel = g.vadd(accel, [ax, ay, az]);
-            accel = g.vadd(accel, transport);
-        }
-        if let Some((JointKind::Prismatic, q, qd, qdd)) = joint {
-            // The joint slides the body origin by u q along u: the same rigid-motion terms
-            // for that offset, plus the relative acceleration u q̈ and Coriolis 2 ω × u q̇.
-            let offset = g.vscale(q, link.axis);
-            let rate = g.vscale(qd, link.axis);
-            let tangential = g.cross(alpha, offset);
-            let centripetal = OmegaProducts::new(g, omega).centripetal(g, offset);
-            let omega_rate = g.cross(omega, rate);
-            let two = g.constant(2.0);
-            let coriolis = g.vscale(two, omega_rate);
-            let relative = g.vscale(qdd, link.axis);
-            for term in [tangential, centripetal, coriolis, relative] {
-                accel = g.vadd(accel, term);
-            }
-        }
-
-        // (3.34): a_{c,i} = a_i + α_i × r_{i−1,ci} + ω_i × (ω_i × r_{i−1,ci}).
-        let own_products = OmegaProducts::new(g, omega);
-        let c = link.com;
-        let tangential = g.cross(alpha, c);
-        let centripetal = own_products.centripetal(g, c);
-        let accel_com = {
-            let a = g.vadd(accel, tangential);
-            g.vadd(a, centripetal)
-        };
-        out.push(LinkMotion {
-            omega,
-            alpha,
-            accel,
-            accel_com,
-        });
-        products.push(own_products);
-    }
-
+    let (out, products) = forward_recursion(g, links, &placements, &coordinates, motion, gravity);
     // Backward recursion, leaves first.
     let reactions = backward_recursion(g, links, &placements, |g, i| {
-        let link = &links[i];
-        let LinkMotion {
-            alpha, accel_com, ..
-        } = out[i];
-        // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
-        let inertial_force = g.vscale(link.mass, accel_com);
-        // (3.24): τ_i = Σ_c [R_c^i τ_c + (R_c^i f_c) × r_{i,ci}] − f_i × r_{i−1,ci}
-        //             + ω_i × (I_i ω_i) + I_i α_i.
-        // With f_i substituted from (3.21) and the cross products regrouped as the thesis
-        // does for the planar elbow in (4.36)–(4.41) (r_{i,ci} − r_{i−1,ci} = −r_{i−1,i}):
-        //   τ_i = Σ_c [R_c^i τ_c + r_{i−1,c} × R_c^i f_c] + r_{i−1,ci} × m_i a_{c,i}
-        //         + ω_i × (I_i ω_i) + I_i α_i,
-        // where r_{i−1,c} is the point where child c is attached. Same torque, fewer
-        // products: the attachment points are sparse where the COM is not.
-        let gyroscopic = products[i].gyroscopic(g, &link.inertia);
-        let i_alpha = g.mat_vec(&link.inertia, alpha);
-        let own_moment = g.cross(link.com, inertial_force);
-        let torque = g.vadd(gyroscopic, i_alpha);
-        (inertial_force, g.vadd(torque, own_moment))
+        own_load(g, &links[i], &out[i], &products[i])
     });
     let torques = generalised_forces(g, links, &reactions, &coordinates, &layout);
     NewtonEuler {
@@ -255,6 +154,198 @@ pub fn newton_euler(model: &mut RobotModel, motion: &JointMotion, gravity: Vec3)
         reactions,
         torques,
     }
+}
+
+/// The motion of a link's parent that the forward recursion carries to the link (the base's:
+/// at rest, with acceleration −g_0).
+#[derive(Copy, Clone)]
+struct ParentMotion {
+    omega: Vec3,
+    alpha: Vec3,
+    accel: Vec3,
+    products: OmegaProducts,
+}
+
+/// A link's joint: its kind and its coordinate q, q̇, q̈ (`None`: fixed, or the coordinates
+/// are the free-flyer's).
+type JointState = Option<(JointKind, Id, Id, Id)>;
+
+/// The forward recursion, from the base outwards: each link's [`LinkMotion`] and the
+/// products of its angular velocity.
+fn forward_recursion(
+    g: &mut ExprGraph,
+    links: &[Link],
+    placements: &[LinkPlacement],
+    coordinates: &[Option<LinkCoordinate>],
+    motion: &JointMotion,
+    gravity: Vec3,
+) -> (Vec<LinkMotion>, Vec<OmegaProducts>) {
+    let n = links.len();
+    let zero = g.zero_vec();
+    let base_accel = g.vneg(gravity);
+    let mut out: Vec<LinkMotion> = Vec::with_capacity(n);
+    let mut products: Vec<OmegaProducts> = Vec::with_capacity(n);
+    let base = ParentMotion {
+        omega: zero,
+        alpha: zero,
+        accel: base_accel,
+        products: OmegaProducts::new(g, zero),
+    };
+    for (i, link) in links.iter().enumerate() {
+        let parent = match link.parent {
+            Some(p) => ParentMotion {
+                omega: out[p].omega,
+                alpha: out[p].alpha,
+                accel: out[p].accel,
+                products: products[p],
+            },
+            None => base,
+        };
+        let joint = coordinates[i].map(|c| (link.kind, c.q, c.qd, c.qdd));
+        let (own, own_products) = forward_link(g, link, &placements[i], joint, &parent, motion);
+        out.push(own);
+        products.push(own_products);
+    }
+    (out, products)
+}
+
+/// One link's step of the forward recursion: (3.26) and (3.30), (3.35) at the attachment,
+/// the free-flyer's or the prismatic joint's own motion, then (3.34).
+fn forward_link(
+    g: &mut ExprGraph,
+    link: &Link,
+    rot: &LinkPlacement,
+    joint: JointState,
+    parent: &ParentMotion,
+    motion: &JointMotion,
+) -> (LinkMotion, OmegaProducts) {
+    let (mut omega, mut alpha) = angular_motion(g, link, rot, joint, parent);
+    let mut accel = attachment_acceleration(g, link, rot, parent);
+    if let (JointKind::FreeFlyer, Some(base)) = (link.kind, motion.base) {
+        // The free-flyer's velocity and acceleration are its coordinates' (body frame):
+        // ω, ω̇, and the classical acceleration of the origin v̇ + ω × v.
+        let [vx, vy, vz, wx, wy, wz] = base.velocity;
+        let [ax, ay, az, bx, by, bz] = base.acceleration;
+        omega = [wx, wy, wz];
+        alpha = [bx, by, bz];
+        let transport = g.cross(omega, [vx, vy, vz]);
+        accel = g.vadd(accel, [ax, ay, az]);
+        accel = g.vadd(accel, transport);
+    }
+    if let Some((JointKind::Prismatic, q, qd, qdd)) = joint {
+        accel = sliding_acceleration(g, link, (omega, alpha, accel), (q, qd, qdd));
+    }
+
+    // (3.34): a_{c,i} = a_i + α_i × r_{i−1,ci} + ω_i × (ω_i × r_{i−1,ci}).
+    let own_products = OmegaProducts::new(g, omega);
+    let c = link.com;
+    let tangential = g.cross(alpha, c);
+    let centripetal = own_products.centripetal(g, c);
+    let accel_com = {
+        let a = g.vadd(accel, tangential);
+        g.vadd(a, centripetal)
+    };
+    let own = LinkMotion {
+        omega,
+        alpha,
+        accel,
+        accel_com,
+    };
+    (own, own_products)
+}
+
+/// ω_i of (3.26) and α_i of (3.30): the parent's, rotated into frame i, plus the revolute
+/// joint's spin.
+fn angular_motion(
+    g: &mut ExprGraph,
+    link: &Link,
+    rot: &LinkPlacement,
+    joint: JointState,
+    parent: &ParentMotion,
+) -> (Vec3, Vec3) {
+    // (3.26): ω_i = (R_i^{i−1})ᵀ ω_{i−1} + b_i q̇_i.
+    let mut omega = rot.to_child(g, parent.omega);
+    let mut alpha = rot.to_child(g, parent.alpha);
+    if let Some((JointKind::Revolute, _, qd, qdd)) = joint {
+        let spin = g.vscale(qd, link.axis);
+        omega = g.vadd(omega, spin);
+        // (3.30): α_i = (R_i^{i−1})ᵀ α_{i−1} + b_i q̈_i + ω_i × b_i q̇_i.
+        let spin_up = g.vscale(qdd, link.axis);
+        let gyroscopic = g.cross(omega, spin);
+        alpha = g.vadd(alpha, spin_up);
+        alpha = g.vadd(alpha, gyroscopic);
+    }
+    (omega, alpha)
+}
+
+/// (3.35) evaluated in the parent for the point where link i is attached, then rotated into
+/// frame i: the (R_i^{i−1})ᵀ a_{e,i−1} of (3.34).
+fn attachment_acceleration(
+    g: &mut ExprGraph,
+    link: &Link,
+    rot: &LinkPlacement,
+    parent: &ParentMotion,
+) -> Vec3 {
+    let s = link.translation;
+    let tangential = g.cross(parent.alpha, s);
+    let centripetal = parent.products.centripetal(g, s);
+    let attach_accel = {
+        let a = g.vadd(parent.accel, tangential);
+        g.vadd(a, centripetal)
+    };
+    rot.to_child(g, attach_accel)
+}
+
+/// The acceleration `accel` of a prismatic link's origin plus its slide: the joint moves the
+/// body origin by u q along u, so the same rigid-motion terms for that offset, plus the
+/// relative acceleration u q̈ and Coriolis 2 ω × u q̇.
+fn sliding_acceleration(
+    g: &mut ExprGraph,
+    link: &Link,
+    (omega, alpha, accel): (Vec3, Vec3, Vec3),
+    (q, qd, qdd): (Id, Id, Id),
+) -> Vec3 {
+    let offset = g.vscale(q, link.axis);
+    let rate = g.vscale(qd, link.axis);
+    let tangential = g.cross(alpha, offset);
+    let centripetal = OmegaProducts::new(g, omega).centripetal(g, offset);
+    let omega_rate = g.cross(omega, rate);
+    let two = g.constant(2.0);
+    let coriolis = g.vscale(two, omega_rate);
+    let relative = g.vscale(qdd, link.axis);
+    let mut accel = accel;
+    for term in [tangential, centripetal, coriolis, relative] {
+        accel = g.vadd(accel, term);
+    }
+    accel
+}
+
+/// The force and the moment about its origin that link i's own motion needs, the terms of
+/// (3.21) and (3.24) before its children's reactions are added.
+fn own_load(
+    g: &mut ExprGraph,
+    link: &Link,
+    own: &LinkMotion,
+    products: &OmegaProducts,
+) -> (Vec3, Vec3) {
+    let LinkMotion {
+        alpha, accel_com, ..
+    } = *own;
+    // (3.21): f_i = Σ_c R_c^i f_c + m_i a_{c,i}   (−m_i g_i is inside a_{c,i}).
+    let inertial_force = g.vscale(link.mass, accel_com);
+    // (3.24): τ_i = Σ_c [R_c^i τ_c + (R_c^i f_c) × r_{i,ci}] − f_i × r_{i−1,ci}
+    //             + ω_i × (I_i ω_i) + I_i α_i.
+    // With f_i substituted from (3.21) and the cross products regrouped as the thesis
+    // does for the planar elbow in (4.36)–(4.41) (r_{i,ci} − r_{i−1,ci} = −r_{i−1,i}):
+    //   τ_i = Σ_c [R_c^i τ_c + r_{i−1,c} × R_c^i f_c] + r_{i−1,ci} × m_i a_{c,i}
+    //         + ω_i × (I_i ω_i) + I_i α_i,
+    // where r_{i−1,c} is the point where child c is attached. Same torque, fewer
+    // products: the attachment points are sparse where the COM is not.
+    let gyroscopic = products.gyroscopic(g, &link.inertia);
+    let i_alpha = g.mat_vec(&link.inertia, alpha);
+    let own_moment = g.cross(link.com, inertial_force);
+    let torque = g.vadd(gyroscopic, i_alpha);
+    (inertial_force, g.vadd(torque, own_moment))
 }
 
 /// The backward recursion of (3.21) and (3.24), leaves first (children always come after their

@@ -1,11 +1,24 @@
-//! Functions stay short: none in rne-codegen-core, the macro, the simulator (rne-sim) or the
-//! stress cases (rne-stress) is longer than [`LIMIT`] lines, so that each stage of the
-//! pipeline, each integrator and each report reads top to bottom on one screen.
+//! Functions stay short: no function of the workspace's sources is longer than [`LIMIT`]
+//! lines, so that each stage of the pipeline, each pass of a recursion, each integrator and
+//! each report reads top to bottom on one screen.
+//!
+//! Covered: every member crate of the workspace (read from the root `Cargo.toml`, so a new
+//! crate is covered when it joins) — its library and binary sources (`src/`), its `build.rs`,
+//! its benchmarks (`benches/`) and its examples (`examples/`). Not covered: integration tests
+//! (`tests/` directories), whose table-like checks may run longer; and, for now, the JIT crate
+//! `rne-codegen/jit`, whose `JitModel::compile_at` is still longer than the limit — split it,
+//! then delete [`NOT_YET_COVERED`].
 
 use std::path::{Path, PathBuf};
 
 /// The most lines a function may span, its signature and closing brace included.
 const LIMIT: usize = 80;
+
+/// Member crates not yet held to [`LIMIT`] (paths relative to the workspace root).
+const NOT_YET_COVERED: [&str; 1] = ["rne-codegen/jit"];
+
+/// The directories of a member crate whose Rust files are covered.
+const COVERED_DIRECTORIES: [&str; 3] = ["src", "benches", "examples"];
 
 /// The Rust files under `dir`.
 fn sources(dir: &Path, found: &mut Vec<PathBuf>) {
@@ -92,21 +105,68 @@ fn long_functions(text: &str) -> Vec<(usize, String, usize)> {
     long
 }
 
+/// The paths of the workspace's member crates, relative to its root, as the `members` list of
+/// its manifest `manifest` names them.
+fn members(manifest: &str) -> Vec<String> {
+    let Some(start) = manifest.find("members = [") else {
+        return Vec::new();
+    };
+    let list = &manifest[start + "members = [".len()..];
+    let list = &list[..list.find(']').unwrap_or(list.len())];
+    list.split(',')
+        .map(|entry| entry.trim().trim_matches('"').to_owned())
+        .filter(|entry| !entry.is_empty())
+        .collect()
+}
+
+/// The covered Rust files of every member crate of the workspace at `root` but those of
+/// [`NOT_YET_COVERED`].
+fn covered_sources(root: &Path) -> Vec<PathBuf> {
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).expect("the root manifest");
+    let members = members(&manifest);
+    assert!(members.len() > 20, "the members are found: {members:?}");
+    let mut files = Vec::new();
+    for member in members
+        .iter()
+        .filter(|m| !NOT_YET_COVERED.contains(&m.as_str()))
+    {
+        let crate_dir = root.join(member);
+        assert!(
+            crate_dir.join("src").is_dir(),
+            "{member} has its sources in src/"
+        );
+        for dir in COVERED_DIRECTORIES {
+            if crate_dir.join(dir).is_dir() {
+                sources(&crate_dir.join(dir), &mut files);
+            }
+        }
+        if crate_dir.join("build.rs").is_file() {
+            files.push(crate_dir.join("build.rs"));
+        }
+    }
+    files
+}
+
 #[test]
 fn no_function_of_the_covered_crates_is_longer_than_the_limit() {
-    let core = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    for dir in [
-        "src",
-        "../macros/src",
-        "../../rne-models/sim/src",
-        "../../rne-models/stress/src",
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let files = covered_sources(&root);
+    assert!(files.len() > 300, "the sources are found: {}", files.len());
+    for (member, file) in [
+        ("rne-codegen/core", "src/module.rs"),
+        ("rne-symbolic", "src/newton_euler.rs"),
+        ("rne-models/cli", "src/stats.rs"),
+        ("examples", "examples/ilqr_swing_up.rs"),
     ] {
-        let before = files.len();
-        sources(&core.join(dir), &mut files);
-        assert!(files.len() > before, "the sources of {dir} are found");
+        let path = root.join(member).join(file);
+        assert!(files.contains(&path), "{} is covered", path.display());
     }
-    assert!(files.len() > 40, "the sources are found: {files:?}");
+    assert!(
+        !files
+            .iter()
+            .any(|f| f.starts_with(root.join(NOT_YET_COVERED[0]))),
+        "the JIT crate is left out until its compile_at is split"
+    );
     let mut report = Vec::new();
     for file in files {
         let text = std::fs::read_to_string(&file).expect("a readable source");
@@ -119,6 +179,14 @@ fn no_function_of_the_covered_crates_is_longer_than_the_limit() {
         "functions longer than {LIMIT} lines (split them into named steps):\n{}",
         report.join("\n")
     );
+}
+
+/// The member list is read from the manifest, entry by entry.
+#[test]
+fn the_members_are_read_from_the_manifest() {
+    let manifest = "[workspace]\nresolver = \"2\"\nmembers = [\n    \"a\",\n    \"b/c\",\n]\n\n[x]\ny = [\"z\"]\n";
+    assert_eq!(members(manifest), vec!["a".to_owned(), "b/c".to_owned()]);
+    assert!(members("[package]\nname = \"p\"\n").is_empty());
 }
 
 /// The scanner measures a function from its signature to its closing brace, past braces in

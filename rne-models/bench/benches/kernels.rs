@@ -145,6 +145,17 @@ fn bench_robot<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
         robot,
         pool: &pool,
     };
+    dynamics(&mut bench, g, &mut reference);
+    coriolis_and_energies(&mut bench, g, &mut reference);
+}
+
+/// Inverse dynamics, M, the bias, forward dynamics and g: the generated kernel beside the
+/// reference's.
+fn dynamics<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
+    bench: &mut Bench<'_, N>,
+    g: &D,
+    reference: &mut Reference,
+) {
     let mut v = [0.0; N];
     let mut m = [[0.0; N]; N];
 
@@ -196,6 +207,14 @@ fn bench_robot<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
             black_box(&v);
         },
     );
+}
+
+/// C (generated only), then the kinetic and potential energies beside the reference's.
+fn coriolis_and_energies<const N: usize, D: Dynamics<N, N, Scalar = f64>>(
+    bench: &mut Bench<'_, N>,
+    g: &D,
+    reference: &mut Reference,
+) {
     bench.generated("coriolis_matrix", |s| g.coriolis_matrix(&s.q, &s.qd));
     bench.compare(
         "kinetic_energy",

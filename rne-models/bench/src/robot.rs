@@ -14,7 +14,7 @@ mod peers;
 use rne_codegen::Kernel;
 use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, Engine as Agreement};
-use rne_interpreted::Interpreted;
+use rne_interpreted::{Interpreted, JointState};
 use rne_jit::{JitModel, Tier};
 use rne_models::BuiltinRobot;
 use rne_symbolic::RobotModel;
@@ -170,20 +170,12 @@ pub fn bench_robot(
         .engines
         .contains(&Engine::Interpreted)
         .then(|| Interpreted::with_kernels(&jit.programs().model, &settings.kernels));
-    let reference_model = &jit.programs().model;
-    let error = |engine: &dyn Agreement, kernel: Kernel| {
-        let agreement = check_kernels(
-            reference_model,
-            settings.scene.friction,
-            engine,
-            &[kernel],
-            &states,
-        )?;
-        Ok(agreement.first().map_or(f64::NAN, |a| a.max_error))
-    };
-    let evaluation = |cause: rne_interpreted::Error| BenchError::Evaluation {
-        robot: source.to_owned(),
-        cause,
+    let bench = Bench {
+        source,
+        settings,
+        jit: &jit,
+        interpreted: interpreted.as_ref(),
+        states: &states,
     };
     let mut kernels = Vec::new();
     for &kernel in &settings.kernels {
@@ -191,53 +183,7 @@ pub fn bench_robot(
             continue;
         }
         progress(&format!("timing {kernel}"));
-        let mut engines = Vec::new();
-        let mut subjects: Vec<Box<dyn Timed + '_>> = Vec::new();
-        let mut errors = Vec::new();
-        if settings.engines.contains(&Engine::Jit) {
-            engines.push(Engine::Jit);
-            subjects.push(calls::jit(&jit, kernel, &states));
-            errors.push(error(&jit, kernel).map_err(evaluation)?);
-        }
-        if let Some(programs) = interpreted.as_ref().filter(|i| i.has(kernel)) {
-            engines.push(Engine::Interpreted);
-            subjects.push(calls::interpreted(programs, kernel, &states));
-            errors.push(error(programs, kernel).map_err(evaluation)?);
-        }
-        let mut times = match settings.builtin {
-            Some(robot) if settings.engines.contains(&Engine::Compiled) => {
-                let run = robot.visit(WithCompiled {
-                    kernel,
-                    others: &mut subjects,
-                    states: &states,
-                    plan: &settings.plan,
-                    error: &|engine| error(engine, kernel),
-                });
-                let mut times = run.others;
-                if let Some((time, e)) = run.compiled {
-                    engines.push(Engine::Compiled);
-                    errors.push(e.map_err(evaluation)?);
-                    times.push(time);
-                }
-                times
-            }
-            _ => {
-                let mut timed: Vec<&mut dyn Timed> = subjects
-                    .iter_mut()
-                    .map(|c| &mut **c as &mut dyn Timed)
-                    .collect();
-                time_interleaved(&mut timed, &settings.plan)
-            }
-        };
-        for ((engine, time), error) in engines.into_iter().zip(times.drain(..)).zip(errors) {
-            kernels.push(KernelTiming {
-                kernel,
-                engine,
-                ns: time.median(),
-                quartiles: Some(time.quartiles()),
-                max_rel_error: Some(error),
-            });
-        }
+        kernels.extend(bench.time_kernel(kernel)?);
     }
     let mut time_to_kernels = TimeToKernels {
         generation_s: timings.generation.as_secs_f64(),
@@ -262,6 +208,98 @@ pub fn bench_robot(
         time_to_kernels,
         kernels,
     })
+}
+
+/// What the timing of every kernel shares: the robot's engines and the seeded states.
+struct Bench<'a> {
+    source: &'a str,
+    settings: &'a RobotBenchSettings,
+    jit: &'a JitModel,
+    interpreted: Option<&'a Interpreted>,
+    states: &'a [JointState],
+}
+
+impl Bench<'_> {
+    /// The largest error of `engine`'s `kernel` against the reference over the states.
+    fn error(&self, engine: &dyn Agreement, kernel: Kernel) -> Result<f64, rne_interpreted::Error> {
+        let agreement = check_kernels(
+            &self.jit.programs().model,
+            self.settings.scene.friction,
+            engine,
+            &[kernel],
+            self.states,
+        )?;
+        Ok(agreement.first().map_or(f64::NAN, |a| a.max_error))
+    }
+
+    /// An engine's failure to evaluate a kernel, as the bench reports it.
+    fn evaluation(&self, cause: rne_interpreted::Error) -> BenchError {
+        BenchError::Evaluation {
+            robot: self.source.to_owned(),
+            cause,
+        }
+    }
+
+    /// `kernel` timed on every engine of the settings that has it, in the same rounds, each
+    /// with its largest error.
+    fn time_kernel(&self, kernel: Kernel) -> Result<Vec<KernelTiming>, BenchError> {
+        let settings = self.settings;
+        let states = self.states;
+        let mut engines = Vec::new();
+        let mut subjects: Vec<Box<dyn Timed + '_>> = Vec::new();
+        let mut errors = Vec::new();
+        if settings.engines.contains(&Engine::Jit) {
+            engines.push(Engine::Jit);
+            subjects.push(calls::jit(self.jit, kernel, states));
+            errors.push(
+                self.error(self.jit, kernel)
+                    .map_err(|e| self.evaluation(e))?,
+            );
+        }
+        if let Some(programs) = self.interpreted.filter(|i| i.has(kernel)) {
+            engines.push(Engine::Interpreted);
+            subjects.push(calls::interpreted(programs, kernel, states));
+            errors.push(
+                self.error(programs, kernel)
+                    .map_err(|e| self.evaluation(e))?,
+            );
+        }
+        let mut times = match settings.builtin {
+            Some(robot) if settings.engines.contains(&Engine::Compiled) => {
+                let run = robot.visit(WithCompiled {
+                    kernel,
+                    others: &mut subjects,
+                    states,
+                    plan: &settings.plan,
+                    error: &|engine| self.error(engine, kernel),
+                });
+                let mut times = run.others;
+                if let Some((time, e)) = run.compiled {
+                    engines.push(Engine::Compiled);
+                    errors.push(e.map_err(|e| self.evaluation(e))?);
+                    times.push(time);
+                }
+                times
+            }
+            _ => {
+                let mut timed: Vec<&mut dyn Timed> = subjects
+                    .iter_mut()
+                    .map(|c| &mut **c as &mut dyn Timed)
+                    .collect();
+                time_interleaved(&mut timed, &settings.plan)
+            }
+        };
+        let timings = engines.into_iter().zip(times.drain(..)).zip(errors);
+        Ok(timings
+            .map(|((engine, time), error)| KernelTiming {
+                kernel,
+                engine,
+                ns: time.median(),
+                quartiles: Some(time.quartiles()),
+                max_rel_error: Some(error),
+            })
+            .collect())
+    }
 }
 
 /// The process's peak resident memory (VmHWM of /proc/self/status), where Linux reports it.

@@ -164,6 +164,8 @@ fn per_joint(name: &str, text: &str, joints: usize) -> Result<Vec<f64>, CliError
     }
 }
 
+/// Designs an excitation trajectory for `reference` (Fourier series, the base parameters
+/// `base` best conditioned), simulates its measurements into `path` and reports it.
 fn excite(
     args: &IdentifyArgs,
     name: &str,
@@ -172,23 +174,7 @@ fn excite(
     path: &Path,
     out: &mut dyn Write,
 ) -> Result<(), CliError> {
-    let n = reference.nv();
-    let limits = Limits {
-        position: per_joint("q-limit", &args.q_limit, n)?,
-        velocity: per_joint("qd-limit", &args.qd_limit, n)?,
-        acceleration: match &args.qdd_limit {
-            Some(text) => per_joint("qdd-limit", text, n)?,
-            None => vec![f64::INFINITY; n],
-        },
-    };
-    let spec = Design {
-        period: args.period,
-        harmonics: args.harmonics,
-        limits,
-        iterations: args.iterations,
-        criterion_states: args.criterion_states,
-        seed: args.seed,
-    };
+    let spec = design_spec(args, reference.nv())?;
     let bar = candidates_bar(candidates(&spec) as u64);
     let excitation = design_with_progress(reference, base, &spec, |k| bar.set_position(k as u64))?;
     bar.finish_and_clear();
@@ -247,6 +233,28 @@ fn excite(
         }
     }
     Ok(())
+}
+
+/// The excitation's design as `args` gives it for `n` joints: the Fourier series' period and
+/// harmonics, the joint limits (no acceleration limit unless given), the search's iterations,
+/// criterion states and seed.
+fn design_spec(args: &IdentifyArgs, n: usize) -> Result<Design, CliError> {
+    let limits = Limits {
+        position: per_joint("q-limit", &args.q_limit, n)?,
+        velocity: per_joint("qd-limit", &args.qd_limit, n)?,
+        acceleration: match &args.qdd_limit {
+            Some(text) => per_joint("qdd-limit", text, n)?,
+            None => vec![f64::INFINITY; n],
+        },
+    };
+    Ok(Design {
+        period: args.period,
+        harmonics: args.harmonics,
+        limits,
+        iterations: args.iterations,
+        criterion_states: args.criterion_states,
+        seed: args.seed,
+    })
 }
 
 /// A progress bar on stderr over the candidate trajectories of the excitation's design

@@ -4,7 +4,7 @@ use std::io::Write;
 
 use clap::{Args, ValueEnum};
 use rne_codegen::Kernel;
-use rne_codegen_core::{generate, GenerationOptions, ParameterMode};
+use rne_codegen_core::{generate, GeneratedModule, GenerationOptions, ParameterMode};
 
 use super::model::ModelOptions;
 use super::CliError;
@@ -51,17 +51,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
     let model = args
         .options
         .load(&source, args.parameters == Parameters::Runtime)?;
-    let mut options = GenerationOptions {
-        outputs: Kernel::ALL.to_vec(),
-        parameters: match args.parameters {
-            Parameters::Constant => ParameterMode::Constant,
-            Parameters::Runtime => ParameterMode::Runtime,
-            Parameters::Base => ParameterMode::Base,
-        },
-        fma: args.fma,
-        derivative_lanes: args.lanes,
-        ..GenerationOptions::default()
-    };
+    let mut options = generation_options(args);
     // Forward dynamics, its derivatives and M⁻¹ are undefined when a joint moves no mass: the
     // other kernels are still generated, and each undefined one is named with the joint.
     let undefined: Vec<(Kernel, String)> = match model.check_mass_matrix_invertible() {
@@ -79,38 +69,78 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
         &options,
         &source.display_name(),
     )?;
+    let name = source.display_name();
     if args.json {
-        let kernels: Vec<serde_json::Value> = module
-            .kernels
-            .iter()
-            .map(|k| {
-                serde_json::json!({
-                    "kernel": k.kernel.name(),
-                    "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
-                    "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "sign": k.ops.sign,
-                    "cost": k.ops.cost(), "critical_path": k.critical_path,
-                    "generation_ms": k.generation_time.as_secs_f64() * 1e3,
-                })
-            })
-            .collect();
-        let report = serde_json::json!({
-            "model": source.display_name(),
-            "dof": module.ndof,
-            "kernels": kernels,
-            "generation_ms": module.generation_time.as_secs_f64() * 1e3,
-            "undefined": undefined.iter().map(|(k, why)| serde_json::json!({
-                "kernel": k.name(), "reason": why,
-            })).collect::<Vec<_>>(),
-            "forward_dynamics_choice": module.forward_dynamics_choice.as_ref().map(|c| serde_json::json!({
-                "aba": {"mul": c.aba.mul, "add": c.aba.add, "cost": c.aba.cost()},
-                "ldlt": {"mul": c.ldlt.mul, "add": c.ldlt.add, "cost": c.ldlt.cost()},
-                "chosen": format!("{:?}", c.chosen).to_lowercase(),
-            })),
-        });
-        writeln!(out, "{report}")?;
-        return Ok(());
+        write_json(out, &name, &module, &undefined)
+    } else {
+        write_table(out, &name, &module, &undefined)
     }
-    writeln!(out, "{} ({} joints)", source.display_name(), module.ndof)?;
+}
+
+/// Every kernel, with the parameter mode, fused multiply-add and derivative lanes `args` asks
+/// for.
+fn generation_options(args: &StatsArgs) -> GenerationOptions {
+    GenerationOptions {
+        outputs: Kernel::ALL.to_vec(),
+        parameters: match args.parameters {
+            Parameters::Constant => ParameterMode::Constant,
+            Parameters::Runtime => ParameterMode::Runtime,
+            Parameters::Base => ParameterMode::Base,
+        },
+        fma: args.fma,
+        derivative_lanes: args.lanes,
+        ..GenerationOptions::default()
+    }
+}
+
+/// The report of `module` (of the robot `name`) as one JSON object, with the kernels left
+/// `undefined` and why.
+fn write_json(
+    out: &mut dyn Write,
+    name: &str,
+    module: &GeneratedModule,
+    undefined: &[(Kernel, String)],
+) -> Result<(), CliError> {
+    let kernels: Vec<serde_json::Value> = module
+        .kernels
+        .iter()
+        .map(|k| {
+            serde_json::json!({
+                "kernel": k.kernel.name(),
+                "mul": k.ops.mul, "add": k.ops.add, "div": k.ops.div, "neg": k.ops.neg,
+                "sin": k.ops.sin, "cos": k.ops.cos, "sqrt": k.ops.sqrt, "sign": k.ops.sign,
+                "cost": k.ops.cost(), "critical_path": k.critical_path,
+                "generation_ms": k.generation_time.as_secs_f64() * 1e3,
+            })
+        })
+        .collect();
+    let report = serde_json::json!({
+        "model": name,
+        "dof": module.ndof,
+        "kernels": kernels,
+        "generation_ms": module.generation_time.as_secs_f64() * 1e3,
+        "undefined": undefined.iter().map(|(k, why)| serde_json::json!({
+            "kernel": k.name(), "reason": why,
+        })).collect::<Vec<_>>(),
+        "forward_dynamics_choice": module.forward_dynamics_choice.as_ref().map(|c| serde_json::json!({
+            "aba": {"mul": c.aba.mul, "add": c.aba.add, "cost": c.aba.cost()},
+            "ldlt": {"mul": c.ldlt.mul, "add": c.ldlt.add, "cost": c.ldlt.cost()},
+            "chosen": format!("{:?}", c.chosen).to_lowercase(),
+        })),
+    });
+    writeln!(out, "{report}")?;
+    Ok(())
+}
+
+/// The report of `module` (of the robot `name`) as a table, a line per kernel, then the
+/// kernels left `undefined` and why, the forward-dynamics choice and the generation time.
+fn write_table(
+    out: &mut dyn Write,
+    name: &str,
+    module: &GeneratedModule,
+    undefined: &[(Kernel, String)],
+) -> Result<(), CliError> {
+    writeln!(out, "{} ({} joints)", name, module.ndof)?;
     writeln!(
         out,
         "{:<28} {:>7} {:>7} {:>5} {:>5} {:>5} {:>5} {:>5} {:>5} {:>7} {:>6} {:>10}",
@@ -146,7 +176,7 @@ pub fn run(args: &StatsArgs, out: &mut dyn Write) -> Result<(), CliError> {
             k.generation_time.as_secs_f64() * 1e3
         )?;
     }
-    for (kernel, why) in &undefined {
+    for (kernel, why) in undefined {
         writeln!(out, "{:<28} undefined: {why}", kernel.name())?;
     }
     if let Some(choice) = &module.forward_dynamics_choice {

@@ -343,6 +343,8 @@ struct Outputs {
     forward: Option<Vec<f64>>,
 }
 
+/// rne's inverse dynamics, M, g, bias and forward dynamics, from the interpreted kernels and
+/// from the reference, against Pinocchio's `pinocchio` at each of its states.
 fn compare(model: &RobotModel, pinocchio: &BaseValues) -> Result<Comparison, String> {
     let map = JointMap::new(model, pinocchio)?;
     let invertible = model.check_mass_matrix_invertible();
@@ -363,17 +365,10 @@ fn compare(model: &RobotModel, pinocchio: &BaseValues) -> Result<Comparison, Str
         (Ok(()), false) => Some("M is singular (Pinocchio)".to_owned()),
         (Ok(()), true) => None,
     };
+    let forward = forward_skipped.is_none();
+    let scales = scales(pinocchio);
     let mut symbolic = Errors::default();
     let mut numeric = Errors::default();
-    let (mut torque_scale, mut mass_scale) = (f64::MIN_POSITIVE, f64::MIN_POSITIVE);
-    for state in &pinocchio.states {
-        for v in [&state.tau, &state.g, &state.bias, &state.tau_fd] {
-            torque_scale = torque_scale.max(max_abs(v));
-        }
-        for row in &state.mass_matrix {
-            mass_scale = mass_scale.max(max_abs(row));
-        }
-    }
     for state in &pinocchio.states {
         let q = map.configuration(state);
         let (v, a, tau) = (
@@ -387,75 +382,11 @@ fn compare(model: &RobotModel, pinocchio: &BaseValues) -> Result<Comparison, Str
             qdd: &a,
             tau: &tau,
         };
-        let eval = |kernel| {
-            interpreted
-                .evaluate(kernel, state_ref)
-                .map_err(|e| e.to_string())
-        };
-        let rows = |flat: Vec<f64>| -> Vec<Vec<f64>> {
-            flat.chunks(interpreted.nv().max(1))
-                .map(<[f64]>::to_vec)
-                .collect()
-        };
-        let from_symbolic = Outputs {
-            tau: eval(Kernel::InverseDynamics)?,
-            mass_matrix: rows(eval(Kernel::MassMatrix)?),
-            gravity: eval(Kernel::GravityTorques)?,
-            bias: eval(Kernel::BiasTorques)?,
-            forward: match forward_skipped {
-                None => Some(eval(Kernel::ForwardDynamics)?),
-                Some(_) => None,
-            },
-        };
-        let numeric_error = |e: rne_reference::ReferenceError| e.to_string();
-        let from_reference = Outputs {
-            tau: reference
-                .inverse_dynamics(&q, &v, &a)
-                .map_err(numeric_error)?
-                .as_slice()
-                .to_vec(),
-            mass_matrix: {
-                let m = reference.mass_matrix(&q).map_err(numeric_error)?;
-                m.row_iter().map(|r| r.iter().copied().collect()).collect()
-            },
-            gravity: reference
-                .gravity_torques(&q)
-                .map_err(numeric_error)?
-                .as_slice()
-                .to_vec(),
-            bias: reference
-                .bias_torques(&q, &v)
-                .map_err(numeric_error)?
-                .as_slice()
-                .to_vec(),
-            forward: match forward_skipped {
-                None => Some(
-                    reference
-                        .forward_dynamics(&q, &v, &tau)
-                        .map_err(numeric_error)?
-                        .as_slice()
-                        .to_vec(),
-                ),
-                Some(_) => None,
-            },
-        };
-        for (outputs, errors) in [
-            (&from_symbolic, &mut symbolic),
-            (&from_reference, &mut numeric),
-        ] {
-            let torque = |rne: &[f64], pin: &[f64]| vector_error(&map, rne, pin) / torque_scale;
-            errors.tau = worst(errors.tau, torque(&outputs.tau, &state.tau));
-            errors.mass_matrix = worst(
-                errors.mass_matrix,
-                matrix_error(&map, &outputs.mass_matrix, &state.mass_matrix) / mass_scale,
-            );
-            errors.gravity = worst(errors.gravity, torque(&outputs.gravity, &state.g));
-            errors.bias = worst(errors.bias, torque(&outputs.bias, &state.bias));
-            if let (Some(qdd), Some(pin_qdd)) = (&outputs.forward, &state.qdd) {
-                let e = forward_error(&map, qdd, state, pin_qdd) / torque_scale;
-                errors.forward = Some(errors.forward.map_or(e, |f| worst(f, e)));
-            }
-        }
+        let from_symbolic = symbolic_outputs(&interpreted, state_ref, forward)?;
+        let from_reference =
+            reference_outputs(&mut reference, state_ref, forward).map_err(|e| e.to_string())?;
+        symbolic.add(&map, &from_symbolic, state, scales);
+        numeric.add(&map, &from_reference, state, scales);
     }
     Ok(Comparison {
         nv: pinocchio.nv,
@@ -466,4 +397,92 @@ fn compare(model: &RobotModel, pinocchio: &BaseValues) -> Result<Comparison, Str
         forward_skipped,
         kernels: Vec::new(),
     })
+}
+
+/// The robot's scales over Pinocchio's states: (the largest |entry| of τ, g, the bias and the
+/// forward dynamics' input forces, the largest |entry| of M).
+fn scales(pinocchio: &BaseValues) -> (f64, f64) {
+    let (mut torque_scale, mut mass_scale) = (f64::MIN_POSITIVE, f64::MIN_POSITIVE);
+    for state in &pinocchio.states {
+        for v in [&state.tau, &state.g, &state.bias, &state.tau_fd] {
+            torque_scale = torque_scale.max(max_abs(v));
+        }
+        for row in &state.mass_matrix {
+            mass_scale = mass_scale.max(max_abs(row));
+        }
+    }
+    (torque_scale, mass_scale)
+}
+
+/// The interpreted symbolic kernels' [`Outputs`] at `state` (forward dynamics when
+/// `forward`).
+fn symbolic_outputs(
+    interpreted: &Interpreted,
+    state: StateRef<'_>,
+    forward: bool,
+) -> Result<Outputs, String> {
+    let eval = |kernel| {
+        interpreted
+            .evaluate(kernel, state)
+            .map_err(|e| e.to_string())
+    };
+    let rows = |flat: Vec<f64>| -> Vec<Vec<f64>> {
+        flat.chunks(interpreted.nv().max(1))
+            .map(<[f64]>::to_vec)
+            .collect()
+    };
+    Ok(Outputs {
+        tau: eval(Kernel::InverseDynamics)?,
+        mass_matrix: rows(eval(Kernel::MassMatrix)?),
+        gravity: eval(Kernel::GravityTorques)?,
+        bias: eval(Kernel::BiasTorques)?,
+        forward: if forward {
+            Some(eval(Kernel::ForwardDynamics)?)
+        } else {
+            None
+        },
+    })
+}
+
+/// The numeric reference's [`Outputs`] at `state` (forward dynamics when `forward`).
+fn reference_outputs(
+    reference: &mut Reference,
+    state: StateRef<'_>,
+    forward: bool,
+) -> Result<Outputs, rne_reference::ReferenceError> {
+    let StateRef { q, qd, qdd, tau } = state;
+    Ok(Outputs {
+        tau: reference.inverse_dynamics(q, qd, qdd)?.as_slice().to_vec(),
+        mass_matrix: {
+            let m = reference.mass_matrix(q)?;
+            m.row_iter().map(|r| r.iter().copied().collect()).collect()
+        },
+        gravity: reference.gravity_torques(q)?.as_slice().to_vec(),
+        bias: reference.bias_torques(q, qd)?.as_slice().to_vec(),
+        forward: if forward {
+            Some(reference.forward_dynamics(q, qd, tau)?.as_slice().to_vec())
+        } else {
+            None
+        },
+    })
+}
+
+impl Errors {
+    /// Takes in the errors of `outputs` against Pinocchio's `state`, relative to `scales`
+    /// (torque, M).
+    fn add(&mut self, map: &JointMap, outputs: &Outputs, state: &State, scales: (f64, f64)) {
+        let (torque_scale, mass_scale) = scales;
+        let torque = |rne: &[f64], pin: &[f64]| vector_error(map, rne, pin) / torque_scale;
+        self.tau = worst(self.tau, torque(&outputs.tau, &state.tau));
+        self.mass_matrix = worst(
+            self.mass_matrix,
+            matrix_error(map, &outputs.mass_matrix, &state.mass_matrix) / mass_scale,
+        );
+        self.gravity = worst(self.gravity, torque(&outputs.gravity, &state.g));
+        self.bias = worst(self.bias, torque(&outputs.bias, &state.bias));
+        if let (Some(qdd), Some(pin_qdd)) = (&outputs.forward, &state.qdd) {
+            let e = forward_error(map, qdd, state, pin_qdd) / torque_scale;
+            self.forward = Some(self.forward.map_or(e, |f| worst(f, e)));
+        }
+    }
 }

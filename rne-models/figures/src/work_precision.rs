@@ -184,47 +184,7 @@ fn draw_panel<DB: DrawingBackend>(
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
     for series in &panel.series {
-        let colour = PALETTE[series.colour % PALETTE.len()];
-        let bar = colour.mix(0.6).stroke_width(1);
-        for p in &series.points {
-            let y = clamp(p.y, floor);
-            if let Some((lo, hi)) = p.x_bar {
-                chart.draw_series(std::iter::once(PathElement::new(
-                    vec![(lo, y), (hi, y)],
-                    bar,
-                )))?;
-            }
-            if let Some((lo, hi)) = p.y_bar {
-                let (lo, hi) = (clamp(lo, floor), clamp(hi, floor));
-                chart.draw_series(std::iter::once(PathElement::new(
-                    vec![(p.x, lo), (p.x, hi)],
-                    bar,
-                )))?;
-            }
-        }
-        if series.joined {
-            let line: Vec<(f64, f64)> = series
-                .points
-                .iter()
-                .map(|p| (p.x, clamp(p.y, floor)))
-                .collect();
-            chart.draw_series(std::iter::once(PathElement::new(
-                line,
-                colour.stroke_width(2),
-            )))?;
-        }
-        for p in &series.points {
-            draw_marker(
-                &mut chart,
-                p.marker,
-                (p.x, clamp(p.y, floor)),
-                colour.filled(),
-            )?;
-        }
-        chart
-            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
-            .label(series.label.as_str())
-            .legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
+        draw_series(&mut chart, series, floor)?;
     }
     let grey = RGBColor(90, 90, 90);
     for (marker, meaning) in &panel.marker_legend {
@@ -235,6 +195,52 @@ fn draw_panel<DB: DrawingBackend>(
             .legend(move |(x, y)| marker_element((x + 8, y), marker, grey.filled()));
     }
     draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// Draws `series` into `chart`: each point's bars, the line joining the points when the
+/// series is joined, the markers, and its legend entry; values below `floor` at it.
+fn draw_series<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    series: &Series,
+    floor: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let colour = PALETTE[series.colour % PALETTE.len()];
+    let bar = colour.mix(0.6).stroke_width(1);
+    for p in &series.points {
+        let y = clamp(p.y, floor);
+        if let Some((lo, hi)) = p.x_bar {
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(lo, y), (hi, y)],
+                bar,
+            )))?;
+        }
+        if let Some((lo, hi)) = p.y_bar {
+            let (lo, hi) = (clamp(lo, floor), clamp(hi, floor));
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(p.x, lo), (p.x, hi)],
+                bar,
+            )))?;
+        }
+    }
+    if series.joined {
+        let line: Vec<(f64, f64)> = series
+            .points
+            .iter()
+            .map(|p| (p.x, clamp(p.y, floor)))
+            .collect();
+        chart.draw_series(std::iter::once(PathElement::new(
+            line,
+            colour.stroke_width(2),
+        )))?;
+    }
+    for p in &series.points {
+        draw_marker(chart, p.marker, (p.x, clamp(p.y, floor)), colour.filled())?;
+    }
+    chart
+        .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+        .label(series.label.as_str())
+        .legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
+    Ok(())
 }
 
 /// A marker of pixel size 5 at the backend coordinate `at`.

@@ -57,6 +57,107 @@ fn column_of(name: &str, sizes: [usize; 4]) -> Option<Option<(usize, usize)>> {
     })
 }
 
+/// The error of `file` at `line` (and `column`, its position and name).
+fn data_error(
+    file: &Path,
+    line: usize,
+    column: Option<(usize, String)>,
+    message: String,
+) -> IdentifyError {
+    IdentifyError::Data {
+        file: file.to_path_buf(),
+        line,
+        column,
+        message,
+    }
+}
+
+/// Where each of the header's columns `names` (on line `header_line` of `file`) goes, as
+/// [`column_of`] says, for data of `sizes` entries per signal: every column known, none twice,
+/// none of the signals' columns missing.
+fn slots(
+    file: &Path,
+    header_line: usize,
+    names: &[&str],
+    sizes: [usize; 4],
+) -> Result<Vec<Option<(usize, usize)>>, IdentifyError> {
+    let error = |column, message| data_error(file, header_line, column, message);
+    let expected = expected_header(sizes);
+    let joints = sizes[1];
+    let mut slots = Vec::with_capacity(names.len());
+    let mut seen: Vec<Vec<bool>> = sizes.iter().map(|&n| vec![false; n]).collect();
+    for (k, name) in names.iter().enumerate() {
+        let column = Some((k + 1, (*name).to_owned()));
+        let slot = column_of(name, sizes).ok_or_else(|| {
+            error(
+                column.clone(),
+                format!("unknown column for a {joints}-joint model; expected {expected}"),
+            )
+        })?;
+        if let Some((s, j)) = slot {
+            if std::mem::replace(&mut seen[s][j], true) {
+                return Err(error(column, "duplicate column".into()));
+            }
+        } else if slots.contains(&None) {
+            return Err(error(column, "duplicate column".into()));
+        }
+        slots.push(slot);
+    }
+    let missing: Vec<String> = (0..sizes[0].max(joints))
+        .flat_map(|j| (0..4).map(move |s| (j, s)))
+        .filter(|&(j, s)| j < sizes[s] && !seen[s][j])
+        .map(|(j, s)| format!("{}{}", SIGNALS[s], j + 1))
+        .collect();
+    if !missing.is_empty() {
+        return Err(error(
+            None,
+            format!("missing columns {}", missing.join(", ")),
+        ));
+    }
+    Ok(slots)
+}
+
+/// The sample on line `line` of `file`, `text`, its fields going to `slots` (the header's
+/// columns `names`) of data of `sizes` entries per signal: as many fields as columns, each a
+/// finite number.
+fn parse_sample(
+    file: &Path,
+    (line, text): (usize, &str),
+    names: &[&str],
+    slots: &[Option<(usize, usize)>],
+    sizes: [usize; 4],
+) -> Result<Sample, IdentifyError> {
+    let error = |column, message| data_error(file, line, column, message);
+    let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+    if fields.len() != names.len() {
+        return Err(error(
+            None,
+            format!("{} fields, the header has {}", fields.len(), names.len()),
+        ));
+    }
+    let mut sample = Sample {
+        t: None,
+        q: vec![0.0; sizes[0]],
+        qd: vec![0.0; sizes[1]],
+        qdd: vec![0.0; sizes[2]],
+        tau: vec![0.0; sizes[3]],
+    };
+    for (k, (field, slot)) in fields.iter().zip(slots).enumerate() {
+        let column = || Some((k + 1, names[k].to_owned()));
+        let value: f64 = field
+            .parse()
+            .map_err(|_| error(column(), format!("`{field}` is not a number")))?;
+        if !value.is_finite() {
+            return Err(error(column(), format!("`{field}` is not finite")));
+        }
+        match *slot {
+            None => sample.t = Some(value),
+            Some((s, j)) => sample.signal_mut(s)[j] = value,
+        }
+    }
+    Ok(sample)
+}
+
 impl Measurements {
     /// Reads the CSV file `path` of data for `joints` joints (a fixed base).
     pub fn read(path: &Path, joints: usize) -> Result<Measurements, IdentifyError> {
@@ -91,93 +192,29 @@ impl Measurements {
         joints: usize,
     ) -> Result<Measurements, IdentifyError> {
         let sizes = [positions, joints, joints, joints];
-        let error =
-            |line: usize, column: Option<(usize, String)>, message: String| IdentifyError::Data {
-                file: file.to_path_buf(),
-                line,
-                column,
-                message,
-            };
         let mut lines = text
             .lines()
             .enumerate()
             .map(|(k, l)| (k + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-        let expected = expected_header(sizes);
         let (header_line, header) = lines.next().ok_or_else(|| {
-            error(
+            let expected = expected_header(sizes);
+            data_error(
+                file,
                 1,
                 None,
                 format!("no header; expected the columns {expected}"),
             )
         })?;
         let names: Vec<&str> = header.split(',').map(str::trim).collect();
-        let mut slots = Vec::with_capacity(names.len());
-        let mut seen: Vec<Vec<bool>> = sizes.iter().map(|&n| vec![false; n]).collect();
-        for (k, name) in names.iter().enumerate() {
-            let column = Some((k + 1, (*name).to_owned()));
-            let slot = column_of(name, sizes).ok_or_else(|| {
-                error(
-                    header_line,
-                    column.clone(),
-                    format!("unknown column for a {joints}-joint model; expected {expected}"),
-                )
-            })?;
-            if let Some((s, j)) = slot {
-                if std::mem::replace(&mut seen[s][j], true) {
-                    return Err(error(header_line, column, "duplicate column".into()));
-                }
-            } else if slots.contains(&None) {
-                return Err(error(header_line, column, "duplicate column".into()));
-            }
-            slots.push(slot);
-        }
-        let missing: Vec<String> = (0..positions.max(joints))
-            .flat_map(|j| (0..4).map(move |s| (j, s)))
-            .filter(|&(j, s)| j < sizes[s] && !seen[s][j])
-            .map(|(j, s)| format!("{}{}", SIGNALS[s], j + 1))
-            .collect();
-        if !missing.is_empty() {
-            return Err(error(
-                header_line,
-                None,
-                format!("missing columns {}", missing.join(", ")),
-            ));
-        }
+        let slots = slots(file, header_line, &names, sizes)?;
         let mut samples = Vec::new();
         for (line, text) in lines {
-            let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-            if fields.len() != names.len() {
-                return Err(error(
-                    line,
-                    None,
-                    format!("{} fields, the header has {}", fields.len(), names.len()),
-                ));
-            }
-            let mut sample = Sample {
-                t: None,
-                q: vec![0.0; positions],
-                qd: vec![0.0; joints],
-                qdd: vec![0.0; joints],
-                tau: vec![0.0; joints],
-            };
-            for (k, (field, slot)) in fields.iter().zip(&slots).enumerate() {
-                let column = || Some((k + 1, names[k].to_owned()));
-                let value: f64 = field
-                    .parse()
-                    .map_err(|_| error(line, column(), format!("`{field}` is not a number")))?;
-                if !value.is_finite() {
-                    return Err(error(line, column(), format!("`{field}` is not finite")));
-                }
-                match *slot {
-                    None => sample.t = Some(value),
-                    Some((s, j)) => sample.signal_mut(s)[j] = value,
-                }
-            }
-            samples.push(sample);
+            samples.push(parse_sample(file, (line, text), &names, &slots, sizes)?);
         }
         if samples.is_empty() {
-            return Err(error(
+            return Err(data_error(
+                file,
                 header_line,
                 None,
                 "no samples after the header".into(),

@@ -180,7 +180,7 @@ impl Expected {
         kernel: Kernel,
         state: StateRef<'_>,
     ) -> Result<(Vec<f64>, Vec<f64>), Error> {
-        let StateRef { q, qd, qdd, tau } = state;
+        let StateRef { q, qd, qdd, .. } = state;
         let reference = &mut self.reference;
         let value = |kernel| engine.evaluate(kernel, state);
         let nv = reference.nv();
@@ -199,16 +199,49 @@ impl Expected {
             }
             Kernel::GravityTorques => (value(kernel)?, vector(reference.gravity_torques(q)?)),
             Kernel::BiasTorques => (value(kernel)?, vector(reference.bias_torques(q, qd)?)),
-            Kernel::ForwardDynamics => {
-                let m = reference.mass_matrix(q)?;
-                let expected = reference.forward_dynamics(q, qd, tau)?;
-                in_force_space(&m, &value(kernel)?, expected.as_slice(), 1)
-            }
             Kernel::KineticEnergy => (value(kernel)?, vec![reference.kinetic_energy(q, qd)?]),
             Kernel::PotentialEnergy => (value(kernel)?, vec![reference.potential_energy(q)?]),
             Kernel::InverseDynamicsDerivatives => {
                 let (dq, dv) = reference.inverse_dynamics_derivatives(q, qd, qdd)?;
                 (value(kernel)?, [rows(&dq), rows(&dv)].concat())
+            }
+            Kernel::ForwardDynamics
+            | Kernel::ForwardDynamicsDerivatives
+            | Kernel::MassMatrixInverse => self.force_space_pair(engine, kernel, state)?,
+            Kernel::FramePlacements | Kernel::FrameJacobians | Kernel::FrameJacobianDotQd => {
+                self.frames_pair(engine, kernel, state)?
+            }
+            Kernel::FrictionTorques => (value(kernel)?, vector(reference.friction_torques(qd)?)),
+            Kernel::Regressor => (value(kernel)?, rows(&reference.regressor(q, qd, qdd)?)),
+            Kernel::BaseRegressor | Kernel::BaseParameters => {
+                let base = engine.base_parameters(&self.standard)?;
+                let y = DMatrix::from_row_slice(nv, base.len(), &value(Kernel::BaseRegressor)?);
+                let product = y * DVector::from_vec(base);
+                (
+                    vector(product),
+                    vector(reference.inverse_dynamics(q, qd, qdd)?),
+                )
+            }
+            other => return Err(Error::MissingKernel { kernel: other }),
+        })
+    }
+
+    /// [`Expected::pair`] of a kernel whose output is M⁻¹ x: forward dynamics, its
+    /// derivatives and M⁻¹, compared in force space.
+    fn force_space_pair(
+        &mut self,
+        engine: &dyn Engine,
+        kernel: Kernel,
+        state: StateRef<'_>,
+    ) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let StateRef { q, qd, tau, .. } = state;
+        let reference = &mut self.reference;
+        let value = |kernel| engine.evaluate(kernel, state);
+        Ok(match kernel {
+            Kernel::ForwardDynamics => {
+                let m = reference.mass_matrix(q)?;
+                let expected = reference.forward_dynamics(q, qd, tau)?;
+                in_force_space(&m, &value(kernel)?, expected.as_slice(), 1)
             }
             Kernel::ForwardDynamicsDerivatives => {
                 let m = reference.mass_matrix(q)?;
@@ -226,6 +259,22 @@ impl Expected {
                 let inverse = reference.forward_dynamics_derivatives(q, qd, tau)?;
                 in_force_space(&m, &value(kernel)?, &rows(&inverse.mass_matrix_inverse), 1)
             }
+            other => return Err(Error::MissingKernel { kernel: other }),
+        })
+    }
+
+    /// [`Expected::pair`] of a kinematics kernel: the engine's frames' placements (rotation
+    /// row-major, then origin), Jacobians or J̇ q̇, one frame after the other.
+    fn frames_pair(
+        &mut self,
+        engine: &dyn Engine,
+        kernel: Kernel,
+        state: StateRef<'_>,
+    ) -> Result<(Vec<f64>, Vec<f64>), Error> {
+        let StateRef { q, qd, .. } = state;
+        let reference = &mut self.reference;
+        let value = |kernel| engine.evaluate(kernel, state);
+        Ok(match kernel {
             Kernel::FramePlacements => {
                 let placements = reference.frame_placements(q)?;
                 let expected = self.frames.iter().flat_map(|&f| {
@@ -246,17 +295,6 @@ impl Expected {
                 let jdot = reference.frame_jacobian_dot_qd(q, qd)?;
                 let expected = self.frames.iter().flat_map(|&f| jdot[f].iter().copied());
                 (value(kernel)?, expected.collect())
-            }
-            Kernel::FrictionTorques => (value(kernel)?, vector(reference.friction_torques(qd)?)),
-            Kernel::Regressor => (value(kernel)?, rows(&reference.regressor(q, qd, qdd)?)),
-            Kernel::BaseRegressor | Kernel::BaseParameters => {
-                let base = engine.base_parameters(&self.standard)?;
-                let y = DMatrix::from_row_slice(nv, base.len(), &value(Kernel::BaseRegressor)?);
-                let product = y * DVector::from_vec(base);
-                (
-                    vector(product),
-                    vector(reference.inverse_dynamics(q, qd, qdd)?),
-                )
             }
             other => return Err(Error::MissingKernel { kernel: other }),
         })

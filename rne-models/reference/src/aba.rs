@@ -90,6 +90,14 @@ fn articulated_body<T: RealField + Copy>(
     friction: bool,
     qdd: &mut [T],
 ) {
+    velocity_pass(model, data, q, v);
+    articulated_pass(model, data, v, tau, friction);
+    acceleration_pass(model, data, tau, qdd);
+}
+
+/// The first forward pass: each body's transform from its parent, velocity v_i, velocity
+/// product c_i, rigid inertia as I_i^A and bias force p_i^A = v_i ×* I_i v_i.
+fn velocity_pass<T: RealField + Copy>(model: &Model<T>, data: &mut Data<T>, q: &[T], v: &[T]) {
     let layout = &model.layout;
     for (i, body) in model.bodies.iter().enumerate() {
         let x = body.transform(layout, q);
@@ -105,6 +113,19 @@ fn articulated_body<T: RealField + Copy>(
         data.transforms[i] = x;
         data.velocities[i] = velocity;
     }
+}
+
+/// The backward pass: U_i, D_i (armature included) and u_i (less the joint friction when
+/// `friction` is set) of each driven body, and its articulated inertia and bias force
+/// carried to its parent.
+fn articulated_pass<T: RealField + Copy>(
+    model: &Model<T>,
+    data: &mut Data<T>,
+    v: &[T],
+    tau: &[T],
+    friction: bool,
+) {
+    let layout = &model.layout;
     for (i, body) in model.bodies.iter().enumerate().rev() {
         let (inertia, bias) = match (body.motion, body.drive) {
             (Motion::Revolute | Motion::Prismatic, Some(drive)) => {
@@ -133,6 +154,17 @@ fn articulated_body<T: RealField + Copy>(
             data.forces[p] += x.transpose_apply_force(&bias);
         }
     }
+}
+
+/// The second forward pass: each body's acceleration a_i and its joint's q̈_i into `qdd`
+/// (a free-flyer root's by its 6×6 system).
+fn acceleration_pass<T: RealField + Copy>(
+    model: &Model<T>,
+    data: &mut Data<T>,
+    tau: &[T],
+    qdd: &mut [T],
+) {
+    let layout = &model.layout;
     let world_acceleration = spatial(Vector3::zeros(), -model.gravity);
     for (i, body) in model.bodies.iter().enumerate() {
         let parent_acceleration = match body.parent {

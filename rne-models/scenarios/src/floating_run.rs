@@ -92,6 +92,28 @@ pub(crate) fn quadruped_in_space_scenario(name: &str) -> Result<Outcome, Scenari
 fn outcome(name: &str, s: &Samples, stats: &Stats) -> Outcome {
     let h0 = s.momentum[0];
     let drift: Vec<f64> = s.momentum.iter().map(|h| h.max_difference(&h0)).collect();
+    let findings = findings(s, stats, &drift);
+    Outcome {
+        scenario: name.to_owned(),
+        tables: vec![Table {
+            file: format!("{name}.csv"),
+            csv: csv(s),
+        }],
+        figures: vec![Figure {
+            file: name.to_owned(),
+            title:
+                "The quadruped swinging its legs in zero gravity (Lie-group variational, h = 1 ms)"
+                    .into(),
+            panels: panels(s, &drift),
+        }],
+        findings,
+    }
+}
+
+/// The findings of a run: the momentum's largest drift `drift` from h(0) and h(0) itself, how
+/// far the trunk travels and turns, the largest joint angle, and the integrator's work.
+fn findings(s: &Samples, stats: &Stats, drift: &[f64]) -> Vec<Finding> {
+    let h0 = s.momentum[0];
     let largest_drift = drift.iter().copied().fold(0.0, f64::max);
     let travel = s
         .position
@@ -104,7 +126,7 @@ fn outcome(name: &str, s: &Samples, stats: &Stats) -> Outcome {
         .iter()
         .flat_map(|q| q.iter().map(|x| x.abs()))
         .fold(0.0, f64::max);
-    let findings = vec![
+    vec![
         Finding::new(
             "max over t ≤ 10 s of |h(t) − h(0)|, every component of the linear (kg·m/s) and \
              angular (kg·m²/s) momentum about the world origin",
@@ -127,7 +149,12 @@ fn outcome(name: &str, s: &Samples, stats: &Stats) -> Outcome {
             format!("{}, {}", stats.steps, stats.iterations),
             "—",
         ),
-    ];
+    ]
+}
+
+/// The figure's panels: the trunk's position and rotation, the joint angles, and the
+/// momentum's drift `drift` on a logarithmic axis.
+fn panels(s: &Samples, drift: &[f64]) -> Vec<Panel> {
     let positions = ["x", "y", "z"].iter().enumerate().map(|(i, axis)| {
         Curve::new(
             format!("trunk {axis}"),
@@ -160,21 +187,7 @@ fn outcome(name: &str, s: &Samples, stats: &Stats) -> Outcome {
             drift.iter().map(|d| d.max(DRIFT_FLOOR)),
         )],
     );
-    Outcome {
-        scenario: name.to_owned(),
-        tables: vec![Table {
-            file: format!("{name}.csv"),
-            csv: csv(s),
-        }],
-        figures: vec![Figure {
-            file: name.to_owned(),
-            title:
-                "The quadruped swinging its legs in zero gravity (Lie-group variational, h = 1 ms)"
-                    .into(),
-            panels: vec![trunk, legs, conservation],
-        }],
-        findings,
-    }
+    vec![trunk, legs, conservation]
 }
 
 /// `t, x, y, z, turn, q1 … q8` (the joints in the order of `JOINTS`)`, px, py, pz, Lx, Ly, Lz`

@@ -83,7 +83,22 @@ pub(crate) fn double_pendulum(name: &str, options: &RunOptions) -> Result<Outcom
     let b = run_with(options, "release from q1 = 1e-6", &solver, |i| {
         released([PERTURBED_Q1, 0.0], i, &times)
     })?;
-    let gap = separation(&a, &b);
+    let findings = release_findings(&a, &b);
+    Ok(Outcome {
+        scenario: name.to_owned(),
+        tables: vec![
+            Table::of(format!("{name}-from-zero.csv"), &a),
+            Table::of(format!("{name}-from-1e-6.csv"), &b),
+        ],
+        figures: release_figures(name, &a, &b),
+        findings,
+    })
+}
+
+/// The findings of figures 6.4–6.7: how soon the releases `a` (from q = 0) and `b` (from
+/// q₁ = 1e-6) part, when each link first flips over, and their energy drift.
+fn release_findings(a: &Record<2>, b: &Record<2>) -> Vec<Finding> {
+    let gap = separation(a, b);
     let early = gap
         .iter()
         .zip(&a.t)
@@ -98,7 +113,7 @@ pub(crate) fn double_pendulum(name: &str, options: &RunOptions) -> Result<Outcom
             seconds(first_flip(r, 1), "none")
         )
     };
-    let findings = vec![
+    vec![
         Finding::new(
             "largest separation max |qᵃ − qᵇ| over the first 2 s",
             format!("{early:.1e} rad"),
@@ -109,14 +124,19 @@ pub(crate) fn double_pendulum(name: &str, options: &RunOptions) -> Result<Outcom
             seconds(apart, "never"),
             "“widely different results” (figures 6.4, 6.5)",
         ),
-        Finding::new("first flip (|qᵢ − qᵢ(0)| > π), from q = 0", flips(&a), "—"),
-        Finding::new("first flip, from q₁ = 1e-6", flips(&b), "—"),
+        Finding::new("first flip (|qᵢ − qᵢ(0)| > π), from q = 0", flips(a), "—"),
+        Finding::new("first flip, from q₁ = 1e-6", flips(b), "—"),
         Finding::new(
             "energy drift max |E − E(0)|, ode45 setting (rtol 1e-10), 70 s",
             format!("{:.1e} J, {:.1e} J", a.energy_drift(), b.energy_drift()),
             "“stays constantly zero” (figure 6.8)",
         ),
-    ];
+    ]
+}
+
+/// Figures 6.4–6.7 of the releases `a` (from q = 0) and `b` (from q₁ = 1e-6): each run, the
+/// first 20 s of `a`, and their divergence.
+fn release_figures(name: &str, a: &Record<2>, b: &Record<2>) -> Vec<Figure> {
     let t = &a.t;
     let divergence = Figure {
         file: format!("fig6.4-6.5-{name}-divergence"),
@@ -140,32 +160,24 @@ pub(crate) fn double_pendulum(name: &str, options: &RunOptions) -> Result<Outcom
             ),
         ],
     };
-    Ok(Outcome {
-        scenario: name.to_owned(),
-        tables: vec![
-            Table::of(format!("{name}-from-zero.csv"), &a),
-            Table::of(format!("{name}-from-1e-6.csv"), &b),
-        ],
-        figures: vec![
-            Figure {
-                file: format!("fig6.4-{name}-from-zero"),
-                title: "Figures 6.4 and 6.7 — Pendulum released from q = 0, 70 s".into(),
-                panels: vec![joint_angles(&a, None)],
-            },
-            Figure {
-                file: format!("fig6.5-{name}-from-1e-6"),
-                title: "Figure 6.5 — Pendulum released from q1 = 0.000001, q2 = 0, 70 s".into(),
-                panels: vec![joint_angles(&b, None)],
-            },
-            Figure {
-                file: format!("fig6.6-{name}-first-20-s"),
-                title: "Figure 6.6 — Joint movements the first 20 seconds (from q = 0)".into(),
-                panels: vec![joint_angles_until(&a, None, 20.0)],
-            },
-            divergence,
-        ],
-        findings,
-    })
+    vec![
+        Figure {
+            file: format!("fig6.4-{name}-from-zero"),
+            title: "Figures 6.4 and 6.7 — Pendulum released from q = 0, 70 s".into(),
+            panels: vec![joint_angles(a, None)],
+        },
+        Figure {
+            file: format!("fig6.5-{name}-from-1e-6"),
+            title: "Figure 6.5 — Pendulum released from q1 = 0.000001, q2 = 0, 70 s".into(),
+            panels: vec![joint_angles(b, None)],
+        },
+        Figure {
+            file: format!("fig6.6-{name}-first-20-s"),
+            title: "Figure 6.6 — Joint movements the first 20 seconds (from q = 0)".into(),
+            panels: vec![joint_angles_until(a, None, 20.0)],
+        },
+        divergence,
+    ]
 }
 
 /// Figure 6.8: the energy of the release from q = 0, at tight tolerance and at the thesis's,
@@ -191,61 +203,7 @@ pub(crate) fn release_energy(name: &str, options: &RunOptions) -> Result<Outcome
         &Rk4::new(GAUSS_LEGENDRE_STEP),
         |i| released([0.0, 0.0], i, &long_times),
     )?;
-    let drift_until = |r: &Record<2>, t_end: f64| {
-        let n = r.t.partition_point(|&t| t <= t_end);
-        r.total[..n]
-            .iter()
-            .map(|e| (e - r.total[0]).abs())
-            .fold(0.0, f64::max)
-    };
-    let half = long.len() / 2;
-    let worst = |e: &[f64]| {
-        e.iter()
-            .map(|e| (e - long.total[0]).abs())
-            .fold(0.0, f64::max)
-    };
-    let (first, second) = (worst(&long.total[..half]), worst(&long.total[half..]));
-    let exchanged = r.kinetic.iter().copied().fold(0.0, f64::max);
-    let findings = vec![
-        Finding::new(
-            "total energy E(0)",
-            format!("{:.3e} J", r.total[0]),
-            "zero by definition",
-        ),
-        Finding::new(
-            "largest kinetic energy (energy exchanged)",
-            format!("{exchanged:.2} J"),
-            "—",
-        ),
-        Finding::new(
-            "energy drift over 20 s, Dormand–Prince rtol 1e-12 sampled at its steps",
-            format!("{:.1e} J", drift_until(&r, 20.0)),
-            "“stays constantly zero for all time”",
-        ),
-        Finding::new(
-            "energy drift over 70 s, same",
-            format!("{:.1e} J", r.energy_drift()),
-            "“stays constantly zero for all time”",
-        ),
-        Finding::new(
-            "energy drift over 70 s, ode45's method at rtol 1e-10, dense output",
-            format!("{:.1e} J", ode45.energy_drift()),
-            "—",
-        ),
-        Finding::new(
-            format!(
-                "Gauss–Legendre (order 4, h = {} ms), largest |E − E(0)| over 0–500 s and 500–1000 s",
-                GAUSS_LEGENDRE_STEP * 1e3
-            ),
-            format!("{first:.1e} J and {second:.1e} J: bounded, no secular growth"),
-            "—",
-        ),
-        Finding::new(
-            "RK4 at the same step (not symplectic), E(1000 s) − E(0)",
-            format!("{:.1e} J: a secular drift", rk4.total[rk4.len() - 1] - rk4.total[0]),
-            "—",
-        ),
-    ];
+    let findings = energy_findings(&r, &ode45, &long, &rk4);
     Ok(Outcome {
         scenario: name.to_owned(),
         tables: vec![
@@ -273,6 +231,72 @@ pub(crate) fn release_energy(name: &str, options: &RunOptions) -> Result<Outcome
         ],
         findings,
     })
+}
+
+/// The findings of figure 6.8: the energy exchanged and the drift of the release at tight
+/// tolerance (`r`), at the thesis's (`ode45`), and over 1000 s with the symplectic integrator
+/// (`long`) and with RK4 at the same step (`rk4`).
+fn energy_findings(
+    r: &Record<2>,
+    ode45: &Record<2>,
+    long: &Record<2>,
+    rk4: &Record<2>,
+) -> Vec<Finding> {
+    let drift_until = |r: &Record<2>, t_end: f64| {
+        let n = r.t.partition_point(|&t| t <= t_end);
+        r.total[..n]
+            .iter()
+            .map(|e| (e - r.total[0]).abs())
+            .fold(0.0, f64::max)
+    };
+    let half = long.len() / 2;
+    let worst = |e: &[f64]| {
+        e.iter()
+            .map(|e| (e - long.total[0]).abs())
+            .fold(0.0, f64::max)
+    };
+    let (first, second) = (worst(&long.total[..half]), worst(&long.total[half..]));
+    let exchanged = r.kinetic.iter().copied().fold(0.0, f64::max);
+    vec![
+        Finding::new(
+            "total energy E(0)",
+            format!("{:.3e} J", r.total[0]),
+            "zero by definition",
+        ),
+        Finding::new(
+            "largest kinetic energy (energy exchanged)",
+            format!("{exchanged:.2} J"),
+            "—",
+        ),
+        Finding::new(
+            "energy drift over 20 s, Dormand–Prince rtol 1e-12 sampled at its steps",
+            format!("{:.1e} J", drift_until(r, 20.0)),
+            "“stays constantly zero for all time”",
+        ),
+        Finding::new(
+            "energy drift over 70 s, same",
+            format!("{:.1e} J", r.energy_drift()),
+            "“stays constantly zero for all time”",
+        ),
+        Finding::new(
+            "energy drift over 70 s, ode45's method at rtol 1e-10, dense output",
+            format!("{:.1e} J", ode45.energy_drift()),
+            "—",
+        ),
+        Finding::new(
+            format!(
+                "Gauss–Legendre (order 4, h = {} ms), largest |E − E(0)| over 0–500 s and 500–1000 s",
+                GAUSS_LEGENDRE_STEP * 1e3
+            ),
+            format!("{first:.1e} J and {second:.1e} J: bounded, no secular growth"),
+            "—",
+        ),
+        Finding::new(
+            "RK4 at the same step (not symplectic), E(1000 s) − E(0)",
+            format!("{:.1e} J: a secular drift", rk4.total[rk4.len() - 1] - rk4.total[0]),
+            "—",
+        ),
+    ]
 }
 
 /// Figure 6.10: the damped double pendulum settles hanging down.

@@ -393,20 +393,32 @@ fn method_name(method: &Method) -> String {
 
 /// Checks everything that does not need the model, and builds the integrator.
 fn check(file: &ScenarioFile) -> Result<Method, String> {
-    let finite = |key: &str, v: &[f64]| {
-        if v.iter().all(|x| x.is_finite()) {
-            Ok(())
-        } else {
-            Err(format!("`{key}` must be finite"))
-        }
-    };
-    let positive = |key: &str, x: f64| {
-        if x > 0.0 && x.is_finite() {
-            Ok(())
-        } else {
-            Err(format!("`{key}` must be positive and finite, got {x}"))
-        }
-    };
+    check_times(file)?;
+    check_start_and_controller(file)?;
+    integrator(file)
+}
+
+/// `Ok` when every entry of `v`, the value of `key`, is finite.
+fn finite(key: &str, v: &[f64]) -> Result<(), String> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(format!("`{key}` must be finite"))
+    }
+}
+
+/// `Ok` when `x`, the value of `key`, is positive and finite.
+fn positive(key: &str, x: f64) -> Result<(), String> {
+    if x > 0.0 && x.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("`{key}` must be positive and finite, got {x}"))
+    }
+}
+
+/// The duration and the sample interval: positive, and not asking for more than
+/// [`MAX_SAMPLES`] samples.
+fn check_times(file: &ScenarioFile) -> Result<(), String> {
     positive("duration", file.duration)?;
     let sample = file.sample.unwrap_or(0.01);
     positive("sample", sample)?;
@@ -415,15 +427,12 @@ fn check(file: &ScenarioFile) -> Result<Method, String> {
             "`duration` / `sample` asks for more than {MAX_SAMPLES:e} samples"
         ));
     }
-    let fixed_step = |step: f64| {
-        positive("integrator.step", step)?;
-        if file.duration / step > MAX_FIXED_STEPS {
-            return Err(format!(
-                "`duration` / `integrator.step` asks for more than {MAX_FIXED_STEPS:e} steps"
-            ));
-        }
-        Ok(())
-    };
+    Ok(())
+}
+
+/// The initial state and the controller's numbers: finite, gains non-negative, saturation
+/// limits positive, and `kp` and `q_ref` given together.
+fn check_start_and_controller(file: &ScenarioFile) -> Result<(), String> {
     finite("q0", &file.q0)?;
     finite("qd0", file.qd0.as_deref().unwrap_or(&[]))?;
     let c = &file.controller;
@@ -444,10 +453,24 @@ fn check(file: &ScenarioFile) -> Result<Method, String> {
         }
     }
     match (&c.kp, &c.q_ref) {
-        (Some(_), None) => return Err("`controller.kp` needs `controller.q_ref`".into()),
-        (None, Some(_)) => return Err("`controller.q_ref` needs `controller.kp`".into()),
-        _ => {}
+        (Some(_), None) => Err("`controller.kp` needs `controller.q_ref`".into()),
+        (None, Some(_)) => Err("`controller.q_ref` needs `controller.kp`".into()),
+        _ => Ok(()),
     }
+}
+
+/// The integrator `file` asks for (Dormand–Prince at rtol 1e-10, atol 1e-12 unless given),
+/// its tolerances or step checked.
+fn integrator(file: &ScenarioFile) -> Result<Method, String> {
+    let fixed_step = |step: f64| {
+        positive("integrator.step", step)?;
+        if file.duration / step > MAX_FIXED_STEPS {
+            return Err(format!(
+                "`duration` / `integrator.step` asks for more than {MAX_FIXED_STEPS:e} steps"
+            ));
+        }
+        Ok(())
+    };
     let method = match file.integrator.clone().unwrap_or(IntegratorSpec::Dopri5 {
         rtol: None,
         atol: None,

@@ -9,10 +9,10 @@
 //! joints on a fixed base; models with a free-flyer or mimic couplings use M + LᵀDL.
 
 use crate::expr::{ExprGraph, Id, Vec3};
-use crate::model::RobotModel;
+use crate::model::{Link, RobotModel};
 use crate::motion::{JointMotion, LinkPlacement};
 
-use super::aba_frames::joint_frames;
+use super::aba_frames::{joint_frames, JointFrame};
 use super::articulated_inertia::{ArticulatedInertia, Spatial};
 use super::inertial_parameters::BodyParameters;
 
@@ -81,19 +81,46 @@ pub fn forward_dynamics(
     if model.is_floating() || model.has_couplings() {
         return None;
     }
-    let n = model.links.len();
+    let variables = model.joints.len();
     let g = &mut model.graph;
     let links = &model.links;
     let frames = joint_frames(g, links, motion, bodies);
     let zero = g.zero();
+    let tree = Tree {
+        links,
+        frames: &frames,
+        zero,
+    };
+    let outward = velocity_pass(g, &tree, motion);
+    let inward = articulated_pass(g, &tree, u, outward);
+    Some(acceleration_pass(g, &tree, &inward, gravity, variables))
+}
 
-    // Pass 1, outwards: velocities, velocity-product accelerations c, bias forces.
+/// The links in their joint frames, which every pass reads.
+struct Tree<'a> {
+    links: &'a [Link],
+    frames: &'a [JointFrame],
+    zero: Id,
+}
+
+/// What pass 1 leaves for pass 2, per link: the velocity-product accelerations c, the
+/// rigid-body inertias (to become articulated ones) and the bias forces.
+struct Outward {
+    c: Vec<Spatial>,
+    articulated: Vec<ArticulatedInertia>,
+    bias: Vec<Spatial>,
+}
+
+/// Pass 1, outwards: velocities, velocity-product accelerations c, bias forces.
+fn velocity_pass(g: &mut ExprGraph, tree: &Tree, motion: &JointMotion) -> Outward {
+    let n = tree.links.len();
+    let zero = tree.zero;
     let mut velocity: Vec<Spatial> = Vec::with_capacity(n);
     let mut c: Vec<Spatial> = Vec::with_capacity(n);
     let mut articulated: Vec<ArticulatedInertia> = Vec::with_capacity(n);
     let mut bias: Vec<Spatial> = Vec::with_capacity(n);
-    for (i, link) in links.iter().enumerate() {
-        let frame = &frames[i];
+    for (i, link) in tree.links.iter().enumerate() {
+        let frame = &tree.frames[i];
         let parent = match link.parent {
             Some(p) => motion_to_child(g, &frame.placement, velocity[p]),
             None => [zero; 6],
@@ -111,68 +138,117 @@ pub fn forward_dynamics(
         velocity.push(v);
         c.push(ci);
     }
+    Outward {
+        c,
+        articulated,
+        bias,
+    }
+}
 
-    // Pass 2, inwards: articulated inertias and bias forces.
-    let mut u_force: Vec<Spatial> = vec![[zero; 6]; n];
-    let mut inverse_d: Vec<Id> = vec![zero; n];
-    let mut u_scalar: Vec<Id> = vec![zero; n];
+/// What pass 2 leaves for pass 3, per link: c, U = I^A S, D⁻¹ and u = τ − Sᵀ p^A (zero for a
+/// link without a joint variable).
+struct Inward {
+    c: Vec<Spatial>,
+    u_force: Vec<Spatial>,
+    inverse_d: Vec<Id>,
+    u_scalar: Vec<Id>,
+}
+
+/// Pass 2, inwards: articulated inertias and bias forces, each link's carried to its parent.
+fn articulated_pass(g: &mut ExprGraph, tree: &Tree, u: &[Id], outward: Outward) -> Inward {
+    let n = tree.links.len();
+    let zero = tree.zero;
+    let Outward {
+        c,
+        mut articulated,
+        mut bias,
+    } = outward;
+    let mut inward = Inward {
+        c,
+        u_force: vec![[zero; 6]; n],
+        inverse_d: vec![zero; n],
+        u_scalar: vec![zero; n],
+    };
     for i in (0..n).rev() {
         let (ia, pa) = (articulated[i], bias[i]);
-        let (carried_inertia, carried_bias) = match frames[i].subspace {
-            Some((s, k)) => {
-                // U = I^A S, D = Sᵀ U, u = τ − Sᵀ p^A: a column and an entry for S = e_z.
-                let ui = ia.apply(g, s);
-                let di = dot(g, s, ui);
-                let one = g.one();
-                let dinv = g.div(one, di);
-                let projected = dot(g, s, pa);
-                let us = g.sub(u[k], projected);
-                u_force[i] = ui;
-                inverse_d[i] = dinv;
-                u_scalar[i] = us;
-                // I^a = I^A − U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u.
-                let scaled: Spatial = ui.map(|x| g.mul(x, dinv));
-                let reduced = ia.minus_outer(g, ui, scaled);
-                let ic = reduced.apply(g, c[i]);
-                let pushed: Spatial = scaled.map(|x| g.mul(x, us));
-                let pb = add(g, pa, ic);
-                (reduced, add(g, pb, pushed))
-            }
+        let (carried_inertia, carried_bias) = match tree.frames[i].subspace {
+            Some((s, k)) => project(g, &mut inward, i, (ia, pa), (s, u[k])),
             None => {
-                let ic = ia.apply(g, c[i]);
+                let ic = ia.apply(g, inward.c[i]);
                 (ia, add(g, pa, ic))
             }
         };
-        if let Some(p) = links[i].parent {
-            let placement = &frames[i].placement;
+        if let Some(p) = tree.links[i].parent {
+            let placement = &tree.frames[i].placement;
             let moved_inertia = carried_inertia.to_parent(g, placement);
             let moved_bias = force_to_parent(g, placement, carried_bias);
             articulated[p] = articulated[p].plus(g, &moved_inertia);
             bias[p] = add(g, bias[p], moved_bias);
         }
     }
+    inward
+}
 
-    // Pass 3, outwards: accelerations, gravity as the base's acceleration −g.
+/// Link i's articulated inertia I^A and bias p^A with its joint's motion `s` and force `tau`
+/// projected out, as its parent sees them: records U, D⁻¹ and u in `inward` and returns
+/// I^a = I^A − U D⁻¹ Uᵀ and p^a = p^A + I^a c + U D⁻¹ u.
+fn project(
+    g: &mut ExprGraph,
+    inward: &mut Inward,
+    i: usize,
+    (ia, pa): (ArticulatedInertia, Spatial),
+    (s, tau): (Spatial, Id),
+) -> (ArticulatedInertia, Spatial) {
+    // U = I^A S, D = Sᵀ U, u = τ − Sᵀ p^A: a column and an entry for S = e_z.
+    let ui = ia.apply(g, s);
+    let di = dot(g, s, ui);
+    let one = g.one();
+    let dinv = g.div(one, di);
+    let projected = dot(g, s, pa);
+    let us = g.sub(tau, projected);
+    inward.u_force[i] = ui;
+    inward.inverse_d[i] = dinv;
+    inward.u_scalar[i] = us;
+    // I^a = I^A − U D⁻¹ Uᵀ, p^a = p^A + I^a c + U D⁻¹ u.
+    let scaled: Spatial = ui.map(|x| g.mul(x, dinv));
+    let reduced = ia.minus_outer(g, ui, scaled);
+    let ic = reduced.apply(g, inward.c[i]);
+    let pushed: Spatial = scaled.map(|x| g.mul(x, us));
+    let pb = add(g, pa, ic);
+    (reduced, add(g, pb, pushed))
+}
+
+/// Pass 3, outwards: accelerations, gravity as the base's acceleration −g; returns q̈ (one
+/// entry per joint variable).
+fn acceleration_pass(
+    g: &mut ExprGraph,
+    tree: &Tree,
+    inward: &Inward,
+    gravity: Vec3,
+    variables: usize,
+) -> Vec<Id> {
+    let zero = tree.zero;
     let minus_g = g.vneg(gravity);
     let base = join([zero; 3], minus_g);
-    let mut acceleration: Vec<Spatial> = Vec::with_capacity(n);
-    let mut qdd = vec![zero; model.joints.len()];
-    for (i, link) in links.iter().enumerate() {
+    let mut acceleration: Vec<Spatial> = Vec::with_capacity(tree.links.len());
+    let mut qdd = vec![zero; variables];
+    for (i, link) in tree.links.iter().enumerate() {
         let from_parent = match link.parent {
             Some(p) => acceleration[p],
             None => base,
         };
-        let moved = motion_to_child(g, &frames[i].placement, from_parent);
-        let mut a = add(g, moved, c[i]);
-        if let Some((s, k)) = frames[i].subspace {
-            let ua = dot(g, u_force[i], a);
-            let numerator = g.sub(u_scalar[i], ua);
-            let q = g.mul(inverse_d[i], numerator);
+        let frame = &tree.frames[i];
+        let moved = motion_to_child(g, &frame.placement, from_parent);
+        let mut a = add(g, moved, inward.c[i]);
+        if let Some((s, k)) = frame.subspace {
+            let ua = dot(g, inward.u_force[i], a);
+            let numerator = g.sub(inward.u_scalar[i], ua);
+            let q = g.mul(inward.inverse_d[i], numerator);
             qdd[k] = q;
             let along: Spatial = s.map(|x| g.mul(x, q));
             a = add(g, a, along);
         }
         acceleration.push(a);
     }
-    Some(qdd)
+    qdd
 }

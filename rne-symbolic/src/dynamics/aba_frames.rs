@@ -23,7 +23,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::expr::{transpose, ExprGraph, Mat3, Vec3};
+use crate::expr::{transpose, ExprGraph, Id, Mat3, Vec3};
 use crate::model::{axis_angle_rotation, JointKind, Link};
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
@@ -203,18 +203,7 @@ pub(super) fn joint_frames(
     let body = LinkPlacement::all(g, links, motion);
     let zero = g.zero();
     let (numbers, normals) = frame_rotations(g, links);
-    // Q_i, and the joint axis in the joint frame.
-    let frames: Vec<(Mat3, Vec3)> = links
-        .iter()
-        .zip(&numbers)
-        .map(|(link, q)| match q {
-            Some(q) => (
-                std::array::from_fn(|r| std::array::from_fn(|c| g.constant(q[(r, c)]))),
-                g.const_vec([0.0, 0.0, 1.0]),
-            ),
-            None => (g.identity(), link.axis),
-        })
-        .collect();
+    let frames = rotations(g, links, &numbers);
     let identity = g.identity();
     links
         .iter()
@@ -224,53 +213,14 @@ pub(super) fn joint_frames(
             let parent = link.parent.map_or(identity, |p| frames[p].0);
             let parent_t = transpose(&parent);
             let coordinate = LinkCoordinate::of(g, link, motion);
-            let mut attachment = g.mat_vec(&parent_t, body[i].attachment);
-            let (fixed, offset) = match normals[i] {
-                Some(normal) => {
-                    let (c, s) = normal.twist;
-                    let (one, c, s, minus_s) =
-                        (g.one(), g.constant(c), g.constant(s), g.constant(-s));
-                    if normal.parallel {
-                        attachment[1] = zero;
-                    }
-                    (
-                        [[one, zero, zero], [zero, c, minus_s], [zero, s, c]],
-                        Some(normal.offset),
-                    )
-                }
-                None => {
-                    let fixed_in_parent = g.mat_mul(&parent_t, &link.rotation);
-                    (g.mat_mul(&fixed_in_parent, &q), None)
-                }
-            };
+            let attachment = g.mat_vec(&parent_t, body[i].attachment);
+            let (fixed, offset, attachment) =
+                fixed_placement(g, link, (&parent_t, &q), attachment, normals[i]);
             let joint = match (link.kind, coordinate) {
-                (JointKind::Revolute, Some(c)) => {
-                    let (mut cos, mut sin) = (g.cos(c.q), g.sin(c.q));
-                    if let Some((cos_offset, sin_offset)) = offset {
-                        // cos(q + θ), sin(q + θ).
-                        let (co, so) = (g.constant(cos_offset), g.constant(sin_offset));
-                        let (cc, ss) = (g.mul(co, cos), g.mul(so, sin));
-                        let (sc, cs) = (g.mul(so, cos), g.mul(co, sin));
-                        (cos, sin) = (g.sub(cc, ss), g.add(sc, cs));
-                    }
-                    Some(axis_angle_rotation(g, axis, cos, sin))
-                }
+                (JointKind::Revolute, Some(c)) => Some(joint_rotation(g, axis, c.q, offset)),
                 _ => None,
             };
-            let q_t = transpose(&q);
-            let inertia = match bodies {
-                Some(bodies) => {
-                    let body = &bodies[i];
-                    let first_moment = g.mat_vec(&q_t, body.first_moment);
-                    let about = g.similarity(&q_t, &body.inertia);
-                    ArticulatedInertia::from_origin(g, body.mass, first_moment, &about)
-                }
-                None => {
-                    let com = g.mat_vec(&q_t, link.com);
-                    let inertia = g.similarity(&q_t, &link.inertia);
-                    ArticulatedInertia::rigid(g, link.mass, com, &inertia)
-                }
-            };
+            let inertia = body_inertia(g, link, &q, bodies.map(|bodies| &bodies[i]));
             let subspace = coordinate.and_then(|c| match link.kind {
                 JointKind::Revolute => {
                     Some(([axis[0], axis[1], axis[2], zero, zero, zero], c.variable))
@@ -291,6 +241,95 @@ pub(super) fn joint_frames(
             }
         })
         .collect()
+}
+
+/// Each link's `Q_i` as expressions (the identity where `numbers` has none), and its joint
+/// axis in the joint frame (e_z, or the link's axis where it keeps its body frame).
+fn rotations(
+    g: &mut ExprGraph,
+    links: &[Link],
+    numbers: &[Option<Matrix3<f64>>],
+) -> Vec<(Mat3, Vec3)> {
+    links
+        .iter()
+        .zip(numbers)
+        .map(|(link, q)| match q {
+            Some(q) => (
+                std::array::from_fn(|r| std::array::from_fn(|c| g.constant(q[(r, c)]))),
+                g.const_vec([0.0, 0.0, 1.0]),
+            ),
+            None => (g.identity(), link.axis),
+        })
+        .collect()
+}
+
+/// The constant part of a link's placement in its parent's joint frame, `Rot_x(α)` when the
+/// parent's x axis is the common normal (`normal`) and `Q_pᵀ E_i Q_i` otherwise, with the
+/// angle θ the joint then adds to its variable, and the attachment `Q_pᵀ t_i` (`attachment`)
+/// with its y component zero for parallel axes.
+fn fixed_placement(
+    g: &mut ExprGraph,
+    link: &Link,
+    (parent_t, q): (&Mat3, &Mat3),
+    attachment: Vec3,
+    normal: Option<Normal>,
+) -> (Mat3, Option<(f64, f64)>, Vec3) {
+    let mut attachment = attachment;
+    let zero = g.zero();
+    match normal {
+        Some(normal) => {
+            let (c, s) = normal.twist;
+            let (one, c, s, minus_s) = (g.one(), g.constant(c), g.constant(s), g.constant(-s));
+            if normal.parallel {
+                attachment[1] = zero;
+            }
+            (
+                [[one, zero, zero], [zero, c, minus_s], [zero, s, c]],
+                Some(normal.offset),
+                attachment,
+            )
+        }
+        None => {
+            let fixed_in_parent = g.mat_mul(parent_t, &link.rotation);
+            (g.mat_mul(&fixed_in_parent, q), None, attachment)
+        }
+    }
+}
+
+/// A revolute joint's rotation `Rot(axis, q + θ)`, θ given as `offset` = (cos θ, sin θ).
+fn joint_rotation(g: &mut ExprGraph, axis: Vec3, q: Id, offset: Option<(f64, f64)>) -> Mat3 {
+    let (mut cos, mut sin) = (g.cos(q), g.sin(q));
+    if let Some((cos_offset, sin_offset)) = offset {
+        // cos(q + θ), sin(q + θ).
+        let (co, so) = (g.constant(cos_offset), g.constant(sin_offset));
+        let (cc, ss) = (g.mul(co, cos), g.mul(so, sin));
+        let (sc, cs) = (g.mul(so, cos), g.mul(co, sin));
+        (cos, sin) = (g.sub(cc, ss), g.add(sc, cs));
+    }
+    axis_angle_rotation(g, axis, cos, sin)
+}
+
+/// The link's rigid-body inertia about its origin in the joint frame `Q`: the link's own, or
+/// `body`'s when given.
+fn body_inertia(
+    g: &mut ExprGraph,
+    link: &Link,
+    q: &Mat3,
+    body: Option<&BodyParameters>,
+) -> ArticulatedInertia {
+    let q_t = transpose(q);
+    match body {
+        Some(body) => {
+            let first_moment = g.mat_vec(&q_t, body.first_moment);
+            let about = g.similarity(&q_t, &body.inertia);
+            ArticulatedInertia::from_origin(g, body.mass, first_moment, &about)
+        }
+        None => {
+            let com = g.mat_vec(&q_t, link.com);
+            let inertia = g.similarity(&q_t, &link.inertia);
+            ArticulatedInertia::rigid(g, link.mass, com, &inertia)
+        }
+    }
 }
 
 #[cfg(test)]

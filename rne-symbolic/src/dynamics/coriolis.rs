@@ -43,7 +43,7 @@ use super::crba::{self, Column, Composite};
 use super::energy;
 use super::inertial_parameters::BodyParameters;
 use crate::expr::{ExprGraph, Id, Vec3};
-use crate::model::RobotModel;
+use crate::model::{Link, RobotModel};
 use crate::motion::{JointMotion, LinkCoordinate, LinkPlacement};
 
 /// A spatial motion vector in body axes: angular velocity and velocity of the body origin.
@@ -194,6 +194,18 @@ fn sum(g: &mut ExprGraph, a: &Composite, b: &Composite) -> Composite {
     }
 }
 
+/// The quantities of every link that the passes of [`coriolis_matrix`] share.
+struct Tree<'a> {
+    links: &'a [Link],
+    /// The motion-subspace columns of each link's joint.
+    columns: &'a [Vec<Column>],
+    placements: &'a [LinkPlacement],
+    /// The composite inertia I^C of each link.
+    composites: &'a [Composite],
+    /// The velocity V of each link.
+    velocities: &'a [Twist],
+}
+
 /// C(q, q̇) of `model` at `motion` (NV × NV, row-major), by the recursion of the module
 /// documentation.
 pub fn coriolis_matrix(
@@ -201,7 +213,6 @@ pub fn coriolis_matrix(
     motion: &JointMotion,
     bodies: Option<&[BodyParameters]>,
 ) -> Vec<Vec<Id>> {
-    let n = model.links.len();
     let nv = model.state_layout().nv();
     let columns = crba::columns(model);
     let g = &mut model.graph;
@@ -212,11 +223,45 @@ pub fn coriolis_matrix(
         .into_iter()
         .map(|(angular, linear)| Twist { angular, linear })
         .collect();
+    let tree = Tree {
+        links,
+        columns: &columns,
+        placements: &placements,
+        composites: &composites,
+        velocities: &velocities,
+    };
+    let (momenta, rates) = momenta_and_rates(g, &tree, motion, bodies);
+    let motions = column_motions(g, &tree);
+    let mut terms = Terms {
+        half: g.constant(0.5),
+        entries: vec![vec![Vec::new(); nv]; nv],
+    };
+    for j in 0..links.len() {
+        for b in 0..columns[j].len() {
+            let body = (momenta[j], &rates[j]);
+            let forces = column_forces(g, &tree, j, body, motions[j][b]);
+            push_column(g, &tree, &motions, &mut terms, (j, b), forces);
+        }
+    }
+    terms
+        .entries
+        .into_iter()
+        .map(|row| row.into_iter().map(|entry| g.sum(entry)).collect())
+        .collect()
+}
 
-    // Composite momenta h^C and composite inertia rates İ^C, leaves first.
+/// The composite momenta h^C and the composite inertia rates İ^C of every link, leaves first.
+fn momenta_and_rates(
+    g: &mut ExprGraph,
+    tree: &Tree,
+    motion: &JointMotion,
+    bodies: Option<&[BodyParameters]>,
+) -> (Vec<Wrench>, Vec<Composite>) {
+    let links = tree.links;
+    let n = links.len();
     let mut momenta: Vec<Wrench> = links
         .iter()
-        .zip(&velocities)
+        .zip(tree.velocities)
         .enumerate()
         .map(|(i, (link, &v))| {
             let body = match bodies {
@@ -240,28 +285,32 @@ pub fn coriolis_matrix(
     let mut rates = vec![at_rest; n];
     for i in (0..n).rev() {
         let Some(p) = links[i].parent else { continue };
-        let moved = momenta[i].to_parent(g, &placements[i]);
+        let moved = momenta[i].to_parent(g, &tree.placements[i]);
         momenta[p] = momenta[p].add(g, moved);
         let mut own = rates[i];
-        if let (Some(c), Some(column)) =
-            (LinkCoordinate::of(g, &links[i], motion), columns[i].first())
-        {
+        if let (Some(c), Some(column)) = (
+            LinkCoordinate::of(g, &links[i], motion),
+            tree.columns[i].first(),
+        ) {
             let unit = Twist::of_column(g, column);
             let w = Twist {
                 angular: g.vscale(c.qd, unit.angular),
                 linear: g.vscale(c.qd, unit.linear),
             };
-            let moving = rate(g, &composites[i], w);
+            let moving = rate(g, &tree.composites[i], w);
             own = sum(g, &own, &moving);
         }
-        let moved = crba::to_parent(g, &own, &placements[i]);
+        let moved = crba::to_parent(g, &own, &tree.placements[i]);
         rates[p] = sum(g, &rates[p], &moved);
     }
+    (momenta, rates)
+}
 
-    // Each column's S and Ṡ = V × S.
-    let motions: Vec<Vec<(Twist, Twist)>> = columns
+/// Each column's S and Ṡ = V × S, link by link.
+fn column_motions(g: &mut ExprGraph, tree: &Tree) -> Vec<Vec<(Twist, Twist)>> {
+    tree.columns
         .iter()
-        .zip(&velocities)
+        .zip(tree.velocities)
         .map(|(link_columns, &v)| {
             link_columns
                 .iter()
@@ -271,57 +320,94 @@ pub fn coriolis_matrix(
                 })
                 .collect()
         })
-        .collect();
+        .collect()
+}
 
-    let half = g.constant(0.5);
-    let mut terms: Vec<Vec<Vec<Id>>> = vec![vec![Vec::new(); nv]; nv];
-    let mut push = |g: &mut ExprGraph, row: &Column, column: &Column, entry: Id| {
+/// The forces of one column S_j of link j, in j's axes: F2 = I^C_j S_j,
+/// T = V_j ×* F2 + İ^C_j S_j and U = I^C_j Ṡ_j + S_j ×* h^C_j.
+struct ColumnForces {
+    f2: Wrench,
+    t: Wrench,
+    u: Wrench,
+}
+
+/// [`ColumnForces`] of the column with motion `(s, s_dot)` of link `j`, whose composite
+/// momentum is `momentum` and composite inertia rate `rate`.
+fn column_forces(
+    g: &mut ExprGraph,
+    tree: &Tree,
+    j: usize,
+    (momentum, rate): (Wrench, &Composite),
+    (s, s_dot): (Twist, Twist),
+) -> ColumnForces {
+    let f2 = apply(g, &tree.composites[j], s);
+    let transported = tree.velocities[j].cross_force(g, f2);
+    let moving = apply(g, rate, s);
+    let t = transported.add(g, moving);
+    let inertial = apply(g, &tree.composites[j], s_dot);
+    let gyroscopic = s.cross_force(g, momentum);
+    let u = inertial.add(g, gyroscopic);
+    ColumnForces { f2, t, u }
+}
+
+/// The terms of C, per entry, before they are summed.
+struct Terms {
+    half: Id,
+    entries: Vec<Vec<Vec<Id>>>,
+}
+
+impl Terms {
+    /// Adds `entry` to C at (`row`, `column`), times the mimic multipliers of both.
+    fn push(&mut self, g: &mut ExprGraph, row: &Column, column: &Column, entry: Id) {
         let mut entry = entry;
         for m in [row.multiplier, column.multiplier].into_iter().flatten() {
             entry = g.mul(m, entry);
         }
-        terms[row.index][column.index].push(entry);
-    };
-    for j in 0..n {
-        for (b, cb) in columns[j].iter().enumerate() {
-            let (s, s_dot) = motions[j][b];
-            let mut f2 = apply(g, &composites[j], s);
-            let transported = velocities[j].cross_force(g, f2);
-            let moving = apply(g, &rates[j], s);
-            let mut t = transported.add(g, moving);
-            let inertial = apply(g, &composites[j], s_dot);
-            let gyroscopic = s.cross_force(g, momenta[j]);
-            let mut u = inertial.add(g, gyroscopic);
-            for (a, ca) in columns[j].iter().enumerate() {
-                let sa = motions[j][a].0;
-                let (ta, ua) = (sa.dot(g, t), sa.dot(g, u));
-                let f1 = g.add(ta, ua);
-                let entry = g.mul(half, f1);
-                push(g, ca, cb, entry);
-            }
-            let mut i = j;
-            while let Some(p) = links[i].parent {
-                t = t.to_parent(g, &placements[i]);
-                u = u.to_parent(g, &placements[i]);
-                f2 = f2.to_parent(g, &placements[i]);
-                i = p;
-                for (a, ca) in columns[i].iter().enumerate() {
-                    let (sa, sa_dot) = motions[i][a];
-                    let (ta, ua) = (sa.dot(g, t), sa.dot(g, u));
-                    let f1 = g.add(ta, ua);
-                    let upper = g.mul(half, f1);
-                    push(g, ca, cb, upper);
-                    let f3 = g.sub(ta, ua);
-                    let f3 = g.mul(half, f3);
-                    let rate_term = sa_dot.dot(g, f2);
-                    let lower = g.add(rate_term, f3);
-                    push(g, cb, ca, lower);
-                }
-            }
+        self.entries[row.index][column.index].push(entry);
+    }
+}
+
+/// The entries of column `b` of link `j` with the columns of j itself (C_ij = S_iᵀ F1) and of
+/// each of its ancestors i (C_ij = S_iᵀ F1 and C_ji = Ṡ_iᵀ F2 + S_iᵀ F3), the forces carried
+/// to each ancestor's axes on the way to the root.
+fn push_column(
+    g: &mut ExprGraph,
+    tree: &Tree,
+    motions: &[Vec<(Twist, Twist)>],
+    terms: &mut Terms,
+    (j, b): (usize, usize),
+    forces: ColumnForces,
+) {
+    let cb = &tree.columns[j][b];
+    let ColumnForces {
+        mut f2,
+        mut t,
+        mut u,
+    } = forces;
+    for (a, ca) in tree.columns[j].iter().enumerate() {
+        let sa = motions[j][a].0;
+        let (ta, ua) = (sa.dot(g, t), sa.dot(g, u));
+        let f1 = g.add(ta, ua);
+        let entry = g.mul(terms.half, f1);
+        terms.push(g, ca, cb, entry);
+    }
+    let mut i = j;
+    while let Some(p) = tree.links[i].parent {
+        t = t.to_parent(g, &tree.placements[i]);
+        u = u.to_parent(g, &tree.placements[i]);
+        f2 = f2.to_parent(g, &tree.placements[i]);
+        i = p;
+        for (a, ca) in tree.columns[i].iter().enumerate() {
+            let (sa, sa_dot) = motions[i][a];
+            let (ta, ua) = (sa.dot(g, t), sa.dot(g, u));
+            let f1 = g.add(ta, ua);
+            let upper = g.mul(terms.half, f1);
+            terms.push(g, ca, cb, upper);
+            let f3 = g.sub(ta, ua);
+            let f3 = g.mul(terms.half, f3);
+            let rate_term = sa_dot.dot(g, f2);
+            let lower = g.add(rate_term, f3);
+            terms.push(g, cb, ca, lower);
         }
     }
-    terms
-        .into_iter()
-        .map(|row| row.into_iter().map(|entry| g.sum(entry)).collect())
-        .collect()
 }

@@ -31,88 +31,134 @@ impl ExprGraph {
     /// expressions, lane l of each partial is that of the expression seeded with eₗ
     /// ([`crate::dynamics::LanePartials`]).
     pub fn gradient_seeded(&mut self, seeds: &[(Id, Id)], wrt: &[Symbol]) -> Vec<Id> {
+        let mut sweep = Sweep::new(self, seeds, wrt);
+        let nodes = std::mem::take(&mut sweep.nodes);
+        let zero = self.zero();
+        let mut gradient = vec![zero; wrt.len()];
+        for &id in nodes.iter().rev() {
+            if !sweep.depends(id) {
+                continue;
+            }
+            let k = sweep.at(id);
+            let terms = std::mem::take(&mut sweep.contributions[k]);
+            let adjoint = self.sum(terms);
+            if let Node::Symbol(s) = self.node(id) {
+                let k = wrt.iter().position(|&w| w == s).expect("a symbol of wrt");
+                gradient[k] = adjoint;
+            } else {
+                self.pass_adjoint(&mut sweep, id, adjoint);
+            }
+        }
+        gradient
+    }
+
+    /// Passes the adjoint `adjoint` of the operation `id` to its operands that depend on a
+    /// symbol, each times the operation's partial derivative with respect to it.
+    fn pass_adjoint(&mut self, sweep: &mut Sweep, id: Id, adjoint: Id) {
+        match self.node(id) {
+            Node::Const(_) | Node::Sign(_) | Node::Symbol(_) => {}
+            Node::Add(a, b) => {
+                sweep.pass(a, adjoint);
+                sweep.pass(b, adjoint);
+            }
+            Node::Neg(a) => sweep.pass(a, self.neg(adjoint)),
+            Node::Mul(a, b) => {
+                if sweep.depends(a) {
+                    sweep.pass(a, self.mul(adjoint, b));
+                }
+                if sweep.depends(b) {
+                    sweep.pass(b, self.mul(adjoint, a));
+                }
+            }
+            Node::Div(a, b) => {
+                if sweep.depends(a) {
+                    sweep.pass(a, self.div(adjoint, b));
+                }
+                if sweep.depends(b) {
+                    let scaled = self.mul(adjoint, id);
+                    let quotient = self.div(scaled, b);
+                    sweep.pass(b, self.neg(quotient));
+                }
+            }
+            Node::Sin(a) => {
+                let c = self.cos(a);
+                sweep.pass(a, self.mul(adjoint, c));
+            }
+            Node::Cos(a) => {
+                let s = self.sin(a);
+                let product = self.mul(adjoint, s);
+                sweep.pass(a, self.neg(product));
+            }
+            Node::Sqrt(a) => {
+                let two = self.constant(2.0);
+                let denominator = self.mul(two, id);
+                sweep.pass(a, self.div(adjoint, denominator));
+            }
+        }
+    }
+}
+
+/// The state of one backward sweep: the nodes below the seeded expressions (operands first)
+/// and, by position among them, whether each depends on a symbol differentiated for and the
+/// adjoint contributions it has received so far.
+struct Sweep {
+    nodes: Vec<Id>,
+    /// Each node's position in `nodes`, by node index (`u32::MAX` off the sweep). Tables by
+    /// position are much shorter than the graph below the expressions when other kernels'
+    /// nodes sit in between.
+    position: Vec<u32>,
+    depends: Vec<bool>,
+    contributions: Vec<Vec<Id>>,
+}
+
+impl Sweep {
+    /// The sweep of `seeds` with respect to `wrt`, each seeded expression that depends on
+    /// one of them holding its weight as its first contribution.
+    fn new(graph: &ExprGraph, seeds: &[(Id, Id)], wrt: &[Symbol]) -> Sweep {
         let exprs: Vec<Id> = seeds.iter().map(|&(expr, _)| expr).collect();
-        let nodes = self.reachable(&exprs);
-        // Tables by position in `nodes`, which is much shorter than the graph below the
-        // expressions when other kernels' nodes sit in between.
+        let nodes = graph.reachable(&exprs);
         let top = exprs.iter().map(|e| e.index()).max().unwrap_or(0);
         let mut position = vec![u32::MAX; top + 1];
         for (k, id) in nodes.iter().enumerate() {
             position[id.index()] = k as u32;
         }
-        let at = |id: Id| position[id.index()] as usize;
-        let mut depends = vec![false; nodes.len()];
-        for (k, &id) in nodes.iter().enumerate() {
-            depends[k] = match self.node(id) {
+        let mut sweep = Sweep {
+            depends: vec![false; nodes.len()],
+            contributions: vec![Vec::new(); nodes.len()],
+            nodes,
+            position,
+        };
+        for k in 0..sweep.nodes.len() {
+            sweep.depends[k] = match graph.node(sweep.nodes[k]) {
                 Node::Symbol(s) => wrt.contains(&s),
-                node => node.children().any(|c| depends[at(c)]),
+                node => node.children().any(|c| sweep.depends(c)),
             };
         }
-        let mut contributions: Vec<Vec<Id>> = vec![Vec::new(); nodes.len()];
         for &(expr, weight) in seeds {
-            if depends[at(expr)] {
-                contributions[at(expr)].push(weight);
+            if sweep.depends(expr) {
+                let k = sweep.at(expr);
+                sweep.contributions[k].push(weight);
             }
         }
-        let zero = self.zero();
-        let mut gradient = vec![zero; wrt.len()];
-        for &id in nodes.iter().rev() {
-            if !depends[at(id)] {
-                continue;
-            }
-            let terms = std::mem::take(&mut contributions[at(id)]);
-            let adjoint = self.sum(terms);
-            let mut pass = |child: Id, value: Id| {
-                if depends[at(child)] {
-                    contributions[at(child)].push(value);
-                }
-            };
-            match self.node(id) {
-                Node::Const(_) | Node::Sign(_) => {}
-                Node::Symbol(s) => {
-                    let k = wrt.iter().position(|&w| w == s).expect("a symbol of wrt");
-                    gradient[k] = adjoint;
-                }
-                Node::Add(a, b) => {
-                    pass(a, adjoint);
-                    pass(b, adjoint);
-                }
-                Node::Neg(a) => pass(a, self.neg(adjoint)),
-                Node::Mul(a, b) => {
-                    if depends[at(a)] {
-                        pass(a, self.mul(adjoint, b));
-                    }
-                    if depends[at(b)] {
-                        pass(b, self.mul(adjoint, a));
-                    }
-                }
-                Node::Div(a, b) => {
-                    if depends[at(a)] {
-                        pass(a, self.div(adjoint, b));
-                    }
-                    if depends[at(b)] {
-                        let scaled = self.mul(adjoint, id);
-                        let quotient = self.div(scaled, b);
-                        pass(b, self.neg(quotient));
-                    }
-                }
-                Node::Sin(a) => {
-                    let c = self.cos(a);
-                    pass(a, self.mul(adjoint, c));
-                }
-                Node::Cos(a) => {
-                    let s = self.sin(a);
-                    let product = self.mul(adjoint, s);
-                    pass(a, self.neg(product));
-                }
-                Node::Sqrt(a) => {
-                    let two = self.constant(2.0);
-                    let denominator = self.mul(two, id);
-                    pass(a, self.div(adjoint, denominator));
-                }
-            }
+        sweep
+    }
+
+    /// `id`'s position in the sweep.
+    fn at(&self, id: Id) -> usize {
+        self.position[id.index()] as usize
+    }
+
+    /// Whether `id` depends on a symbol differentiated for.
+    fn depends(&self, id: Id) -> bool {
+        self.depends[self.at(id)]
+    }
+
+    /// Adds `value` to the adjoint of `child` if it depends on a symbol.
+    fn pass(&mut self, child: Id, value: Id) {
+        if self.depends(child) {
+            let k = self.at(child);
+            self.contributions[k].push(value);
         }
-        gradient
     }
 }
 

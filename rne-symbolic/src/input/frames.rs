@@ -73,87 +73,8 @@ pub(crate) fn thesis(
     position: Vec3,
 ) -> Result<JointFrames, SpecError> {
     match motion {
-        Motion::Revolute(q) => {
-            let with_q: Vec<usize> = (0..rotation.len())
-                .filter(|&k| mentions_factor(g, rotation, k, q))
-                .collect();
-            let k = match with_q.as_slice() {
-                [k] => *k,
-                [] => {
-                    return Err(kinematics(format!(
-                        "joint variable '{}' missing from rotation: a revolute joint needs one factor \
-                         Rx, Ry or Rz of ±{0} + c",
-                        name(g, q)
-                    ))
-                    .at_field("rotation"))
-                }
-                more => {
-                    return Err(kinematics(format!(
-                        "joint variable '{}' appears in {} factors of rotation; exactly one may contain it",
-                        name(g, q),
-                        more.len()
-                    ))
-                    .at_field("rotation"))
-                }
-            };
-            let (before, rest) = rotation.split_at(k);
-            let Some(((axis, angle), after)) = rest.split_first() else {
-                return Err(kinematics("rotation has no factors").at_field("rotation"));
-            };
-            let (sign, offset) = affine(g, *angle, q).map_err(|e| e.at_field("rotation"))?;
-            reject_variable(
-                g,
-                &position,
-                q,
-                "position",
-                "a revolute joint's r_{i-1,i} is constant in frame i",
-            )?;
-            let p = product(g, before);
-            let c = rotation_about(g, *axis, offset);
-            let q_factors = product(g, after);
-            let pc = g.mat_mul(&p, &c);
-            let e = g.mat_mul(&pc, &q_factors);
-            let unit = signed_unit(g, *axis, sign);
-            let axis = g.mat_t_vec(&q_factors, unit);
-            Ok(JointFrames {
-                pre: Transform::rotation(g, e),
-                axis,
-                post: Transform::translation(g, position),
-            })
-        }
-        Motion::Prismatic(q) => {
-            if (0..rotation.len()).any(|k| mentions_factor(g, rotation, k, q)) {
-                return Err(kinematics(format!(
-                    "joint variable '{}' of a prismatic joint may not appear in rotation",
-                    name(g, q)
-                ))
-                .at_field("rotation"));
-            }
-            let e = product(g, rotation);
-            let axis = position.map(|p| g.derivative(p, q));
-            if axis.iter().any(|&u| mentions(g, u, q)) {
-                return Err(kinematics(format!(
-                    "joint variable '{}' must enter position linearly, as p0 + u {0}",
-                    name(g, q)
-                ))
-                .at_field("position"));
-            }
-            if axis.iter().all(|&u| g.is_zero(u)) {
-                return Err(kinematics(format!(
-                    "joint variable '{}' missing from position: a prismatic joint moves frame i along u in \
-                     position = p0 + u {0}",
-                    name(g, q)
-                ))
-                .at_field("position"));
-            }
-            let zero = g.zero();
-            let rest = position.map(|p| substitute(g, p, q, zero));
-            Ok(JointFrames {
-                pre: Transform::rotation(g, e),
-                axis,
-                post: Transform::translation(g, rest),
-            })
-        }
+        Motion::Revolute(q) => thesis_revolute(g, q, rotation, position),
+        Motion::Prismatic(q) => thesis_prismatic(g, q, rotation, position),
         Motion::Fixed => {
             let e = product(g, rotation);
             let axis = g.zero_vec();
@@ -164,6 +85,104 @@ pub(crate) fn thesis(
             })
         }
     }
+}
+
+/// Convention (a) for a revolute joint: `rotation` = P·Ra(±q + c)·Q gives pre = P·Ra(c)·Q and
+/// the axis Qᵀ(±e_a), `position` (constant) the post translation.
+fn thesis_revolute(
+    g: &mut ExprGraph,
+    q: Symbol,
+    rotation: &[(Axis, Id)],
+    position: Vec3,
+) -> Result<JointFrames, SpecError> {
+    let k = variable_factor(g, rotation, q)?;
+    let (before, rest) = rotation.split_at(k);
+    let Some(((axis, angle), after)) = rest.split_first() else {
+        return Err(kinematics("rotation has no factors").at_field("rotation"));
+    };
+    let (sign, offset) = affine(g, *angle, q).map_err(|e| e.at_field("rotation"))?;
+    reject_variable(
+        g,
+        &position,
+        q,
+        "position",
+        "a revolute joint's r_{i-1,i} is constant in frame i",
+    )?;
+    let p = product(g, before);
+    let c = rotation_about(g, *axis, offset);
+    let q_factors = product(g, after);
+    let pc = g.mat_mul(&p, &c);
+    let e = g.mat_mul(&pc, &q_factors);
+    let unit = signed_unit(g, *axis, sign);
+    let axis = g.mat_t_vec(&q_factors, unit);
+    Ok(JointFrames {
+        pre: Transform::rotation(g, e),
+        axis,
+        post: Transform::translation(g, position),
+    })
+}
+
+/// The one factor of `rotation` that contains the joint variable `q`.
+fn variable_factor(g: &ExprGraph, rotation: &[(Axis, Id)], q: Symbol) -> Result<usize, SpecError> {
+    let with_q: Vec<usize> = (0..rotation.len())
+        .filter(|&k| mentions_factor(g, rotation, k, q))
+        .collect();
+    match with_q.as_slice() {
+        [k] => Ok(*k),
+        [] => Err(kinematics(format!(
+            "joint variable '{}' missing from rotation: a revolute joint needs one factor \
+                 Rx, Ry or Rz of ±{0} + c",
+            name(g, q)
+        ))
+        .at_field("rotation")),
+        more => Err(kinematics(format!(
+            "joint variable '{}' appears in {} factors of rotation; exactly one may contain it",
+            name(g, q),
+            more.len()
+        ))
+        .at_field("rotation")),
+    }
+}
+
+/// Convention (a) for a prismatic joint: `position` = p₀ + u q gives the axis u and the post
+/// translation p₀; `rotation` (constant) is pre.
+fn thesis_prismatic(
+    g: &mut ExprGraph,
+    q: Symbol,
+    rotation: &[(Axis, Id)],
+    position: Vec3,
+) -> Result<JointFrames, SpecError> {
+    if (0..rotation.len()).any(|k| mentions_factor(g, rotation, k, q)) {
+        return Err(kinematics(format!(
+            "joint variable '{}' of a prismatic joint may not appear in rotation",
+            name(g, q)
+        ))
+        .at_field("rotation"));
+    }
+    let e = product(g, rotation);
+    let axis = position.map(|p| g.derivative(p, q));
+    if axis.iter().any(|&u| mentions(g, u, q)) {
+        return Err(kinematics(format!(
+            "joint variable '{}' must enter position linearly, as p0 + u {0}",
+            name(g, q)
+        ))
+        .at_field("position"));
+    }
+    if axis.iter().all(|&u| g.is_zero(u)) {
+        return Err(kinematics(format!(
+            "joint variable '{}' missing from position: a prismatic joint moves frame i along u in \
+             position = p0 + u {0}",
+            name(g, q)
+        ))
+        .at_field("position"));
+    }
+    let zero = g.zero();
+    let rest = position.map(|p| substitute(g, p, q, zero));
+    Ok(JointFrames {
+        pre: Transform::rotation(g, e),
+        axis,
+        post: Transform::translation(g, rest),
+    })
 }
 
 /// Convention (b), standard DH: frame i = Rz(θ)·Tz(d)·Tx(a)·Rx(α), with q added to θ

@@ -6,7 +6,7 @@ use super::error::{SpecError, SpecErrorKind};
 use super::expression::parse_rotation;
 use super::schema::{ComSpec, DhSpec, FrameSpec, InertiaSpec, LinkSpec};
 use super::scope::{Namespace, Scope};
-use crate::expr::{ExprGraph, Symbol};
+use crate::expr::{ExprGraph, Id, Mat3, Symbol, Vec3};
 use crate::input::frames::{self, DhParameters, JointFrames, Motion};
 use crate::input::inertia::{box_inertia, from_components, to_body, upper_symmetric};
 use crate::input::{Fields, InputLink};
@@ -45,56 +45,15 @@ pub(crate) fn link(
         ComSpec::Frame(v) => (inertials.vector(g, v)?, "com"),
         ComSpec::FromPrevious(v) => (inertials.vector(g, v)?, "com_from_prev"),
     };
-    let (inertia, declared_inertia, box_edges) = match &spec.inertia {
-        InertiaSpec::Components { diagonal, products } => {
-            let diagonal = inertials.vector(g, diagonal)?;
-            let [xy, xz, yz] = products;
-            let products = [
-                inertials.number_or_zero(g, xy.as_ref())?,
-                inertials.number_or_zero(g, xz.as_ref())?,
-                inertials.number_or_zero(g, yz.as_ref())?,
-            ];
-            (from_components(diagonal, products), None, None)
-        }
-        InertiaSpec::Matrix(rows) => {
-            let [r0, r1, r2] = rows;
-            let declared = [
-                inertials.vector(g, r0)?,
-                inertials.vector(g, r1)?,
-                inertials.vector(g, r2)?,
-            ];
-            (upper_symmetric(&declared), Some(declared), None)
-        }
-        InertiaSpec::Box(edges) => {
-            let edges = inertials.vector(g, edges)?;
-            (box_inertia(g, mass, edges), None, Some(edges))
-        }
-    };
+    let (inertia, declared_inertia, box_edges) = inertia(g, &spec.inertia, mass, &inertials)?;
     let (body_com, inertia) = to_body(g, &frames.post, com, &inertia);
     let com = match spec.com {
         ComSpec::FromPrevious(_) => com,
         _ => body_com,
     };
     let placement = parent_post.then(g, &frames.pre);
-    let mimic = match &spec.mimic {
-        None => None,
-        Some(m) => Some(Mimic {
-            leader: m.joint.name.clone(),
-            multiplier: match &m.multiplier {
-                Some(n) => inertials.number(g, n)?,
-                None => g.one(),
-            },
-            offset: inertials.number_or_zero(g, m.offset.as_ref())?,
-        }),
-    };
-    let friction = match &spec.friction {
-        None => None,
-        Some(f) => Some(Friction {
-            viscous: inertials.number_or_zero(g, f.viscous.as_ref())?,
-            coulomb: inertials.number_or_zero(g, f.coulomb.as_ref())?,
-            offset: inertials.number_or_zero(g, f.offset.as_ref())?,
-        }),
-    };
+    let mimic = mimic(g, spec, &inertials)?;
+    let friction = friction(g, spec, &inertials)?;
     let armature = spec
         .armature
         .as_ref()
@@ -120,24 +79,102 @@ pub(crate) fn link(
         link,
         joint_element: None,
         frames,
-        fields: Fields {
-            rotation: frame_fields.rotation,
-            translation: frame_fields.translation,
-            axis: frame_fields.axis,
-            mass: "mass",
-            com: com_field,
-            inertia: "inertia",
-            mimic: "mimic.joint",
-            mimic_multiplier: "mimic.multiplier",
-            mimic_offset: "mimic.offset",
-            viscous: "friction.viscous",
-            coulomb: "friction.coulomb",
-            friction_offset: "friction.offset",
-        },
+        fields: fields(frame_fields, com_field),
         declared_inertia,
         box_edges,
         triangle_inequality: spec.triangle_inequality,
     })
+}
+
+/// The rotational inertia `spec` declares (about the COM, in the link's frame), with the rows
+/// as declared when given as a matrix and the box's edges when given as a box of mass `mass`.
+type DeclaredInertia = (Mat3, Option<Mat3>, Option<Vec3>);
+
+/// The inertia of [`DeclaredInertia`], read from `spec` in the inertials' scope.
+fn inertia(
+    g: &mut ExprGraph,
+    spec: &InertiaSpec<'_>,
+    mass: Id,
+    inertials: &Scope<'_>,
+) -> Result<DeclaredInertia, SpecError> {
+    Ok(match spec {
+        InertiaSpec::Components { diagonal, products } => {
+            let diagonal = inertials.vector(g, diagonal)?;
+            let [xy, xz, yz] = products;
+            let products = [
+                inertials.number_or_zero(g, xy.as_ref())?,
+                inertials.number_or_zero(g, xz.as_ref())?,
+                inertials.number_or_zero(g, yz.as_ref())?,
+            ];
+            (from_components(diagonal, products), None, None)
+        }
+        InertiaSpec::Matrix(rows) => {
+            let [r0, r1, r2] = rows;
+            let declared = [
+                inertials.vector(g, r0)?,
+                inertials.vector(g, r1)?,
+                inertials.vector(g, r2)?,
+            ];
+            (upper_symmetric(&declared), Some(declared), None)
+        }
+        InertiaSpec::Box(edges) => {
+            let edges = inertials.vector(g, edges)?;
+            (box_inertia(g, mass, edges), None, Some(edges))
+        }
+    })
+}
+
+/// The link's mimic coupling (multiplier 1 and offset 0 unless given).
+fn mimic(
+    g: &mut ExprGraph,
+    spec: &LinkSpec<'_>,
+    inertials: &Scope<'_>,
+) -> Result<Option<Mimic>, SpecError> {
+    Ok(match &spec.mimic {
+        None => None,
+        Some(m) => Some(Mimic {
+            leader: m.joint.name.clone(),
+            multiplier: match &m.multiplier {
+                Some(n) => inertials.number(g, n)?,
+                None => g.one(),
+            },
+            offset: inertials.number_or_zero(g, m.offset.as_ref())?,
+        }),
+    })
+}
+
+/// The joint's friction (each coefficient 0 unless given).
+fn friction(
+    g: &mut ExprGraph,
+    spec: &LinkSpec<'_>,
+    inertials: &Scope<'_>,
+) -> Result<Option<Friction>, SpecError> {
+    Ok(match &spec.friction {
+        None => None,
+        Some(f) => Some(Friction {
+            viscous: inertials.number_or_zero(g, f.viscous.as_ref())?,
+            coulomb: inertials.number_or_zero(g, f.coulomb.as_ref())?,
+            offset: inertials.number_or_zero(g, f.offset.as_ref())?,
+        }),
+    })
+}
+
+/// The spec fields each part of a link comes from, for messages.
+fn fields(frame_fields: FrameFields, com_field: &'static str) -> Fields {
+    Fields {
+        rotation: frame_fields.rotation,
+        translation: frame_fields.translation,
+        axis: frame_fields.axis,
+        mass: "mass",
+        com: com_field,
+        inertia: "inertia",
+        mimic: "mimic.joint",
+        mimic_multiplier: "mimic.multiplier",
+        mimic_offset: "mimic.offset",
+        viscous: "friction.viscous",
+        coulomb: "friction.coulomb",
+        friction_offset: "friction.offset",
+    }
 }
 
 fn joint_frames(

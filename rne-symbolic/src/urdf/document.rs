@@ -168,102 +168,123 @@ fn child(
                 inertial: None,
             })
         }
-        (Open::Robot, b"joint") => {
-            let name =
-                required(element, "name", "name").map_err(|e| e.at_span(Some(span.clone())))?;
-            let in_joint = |e: SpecError| e.in_joint(&name).at_span(Some(span.clone()));
-            let type_name = required(element, "type", "type").map_err(in_joint)?;
-            let joint_type = JointType::from_name(&type_name).ok_or_else(|| {
-                in_joint(
-                    urdf_error(format!(
-                        "unknown joint type '{type_name}' (expected revolute, continuous, \
-                         prismatic, fixed, floating, planar or spherical)"
-                    ))
-                    .at_field("type"),
-                )
-            })?;
-            Open::Joint(JointDraft {
-                name,
-                span: span.clone(),
-                joint_type,
-                origin: None,
-                parent: None,
-                child: None,
-                axis: None,
-                mimic: None,
-                dynamics: None,
-            })
-        }
+        (Open::Robot, b"joint") => Open::Joint(joint_draft(element, span)?),
         (Open::Link(link), b"inertial") if link.inertial.is_none() => {
             Open::Inertial(InertialDraft::default())
         }
         (Open::Inertial(inertial), tag) => {
-            match tag {
-                b"origin" if inertial.origin.is_none() => {
-                    inertial.origin = Some(origin(element, "inertial.origin")?);
-                }
-                b"mass" if inertial.mass.is_none() => {
-                    let value = required(element, "value", "inertial.mass")?;
-                    inertial.mass = Some(number(&value, "inertial.mass")?);
-                }
-                b"inertia" if inertial.inertia.is_none() => {
-                    let mut values = [0.0; 6];
-                    for (value, key) in values
-                        .iter_mut()
-                        .zip(["ixx", "ixy", "ixz", "iyy", "iyz", "izz"])
-                    {
-                        let field = format!("inertial.inertia.{key}");
-                        *value = number(&required(element, key, &field)?, &field)?;
-                    }
-                    let [xx, xy, xz, yy, yz, zz] = values;
-                    inertial.inertia = Some([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]);
-                }
-                _ => {}
-            }
+            inertial_child(inertial, tag, element)?;
             Open::Skipped
         }
         (Open::Joint(joint), tag) => {
             let name = joint.name.clone();
-            let in_joint = |e: SpecError| e.in_joint(&name);
-            match tag {
-                b"origin" if joint.origin.is_none() => {
-                    joint.origin = Some(origin(element, "origin").map_err(in_joint)?);
-                }
-                b"parent" if joint.parent.is_none() => {
-                    joint.parent = Some(required(element, "link", "parent").map_err(in_joint)?);
-                }
-                b"child" if joint.child.is_none() => {
-                    joint.child = Some(required(element, "link", "child").map_err(in_joint)?);
-                }
-                b"axis" if joint.axis.is_none() => {
-                    let xyz = attribute(element, "xyz").map_err(in_joint)?;
-                    joint.axis = Some(match xyz {
-                        Some(xyz) => vector(&xyz, "axis").map_err(in_joint)?,
-                        None => [1.0, 0.0, 0.0],
-                    });
-                }
-                b"mimic" if joint.mimic.is_none() => {
-                    joint.mimic = Some(mimic(element).map_err(in_joint)?);
-                }
-                b"dynamics" if joint.dynamics.is_none() => {
-                    let coefficient = |key: &str| -> Result<f64, SpecError> {
-                        let field = format!("dynamics.{key}");
-                        match attribute(element, key)? {
-                            Some(value) => number(&value, &field),
-                            None => Ok(0.0),
-                        }
-                    };
-                    joint.dynamics = Some(Dynamics {
-                        damping: coefficient("damping").map_err(in_joint)?,
-                        friction: coefficient("friction").map_err(in_joint)?,
-                    });
-                }
-                _ => {}
-            }
+            joint_child(joint, tag, element).map_err(|e| e.in_joint(&name))?;
             Open::Skipped
         }
         _ => Open::Skipped,
     })
+}
+
+/// A `<joint>` as opened at `span`: its name and type, nothing inside it read yet.
+fn joint_draft(element: &BytesStart<'_>, span: &Range<usize>) -> Result<JointDraft, SpecError> {
+    let name = required(element, "name", "name").map_err(|e| e.at_span(Some(span.clone())))?;
+    let in_joint = |e: SpecError| e.in_joint(&name).at_span(Some(span.clone()));
+    let type_name = required(element, "type", "type").map_err(in_joint)?;
+    let joint_type = JointType::from_name(&type_name).ok_or_else(|| {
+        in_joint(
+            urdf_error(format!(
+                "unknown joint type '{type_name}' (expected revolute, continuous, \
+                 prismatic, fixed, floating, planar or spherical)"
+            ))
+            .at_field("type"),
+        )
+    })?;
+    Ok(JointDraft {
+        name,
+        span: span.clone(),
+        joint_type,
+        origin: None,
+        parent: None,
+        child: None,
+        axis: None,
+        mimic: None,
+        dynamics: None,
+    })
+}
+
+/// Reads the element `tag` inside an `<inertial>` into it (the first of each counts).
+fn inertial_child(
+    inertial: &mut InertialDraft,
+    tag: &[u8],
+    element: &BytesStart<'_>,
+) -> Result<(), SpecError> {
+    match tag {
+        b"origin" if inertial.origin.is_none() => {
+            inertial.origin = Some(origin(element, "inertial.origin")?);
+        }
+        b"mass" if inertial.mass.is_none() => {
+            let value = required(element, "value", "inertial.mass")?;
+            inertial.mass = Some(number(&value, "inertial.mass")?);
+        }
+        b"inertia" if inertial.inertia.is_none() => {
+            let mut values = [0.0; 6];
+            for (value, key) in values
+                .iter_mut()
+                .zip(["ixx", "ixy", "ixz", "iyy", "iyz", "izz"])
+            {
+                let field = format!("inertial.inertia.{key}");
+                *value = number(&required(element, key, &field)?, &field)?;
+            }
+            let [xx, xy, xz, yy, yz, zz] = values;
+            inertial.inertia = Some([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]);
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Reads the element `tag` inside a `<joint>` into it (the first of each counts).
+fn joint_child(
+    joint: &mut JointDraft,
+    tag: &[u8],
+    element: &BytesStart<'_>,
+) -> Result<(), SpecError> {
+    match tag {
+        b"origin" if joint.origin.is_none() => {
+            joint.origin = Some(origin(element, "origin")?);
+        }
+        b"parent" if joint.parent.is_none() => {
+            joint.parent = Some(required(element, "link", "parent")?);
+        }
+        b"child" if joint.child.is_none() => {
+            joint.child = Some(required(element, "link", "child")?);
+        }
+        b"axis" if joint.axis.is_none() => {
+            let xyz = attribute(element, "xyz")?;
+            joint.axis = Some(match xyz {
+                Some(xyz) => vector(&xyz, "axis")?,
+                None => [1.0, 0.0, 0.0],
+            });
+        }
+        b"mimic" if joint.mimic.is_none() => {
+            joint.mimic = Some(mimic(element)?);
+        }
+        b"dynamics" if joint.dynamics.is_none() => {
+            let coefficient = |key: &str| -> Result<f64, SpecError> {
+                let field = format!("dynamics.{key}");
+                match attribute(element, key)? {
+                    Some(value) => number(&value, &field),
+                    None => Ok(0.0),
+                }
+            };
+            joint.dynamics = Some(Dynamics {
+                damping: coefficient("damping")?,
+                friction: coefficient("friction")?,
+            });
+        }
+        _ => {}
+    }
+    Ok(())
 }
 
 /// Files a closed element into its parent (or the robot).
