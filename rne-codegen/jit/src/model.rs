@@ -339,15 +339,19 @@ impl JitModel {
         if compiled.scratch == 0 {
             return self.run_in(compiled, state, parameters, out, &mut []);
         }
-        SCRATCH.with(|cell| match cell.try_borrow_mut() {
-            Ok(mut scratch) => {
-                if scratch.len() < compiled.scratch {
-                    scratch.resize(compiled.scratch, 0.0);
-                }
-                self.run_in(compiled, state, parameters, out, &mut scratch);
+        let reused = SCRATCH.try_with(|cell| {
+            let Ok(mut scratch) = cell.try_borrow_mut() else {
+                return false;
+            };
+            if scratch.len() < compiled.scratch {
+                scratch.resize(compiled.scratch, 0.0);
             }
-            Err(_) => self.run_in(compiled, state, parameters, out, &mut compiled.scratch()),
+            self.run_in(compiled, state, parameters, out, &mut scratch);
+            true
         });
+        if !matches!(reused, Ok(true)) {
+            self.run_in(compiled, state, parameters, out, &mut compiled.scratch());
+        }
     }
 
     /// [`JitModel::run`] with the kernel's scratch array given (`compiled.scratch()`), so that
