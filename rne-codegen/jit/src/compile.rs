@@ -2,12 +2,18 @@
 //! their order.
 //!
 //! Cranelift compiles one function without looking at any other, so the functions of all
-//! kernels are compiled in parallel (as Wasmtime compiles a module's functions) and their
-//! bytes and relocations handed to the module one by one, in the order they were lowered: the
-//! code, and where it lands in memory, are those of compiling them one after another.
+//! kernels are compiled together in parallel (as Wasmtime compiles a module's functions) and
+//! their bytes and relocations handed to the module one by one, in the order they were
+//! lowered: the code, and where it lands in memory, are those of compiling them one after
+//! another. Threads take the longest function not yet taken first, so that no long function
+//! is left to compile alone at the end.
+//!
+//! `RNE_JIT_THREADS=n` sets the number of threads (default: one per core);
+//! `RNE_JIT_TIMINGS=1` prints each function's compile time to stderr.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use cranelift_codegen::control::ControlPlane;
 use cranelift_codegen::isa::TargetIsa;
@@ -24,12 +30,26 @@ struct Machine {
     relocs: Vec<ModuleReloc>,
 }
 
+/// One function's outcome: its machine code or the error, the thread that compiled it and
+/// how long it took.
+struct Outcome {
+    machine: Result<Machine, String>,
+    thread: usize,
+    time: Duration,
+}
+
+/// A function that failed to compile or be defined: its index in `functions`, the message.
+pub(crate) type Failure = (usize, String);
+
 /// Compiles `functions` on up to [`threads`] threads and defines them in `module`,
-/// in order. An error names the function that failed.
-pub(crate) fn define(module: &mut JITModule, functions: &[Lowered]) -> Result<(), String> {
-    let compiled = compile_all(module.isa(), functions);
-    for (lowered, machine) in functions.iter().zip(compiled) {
-        let machine = machine?;
+/// in order. An error names the function that failed by its index.
+pub(crate) fn define(module: &mut JITModule, functions: &[&Lowered]) -> Result<(), Failure> {
+    let outcomes = compile_all(module.isa(), functions);
+    if std::env::var_os("RNE_JIT_TIMINGS").is_some() {
+        report(functions, &outcomes);
+    }
+    for (k, (lowered, outcome)) in functions.iter().zip(outcomes).enumerate() {
+        let machine = outcome.machine.map_err(|e| (k, e))?;
         module
             .define_function_bytes(
                 lowered.id,
@@ -37,7 +57,7 @@ pub(crate) fn define(module: &mut JITModule, functions: &[Lowered]) -> Result<()
                 &machine.bytes,
                 &machine.relocs,
             )
-            .map_err(|e| format!("{e:?}"))?;
+            .map_err(|e| (k, format!("{e:?}")))?;
     }
     Ok(())
 }
@@ -52,33 +72,53 @@ fn threads() -> usize {
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
-/// Every function compiled, in order; threads take the next function as they finish one.
-fn compile_all(isa: &dyn TargetIsa, functions: &[Lowered]) -> Vec<Result<Machine, String>> {
+/// The indices of `functions`, longest (most IR instructions) first, in order among equals.
+fn longest_first(functions: &[&Lowered]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..functions.len()).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(functions[k].function.dfg.num_insts()));
+    order
+}
+
+/// Every function compiled, in the order of `functions`; threads take the longest function
+/// left as they finish one.
+fn compile_all(isa: &dyn TargetIsa, functions: &[&Lowered]) -> Vec<Outcome> {
     let threads = threads().min(functions.len()).max(1);
+    let order = longest_first(functions);
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<Machine, String>>>> =
+    let results: Mutex<Vec<Option<Outcome>>> =
         Mutex::new((0..functions.len()).map(|_| None).collect());
-    let work = || loop {
-        let k = next.fetch_add(1, Ordering::Relaxed);
-        let Some(lowered) = functions.get(k) else {
+    let work = |thread: usize| loop {
+        let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
             return;
         };
-        let machine = compile(isa, lowered);
+        let start = Instant::now();
+        let machine = compile(isa, functions[k]);
+        let outcome = Outcome {
+            machine,
+            thread,
+            time: start.elapsed(),
+        };
         if let Ok(mut results) = results.lock() {
-            results[k] = Some(machine);
+            results[k] = Some(outcome);
         }
     };
     std::thread::scope(|scope| {
-        for _ in 1..threads {
-            scope.spawn(work);
+        for thread in 1..threads {
+            scope.spawn(move || work(thread));
         }
-        work();
+        work(0);
     });
     results
         .into_inner()
         .unwrap_or_else(|poisoned| poisoned.into_inner())
         .into_iter()
-        .map(|r| r.unwrap_or_else(|| Err("a compiling thread stopped".to_owned())))
+        .map(|r| {
+            r.unwrap_or_else(|| Outcome {
+                machine: Err("a compiling thread stopped".to_owned()),
+                thread: 0,
+                time: Duration::ZERO,
+            })
+        })
         .collect()
 }
 
@@ -101,4 +141,32 @@ fn compile(isa: &dyn TargetIsa, lowered: &Lowered) -> Result<Machine, String> {
         alignment,
         relocs,
     })
+}
+
+/// `RNE_JIT_TIMINGS`: one line per function (name, IR instructions, thread, milliseconds),
+/// longest compile first, then each thread's busy time.
+fn report(functions: &[&Lowered], outcomes: &[Outcome]) {
+    let mut order: Vec<usize> = (0..functions.len()).collect();
+    order.sort_by_key(|&k| std::cmp::Reverse(outcomes[k].time));
+    let mut busy: Vec<Duration> = Vec::new();
+    for &k in &order {
+        let (lowered, outcome) = (functions[k], &outcomes[k]);
+        eprintln!(
+            "rne-jit: {:<40} {:>7} IR instructions, thread {}, {:9.3} ms",
+            lowered.name,
+            lowered.function.dfg.num_insts(),
+            outcome.thread,
+            outcome.time.as_secs_f64() * 1e3
+        );
+        if busy.len() <= outcome.thread {
+            busy.resize(outcome.thread + 1, Duration::ZERO);
+        }
+        busy[outcome.thread] += outcome.time;
+    }
+    for (thread, time) in busy.iter().enumerate() {
+        eprintln!(
+            "rne-jit: thread {thread} busy {:9.3} ms",
+            time.as_secs_f64() * 1e3
+        );
+    }
 }

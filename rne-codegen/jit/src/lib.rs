@@ -29,9 +29,15 @@
 //! are those of the runtime as this program was compiled (fused only in a build with FMA).
 //!
 //! # Threads
-//! The functions of all kernels are compiled on one thread per core (`RNE_JIT_THREADS=n`
-//! sets the number), and defined in the order they were lowered: the code does not depend on
-//! the number of threads.
+//! The functions of all kernels are compiled together on one thread per core
+//! (`RNE_JIT_THREADS=n` sets the number), the longest first, and defined in the order they
+//! were lowered: the code does not depend on the number of threads. Programs of more than
+//! 2000 instructions (the derivative kernels of arms, most kernels of large robots) are
+//! compiled as parts of at most 1000, so that one long kernel does not keep one thread busy
+//! while the others wait, and the register allocator, whose time grows faster than the
+//! length of a function, sees short ones; the results are the same bits.
+//! `RNE_JIT_SPLIT_ABOVE=n` and `RNE_JIT_PART_LEN=n` set the cut, `RNE_JIT_TIMINGS=1` prints
+//! each function's compile time to stderr (for measuring).
 //!
 //! # Limits
 //! - `f64` only, and the derivative kernels in scalars (lanes are the Rust emitter's).

@@ -1,7 +1,14 @@
 //! A straight-line [`Program`] lowered to Cranelift IR: one function, or for a program longer
-//! than the Rust emitter's split threshold ([`SPLIT_ABOVE`]) one function per part of
-//! [`PART_LEN`] instructions, called in turn, values read by a later part passing through a
-//! scratch array.
+//! than the JIT's split threshold ([`Split`]) one function per part of about equal length,
+//! called in turn, values read by a later part passing through a scratch array.
+//!
+//! The JIT splits at its own threshold, lower than the Rust emitter's
+//! ([`rne_codegen_core::SPLIT_ABOVE`]):
+//! Cranelift compiles one function on one thread, and its register allocator takes time
+//! that grows faster than linearly with a function's length, so the longest kernels (the
+//! derivatives) are cut into parts that the threads of `compile.rs` share. The parts run the
+//! program's instructions in its order; a value crossing parts is stored as the `f64` it is
+//! and loaded back, so splitting changes no bit of the results.
 //!
 //! Each instruction becomes the one IEEE operation it names, in program order — `fadd`,
 //! `fsub`, `fmul`, `fdiv`, `fneg`, `sqrt`; `sign` as the runtime's (`1`, `−1`, or the value
@@ -12,7 +19,9 @@
 //! computes them at the top of the function. Cranelift neither reassociates nor contracts
 //! floating-point operations, so the compiled code computes the program's values bit for bit.
 
+use std::cmp::Reverse;
 use std::collections::HashMap;
+use std::collections::{BTreeSet, BinaryHeap};
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
@@ -22,7 +31,7 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Linkage, Module};
-use rne_codegen_core::{Instr, Operand, Program, PART_LEN, SPLIT_ABOVE};
+use rne_codegen_core::{Instr, Operand, Program, PART_LEN};
 use rne_symbolic::Symbol;
 
 use crate::code::Extents;
@@ -50,6 +59,42 @@ struct Part {
 
 /// Where the values that cross parts live: instruction index → scratch slot.
 type Slots = HashMap<usize, usize>;
+
+/// Where the JIT cuts long programs: a program of more than `above` instructions becomes
+/// parts of at most `part_len` instructions, of about equal length.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Split {
+    /// Programs with more instructions than this are split.
+    pub above: usize,
+    /// The most instructions in one part.
+    pub part_len: usize,
+}
+
+impl Split {
+    /// The JIT's cut: programs of more than two parts' worth of instructions, in parts of at
+    /// most the Rust emitter's part length ([`PART_LEN`]). The derivative kernels of arms
+    /// are split, their dynamics kernels (shorter) stay one function each.
+    pub(crate) const DEFAULT: Split = Split {
+        above: 2 * PART_LEN,
+        part_len: PART_LEN,
+    };
+
+    /// [`Split::DEFAULT`], or as `RNE_JIT_SPLIT_ABOVE` and `RNE_JIT_PART_LEN` say (positive
+    /// numbers; for measuring the compile time and speed of other cuts).
+    pub(crate) fn from_env() -> Split {
+        let read = |name: &str, default: usize| {
+            std::env::var(name)
+                .ok()
+                .and_then(|n| n.parse::<usize>().ok())
+                .filter(|&n| n > 0)
+                .unwrap_or(default)
+        };
+        Split {
+            above: read("RNE_JIT_SPLIT_ABOVE", Split::DEFAULT.above),
+            part_len: read("RNE_JIT_PART_LEN", Split::DEFAULT.part_len),
+        }
+    }
+}
 
 impl Lowering {
     /// Declares `sin_cos_array` in `module`; `fused` as [`Lowering::fused`].
@@ -84,16 +129,13 @@ impl Lowering {
         name: &str,
         program: &Program,
     ) -> Result<Vec<Lowered>, String> {
-        let parts = parts(program);
-        let slots = crossing_slots(program, &parts);
+        let parts = parts(program, Split::from_env());
+        let (slots, scratch) = crossing_slots(program, &parts);
         let mut functions = Vec::with_capacity(parts.len());
         for (k, &part) in parts.iter().enumerate() {
+            let name = format!("{name}_{k}");
             let id = module
-                .declare_function(
-                    &format!("{name}_{k}"),
-                    Linkage::Local,
-                    &self.kernel_signature,
-                )
+                .declare_function(&name, Linkage::Local, &self.kernel_signature)
                 .map_err(|e| e.to_string())?;
             let mut function = Function::with_name_signature(
                 UserFuncName::user(0, id.as_u32()),
@@ -101,7 +143,7 @@ impl Lowering {
             );
             let sin_cos = module.declare_func_in_func(self.sin_cos, &mut function);
             let mut extents = Extents {
-                scratch: slots.len(),
+                scratch,
                 ..Extents::default()
             };
             let config = module.target_config();
@@ -113,6 +155,7 @@ impl Lowering {
             }
             functions.push(Lowered {
                 id,
+                name,
                 function,
                 extents,
             });
@@ -125,45 +168,67 @@ impl Lowering {
 pub(crate) struct Lowered {
     /// Its id in the module.
     pub id: FuncId,
+    /// Its name in the module: the kernel's, then the part's number.
+    pub name: String,
     /// Its IR.
     pub function: Function,
     /// The array lengths it reads and writes.
     pub extents: Extents,
 }
 
-/// One function's part of a program, [`SPLIT_ABOVE`] and [`PART_LEN`] as the Rust emitter's.
-fn parts(program: &Program) -> Vec<Part> {
+/// The parts of `program` as `split` cuts it: one, or the fewest of at most `part_len`
+/// instructions, their lengths differing by at most one.
+fn parts(program: &Program, split: Split) -> Vec<Part> {
     let n = program.instrs.len();
-    if n <= SPLIT_ABOVE {
+    if n <= split.above {
         return vec![Part { start: 0, end: n }];
     }
-    (0..n)
-        .step_by(PART_LEN)
-        .map(|start| Part {
-            start,
-            end: (start + PART_LEN).min(n),
+    let count = n.div_ceil(split.part_len.max(1));
+    (0..count)
+        .map(|k| Part {
+            start: k * n / count,
+            end: (k + 1) * n / count,
         })
         .collect()
 }
 
-/// A scratch slot for every value a later part reads, numbered in program order.
-fn crossing_slots(program: &Program, parts: &[Part]) -> Slots {
+/// A scratch slot for every value a later part reads, and the number of slots. A slot is
+/// reused by a value of a part after the last part reading the value it held.
+fn crossing_slots(program: &Program, parts: &[Part]) -> (Slots, usize) {
     let part_of = |t: usize| parts.partition_point(|p| p.end <= t);
-    let mut crossing = vec![false; program.instrs.len()];
+    let mut last_reader: Vec<Option<usize>> = vec![None; program.instrs.len()];
     for (k, instr) in program.instrs.iter().enumerate() {
         for t in instr.operands().filter_map(Operand::temp) {
-            if part_of(t as usize) != part_of(k) {
-                crossing[t as usize] = true;
+            let (home, reader) = (part_of(t as usize), part_of(k));
+            if home != reader {
+                let last = &mut last_reader[t as usize];
+                *last = Some(last.map_or(reader, |r| r.max(reader)));
             }
         }
     }
-    crossing
-        .iter()
-        .enumerate()
-        .filter(|(_, &c)| c)
-        .enumerate()
-        .map(|(slot, (t, _))| (t, slot))
-        .collect()
+    let mut slots = Slots::new();
+    let mut free: BTreeSet<usize> = BTreeSet::new();
+    // (last part reading the value in it, slot), the earliest freed first.
+    let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
+    let mut len = 0;
+    for (t, last) in last_reader.iter().enumerate() {
+        let Some(last) = *last else { continue };
+        let home = part_of(t);
+        while let Some(&Reverse((last_read, slot))) = busy.peek() {
+            if last_read >= home {
+                break;
+            }
+            busy.pop();
+            free.insert(slot);
+        }
+        let slot = free.pop_first().unwrap_or_else(|| {
+            len += 1;
+            len - 1
+        });
+        busy.push(Reverse((last, slot)));
+        slots.insert(t, slot);
+    }
+    (slots, len)
 }
 
 /// The pointer parameters of a compiled function, in order.
@@ -486,5 +551,86 @@ impl<'f> Body<'f> {
         self.builder
             .ins()
             .store(MemFlagsData::trusted(), value, base, (8 * index) as i32);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A program of `n` instructions where instruction i adds instruction i − 1 and
+    /// i − `reach` (or an input), so values are read up to `reach` instructions away.
+    fn chain(n: usize, reach: usize) -> Program {
+        let instrs = (0..n)
+            .map(|i| {
+                let near = match i {
+                    0 => Operand::Input(Symbol::Position(0)),
+                    _ => Operand::Temp((i - 1) as u32),
+                };
+                let far = match i.checked_sub(reach) {
+                    Some(j) => Operand::Temp(j as u32),
+                    None => Operand::Input(Symbol::Velocity(0)),
+                };
+                Instr::Add(near, far)
+            })
+            .collect();
+        Program {
+            instrs,
+            outputs: vec![Operand::Temp(n as u32 - 1)],
+        }
+    }
+
+    #[test]
+    fn programs_up_to_the_threshold_stay_one_function() {
+        let split = Split::DEFAULT;
+        let parts = parts(&chain(split.above, 3), split);
+        assert_eq!(parts.len(), 1);
+        assert_eq!((parts[0].start, parts[0].end), (0, split.above));
+    }
+
+    /// Longer programs: the fewest parts of at most `part_len`, in order, covering every
+    /// instruction once, their lengths within one of each other.
+    #[test]
+    fn longer_programs_are_cut_into_consecutive_parts_of_about_equal_length() {
+        let split = Split::DEFAULT;
+        for n in [split.above + 1, 3 * split.part_len, 7 * split.part_len + 13] {
+            let parts = parts(&chain(n, 3), split);
+            assert_eq!(parts.len(), n.div_ceil(split.part_len), "{n} instructions");
+            assert_eq!(parts[0].start, 0);
+            assert_eq!(parts.last().map(|p| p.end), Some(n));
+            for pair in parts.windows(2) {
+                assert_eq!(pair[0].end, pair[1].start);
+            }
+            let lengths: Vec<usize> = parts.iter().map(|p| p.end - p.start).collect();
+            let (shortest, longest) = (lengths.iter().min(), lengths.iter().max());
+            assert!(longest.is_some_and(|&l| l <= split.part_len), "{lengths:?}");
+            assert!(longest.zip(shortest).is_some_and(|(l, s)| l - s <= 1));
+        }
+    }
+
+    /// Running the instructions in order over the scratch array, each storing its value to
+    /// its slot, every value a part reads from an earlier part is in its slot when read (no
+    /// value stored since has overwritten it), and
+    /// slots are reused once the values in them are read for the last time.
+    #[test]
+    fn every_crossing_value_is_in_its_slot_when_read_and_slots_are_reused() {
+        let program = chain(9000, 1500);
+        let parts = parts(&program, Split::DEFAULT);
+        let (slots, len) = crossing_slots(&program, &parts);
+        let mut scratch: Vec<Option<usize>> = vec![None; len];
+        for part in &parts {
+            for t in part.start..part.end {
+                for u in program.instrs[t].operands().filter_map(Operand::temp) {
+                    let u = u as usize;
+                    if u < part.start {
+                        assert_eq!(scratch[slots[&u]], Some(u), "instruction {t} reads {u}");
+                    }
+                }
+                if let Some(&slot) = slots.get(&t) {
+                    scratch[slot] = Some(t);
+                }
+            }
+        }
+        assert!(len < slots.len(), "{len} slots for {} values", slots.len());
     }
 }

@@ -1,5 +1,6 @@
 //! A robot's kernels compiled in memory: [`JitModel`].
 
+use std::cell::RefCell;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -14,7 +15,7 @@ use rne_symbolic::RobotModel;
 use crate::code::{self, Arrays, Code, Entry};
 use crate::compile;
 use crate::error::JitError;
-use crate::lower::{Lowering, SIN_COS};
+use crate::lower::{Lowered, Lowering, SIN_COS};
 
 /// The arrays of one state, borrowed. A kernel reads the ones it takes
 /// ([`Kernel::inputs`]): q has NQ entries, the others NV; the arrays it does not take may be
@@ -29,6 +30,14 @@ pub struct State<'a> {
     pub qdd: &'a [f64],
     /// Generalised forces τ.
     pub tau: &'a [f64],
+}
+
+thread_local! {
+    /// The scratch array of this thread's single calls of split kernels, as long as the
+    /// longest it has needed: a call allocates nothing. Every part stores a value to its slot
+    /// before a later part loads it (`lower.rs`), so what earlier calls left there is never
+    /// read.
+    static SCRATCH: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
 }
 
 /// One kernel's compiled parts, called in turn.
@@ -130,22 +139,16 @@ impl JitModel {
                     .map_or(Kernel::InverseDynamics, |k| k.kernel),
                 message,
             })?;
-        let mut lowered = Vec::with_capacity(programs.kernels.len());
-        for k in &programs.kernels {
-            let parts = lowering
-                .lower(&mut module, k.kernel.name(), &k.program)
-                .map_err(|message| JitError::Compile {
-                    kernel: k.kernel,
-                    message,
-                })?;
-            lowered.push((k.kernel, k.program.outputs.len(), parts));
-        }
-        for (kernel, _, parts) in &lowered {
-            compile::define(&mut module, parts).map_err(|message| JitError::Compile {
-                kernel: *kernel,
-                message,
-            })?;
-        }
+        let lowered = lower_all(&mut module, &mut lowering, &programs)?;
+        let functions: Vec<(Kernel, &Lowered)> = lowered
+            .iter()
+            .flat_map(|(kernel, _, parts)| parts.iter().map(move |part| (*kernel, part)))
+            .collect();
+        let parts: Vec<&Lowered> = functions.iter().map(|&(_, part)| part).collect();
+        compile::define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
+            kernel: functions[k].0,
+            message,
+        })?;
         module
             .finalize_definitions()
             .map_err(|e| JitError::Compile {
@@ -154,25 +157,7 @@ impl JitModel {
             })?;
         let kernels = lowered
             .into_iter()
-            .map(|(kernel, outputs, parts)| {
-                let scratch = parts.iter().map(|p| p.extents.scratch).max().unwrap_or(0);
-                let parts = parts
-                    .into_iter()
-                    .map(|part| {
-                        let address = module.get_finalized_function(part.id);
-                        // SAFETY: `part.id` was defined with the kernels' signature from the
-                        // IR `Lowering` built, which recorded `part.extents`; `module` becomes
-                        // the model's `Code`, which outlives the entries (code.rs).
-                        unsafe { Entry::new(address, part.extents) }
-                    })
-                    .collect();
-                Compiled {
-                    kernel,
-                    parts,
-                    outputs,
-                    scratch,
-                }
-            })
+            .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, parts))
             .collect();
         let timings = Timings {
             generation: programs.generation_time,
@@ -351,8 +336,22 @@ impl JitModel {
         parameters: &[f64],
         out: &mut [f64],
     ) {
-        let mut scratch = compiled.scratch();
-        self.run_in(compiled, state, parameters, out, &mut scratch);
+        if compiled.scratch == 0 {
+            return self.run_in(compiled, state, parameters, out, &mut []);
+        }
+        let reused = SCRATCH.try_with(|cell| {
+            let Ok(mut scratch) = cell.try_borrow_mut() else {
+                return false;
+            };
+            if scratch.len() < compiled.scratch {
+                scratch.resize(compiled.scratch, 0.0);
+            }
+            self.run_in(compiled, state, parameters, out, &mut scratch);
+            true
+        });
+        if !matches!(reused, Ok(true)) {
+            self.run_in(compiled, state, parameters, out, &mut compiled.scratch());
+        }
     }
 
     /// [`JitModel::run`] with the kernel's scratch array given (`compiled.scratch()`), so that
@@ -419,6 +418,49 @@ impl Compiled {
     /// A scratch array for one call at a time (empty for a kernel of one part).
     pub(crate) fn scratch(&self) -> Vec<f64> {
         vec![0.0; self.scratch]
+    }
+}
+
+/// Every kernel of `programs` lowered in `module`: the kernel, its number of outputs and its
+/// functions.
+fn lower_all(
+    module: &mut JITModule,
+    lowering: &mut Lowering,
+    programs: &GeneratedPrograms,
+) -> Result<Vec<(Kernel, usize, Vec<Lowered>)>, JitError> {
+    programs
+        .kernels
+        .iter()
+        .map(|k| {
+            let parts = lowering
+                .lower(module, k.kernel.name(), &k.program)
+                .map_err(|message| JitError::Compile {
+                    kernel: k.kernel,
+                    message,
+                })?;
+            Ok((k.kernel, k.program.outputs.len(), parts))
+        })
+        .collect()
+}
+
+/// The entries into `kernel`'s finalized `parts` in `module`.
+fn entries(module: &JITModule, kernel: Kernel, outputs: usize, parts: Vec<Lowered>) -> Compiled {
+    let scratch = parts.iter().map(|p| p.extents.scratch).max().unwrap_or(0);
+    let parts = parts
+        .into_iter()
+        .map(|part| {
+            let address = module.get_finalized_function(part.id);
+            // SAFETY: `part.id` was defined with the kernels' signature from the IR
+            // `Lowering` built, which recorded `part.extents`; `module` becomes the model's
+            // `Code`, which outlives the entries (code.rs).
+            unsafe { Entry::new(address, part.extents) }
+        })
+        .collect();
+    Compiled {
+        kernel,
+        parts,
+        outputs,
+        scratch,
     }
 }
 
