@@ -484,6 +484,7 @@ mod tests {
             .iter()
             .fold(cosines[0].clone(), |a, c| format!("(* {a} {c})"));
         let p = parse(&mut g, &product);
+        let small = parse(&mut g, "(* m1 (cos q1))");
         let printer = Printer::new(g.symbols(), PrintFormat::Text);
         let mut short = WorkBudget::new(1 << 13);
         assert_eq!(printer.print_within(&p, &mut short), None);
@@ -494,7 +495,6 @@ mod tests {
         assert_eq!(printed, printer.print(&p));
         let terms = printed.matches(" + ").count() + printed.matches(" - ").count() + 1;
         assert_eq!(terms, 1 << 11, "{printed}");
-        let small = parse(&mut g, "(* m1 (cos q1))");
         let mut budget = WorkBudget::new(8);
         assert_eq!(
             printer.print_within(&small, &mut budget).as_deref(),
