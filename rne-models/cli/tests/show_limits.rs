@@ -97,3 +97,54 @@ fn a_large_robot_stops_at_the_limit_within_seconds() {
     assert!(out.contains("entries printed"), "{out}");
     assert!(elapsed < Duration::from_secs(60), "{elapsed:?}");
 }
+
+/// A floating-base robot of 23 degrees of freedom (the Baxter fixture), whose every torque
+/// depends on the base's orientation: `rne show` stays within the limit, lists every entry it
+/// did not print (by size when it printed it, else by name and count), and ends with the
+/// commands that print one entry or the compact form.
+#[test]
+fn a_floating_base_robot_stays_within_the_limit_and_ends_with_the_pointer() {
+    let urdf = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../corpus/tests/fixtures/baxter.urdf"
+    );
+    let out = rne(&["show", urdf, "--floating-base", "--max-size", "100K"]).unwrap();
+    let note = out
+        .find("entries printed")
+        .unwrap_or_else(|| panic!("no note of what was left out:\n{out}"));
+    let header = out.lines().next().unwrap().len();
+    assert!(
+        note <= header + 100_000 + 100,
+        "{note} bytes before the note"
+    );
+    let last = out.lines().last().unwrap();
+    assert!(last.starts_with("# one entry: rne show "), "{last}");
+    assert!(last.contains(" --floating-base --entry \""), "{last}");
+    assert!(last.ends_with(" --floating-base --compact"), "{last}");
+    let printed = out.lines().filter(|l| l.contains(" = ")).count();
+    let summary = out[note..].lines().next().unwrap();
+    let total: usize = summary
+        .split(" of ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("no total in {summary}"));
+    assert_eq!(total, 23 + 276 + 529 + 23 + 2, "tau, M, C, g, T and V");
+    assert_eq!(listed(&out[note..]) + printed, total, "{}", &out[note..]);
+}
+
+/// The entries a note lists: one a line by size (`  M[1,2]   12.0 KB`), `… and N more`, and
+/// by name and count (`  C: 529 entries, C[1,1] … C[23,23]`, or one name alone).
+fn listed(note: &str) -> usize {
+    note.lines()
+        .filter_map(|l| l.strip_prefix("#   "))
+        .map(|l| {
+            let count = |text: &str, marker: &str| {
+                text.split(marker).next()?.rsplit(' ').next()?.parse().ok()
+            };
+            count(l, " entries,")
+                .or_else(|| l.strip_prefix("… and ").and_then(|t| count(t, " more")))
+                .unwrap_or(1)
+        })
+        .sum()
+}

@@ -5,6 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 use std::sync::Arc;
 
 use super::atom::{Angle, Atom};
+use super::budget::WorkBudget;
 use super::error::CanonicalError;
 use super::polynomial::Polynomial;
 use crate::expr::{ExprGraph, Id, Node};
@@ -34,22 +35,26 @@ impl Polynomial {
     /// The canonical forms of several expressions, sharing the work on common
     /// subexpressions (e.g. all torques of a robot at once).
     pub fn from_exprs(graph: &ExprGraph, exprs: &[Id]) -> Result<Vec<Polynomial>, CanonicalError> {
-        let forms = Expansion::new(graph, exprs, usize::MAX).run(exprs)?;
+        let forms =
+            Expansion::new(graph, exprs, usize::MAX).run(exprs, &mut WorkBudget::unlimited())?;
         Ok(forms.into_iter().map(Option::unwrap_or_default).collect())
     }
 
     /// The canonical forms of several expressions, as [`Polynomial::from_exprs`], each `None`
-    /// where it would have more than `max_terms` terms: the expansion of a node stops as soon
-    /// as its form, or a product's pairs of terms ([`WORK_PER_TERM`] per allowed term), would
-    /// pass the bound, and every node using it is `None` too. The time and memory taken are
-    /// then bounded whatever the expressions: what `rne show` prints of a robot whose
-    /// equations run to megabytes.
+    /// where it would have more than `max_terms` terms or where its expansion would take more
+    /// work than `work` has left: the expansion of a node stops as soon as its form, or a
+    /// product's pairs of terms ([`WORK_PER_TERM`] per allowed term), would pass the bound, or
+    /// its cost (the terms it multiplies, adds or copies) would pass what is left of `work`,
+    /// and every node using it is `None` too. The time and memory taken are then bounded
+    /// whatever the expressions: what `rne show` prints of a robot whose equations run to
+    /// megabytes. `work` is spent by what was expanded, and may be shared by several calls.
     pub fn from_exprs_within(
         graph: &ExprGraph,
         exprs: &[Id],
         max_terms: usize,
+        work: &mut WorkBudget,
     ) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
-        Expansion::new(graph, exprs, max_terms).run(exprs)
+        Expansion::new(graph, exprs, max_terms).run(exprs, work)
     }
 }
 
@@ -154,6 +159,31 @@ fn sin_cos_constant(x: f64) -> (f64, f64) {
     x.sin_cos()
 }
 
+/// A bound on the terms of the cosine and of the sine in the phasor of `angle` (see
+/// [`phasor`]): `cos(n x)` and `sin(n x)` have at most |n|/2 + 1 terms, a constant's or a
+/// structural angle's one, and each angle sum at most doubles the product of its parts'.
+fn phasor_size(angle: &Polynomial) -> usize {
+    let mut size: usize = 1;
+    let mut parts = 0u32;
+    let mut rest = false;
+    for (m, c) in angle.terms() {
+        match m.factors() {
+            [(Atom::Symbol(_), 1)] if c.fract() == 0.0 && c.abs() <= MAX_MULTIPLE => {
+                size = size.saturating_mul(c.abs() as usize / 2 + 1);
+                parts += 1;
+            }
+            [] => parts += 1,
+            _ => rest = true,
+        }
+    }
+    parts += u32::from(rest);
+    size.saturating_mul(
+        1usize
+            .checked_shl(parts.saturating_sub(1))
+            .unwrap_or(usize::MAX),
+    )
+}
+
 /// One expansion run over the nodes needed by a set of outputs.
 struct Expansion<'g> {
     graph: &'g ExprGraph,
@@ -200,10 +230,14 @@ impl<'g> Expansion<'g> {
         }
     }
 
-    fn run(mut self, outputs: &[Id]) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
+    fn run(
+        mut self,
+        outputs: &[Id],
+        work: &mut WorkBudget,
+    ) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
         let order = self.graph.reachable(outputs);
         for id in order {
-            let value = match self.within_budget(id) {
+            let value = match self.within_budget(id, work) {
                 true => Some(self.expand(id)?),
                 false => None,
             };
@@ -230,9 +264,10 @@ impl<'g> Expansion<'g> {
             .collect())
     }
 
-    /// Whether `id` may be expanded: none of its children passed the bound, and a product
-    /// multiplies at most [`WORK_PER_TERM`] pairs of terms per allowed term.
-    fn within_budget(&self, id: Id) -> bool {
+    /// Whether `id` may be expanded: none of its children passed the bound, a product
+    /// multiplies at most [`WORK_PER_TERM`] pairs of terms per allowed term, and `work` has
+    /// the node's cost left (which it then spends).
+    fn within_budget(&self, id: Id, work: &mut WorkBudget) -> bool {
         let node = self.graph.node(id);
         if node
             .children()
@@ -240,13 +275,32 @@ impl<'g> Expansion<'g> {
         {
             return false;
         }
-        match node {
-            Node::Mul(a, b) => {
-                let pairs = self.get(a).len().saturating_mul(self.get(b).len());
-                pairs <= self.max_terms.saturating_mul(WORK_PER_TERM)
+        let cost = self.cost(node);
+        let allowed = match node {
+            Node::Mul(..) | Node::Sin(_) | Node::Cos(_) => {
+                cost <= self.max_terms.saturating_mul(WORK_PER_TERM)
             }
             _ => true,
-        }
+        };
+        allowed && work.spend(cost)
+    }
+
+    /// The work of expanding `node` from its children's forms, in terms handled: a product's
+    /// pairs, a sum's operands, a copy's terms; for a sine or cosine whose argument's phasor
+    /// is not known yet, the square of an estimate of the phasor's terms (its products).
+    fn cost(&self, node: Node) -> usize {
+        let len = |id: Id| self.get(id).len();
+        let terms = match node {
+            Node::Const(_) | Node::Symbol(_) => 0,
+            Node::Add(a, b) => len(a).saturating_add(len(b)),
+            Node::Mul(a, b) => len(a).saturating_mul(len(b)),
+            Node::Neg(a) | Node::Div(a, _) | Node::Sqrt(a) | Node::Sign(a) => len(a),
+            Node::Sin(a) | Node::Cos(a) => match self.phasors.get(&a) {
+                Some(p) => p.cos.len().max(p.sin.len()),
+                None => phasor_size(self.get(a)).saturating_mul(phasor_size(self.get(a))),
+            },
+        };
+        terms.saturating_add(1)
     }
 
     fn get(&self, id: Id) -> &Polynomial {
@@ -401,12 +455,50 @@ mod tests {
             .parse_sexpr("(* (* (+ (+ m1 m2) (+ l1 alpha)) (+ (+ m1 m2) (+ l1 alpha))) (+ (+ m1 m2) (+ l1 alpha)))")
             .unwrap();
         let bigger = g.add(big, small);
-        let forms = Polynomial::from_exprs_within(&g, &[small, big, bigger], 10).unwrap();
+        let forms = Polynomial::from_exprs_within(
+            &g,
+            &[small, big, bigger],
+            10,
+            &mut WorkBudget::unlimited(),
+        )
+        .unwrap();
         assert_eq!(forms[0], Some(Polynomial::from_expr(&g, small).unwrap()));
         assert_eq!(forms[1], None, "(a + b + c + d)^3 has 20 terms");
         assert_eq!(forms[2], None);
-        let all = Polynomial::from_exprs_within(&g, &[big], 20).unwrap();
+        let all =
+            Polynomial::from_exprs_within(&g, &[big], 20, &mut WorkBudget::unlimited()).unwrap();
         assert_eq!(all[0].as_ref().map(Polynomial::len), Some(20));
+    }
+
+    /// Work past the budget is refused: the forms that need it are `None`, those that were
+    /// expanded before are complete, and no more work is spent than allowed.
+    #[test]
+    fn forms_past_the_work_budget_are_none_and_the_spending_bounded() {
+        let mut g = graph();
+        let small = g.parse_sexpr("(* m1 (cos q1))").unwrap();
+        let big = g
+            .parse_sexpr("(* (+ (+ m1 m2) (+ l1 alpha)) (+ (+ m1 (cos q2)) (+ l1 (sin q3))))")
+            .unwrap();
+        let mut unlimited = WorkBudget::unlimited();
+        let all = Polynomial::from_exprs_within(&g, &[small, big], 100, &mut unlimited).unwrap();
+        assert_eq!(
+            all[1].as_ref().map(Polynomial::len),
+            Some(15),
+            "4 by 4 products, m1 l1 twice"
+        );
+        let needed = unlimited.spent();
+        let mut short = WorkBudget::new(needed - 1);
+        let forms = Polynomial::from_exprs_within(&g, &[small, big], 100, &mut short).unwrap();
+        assert_eq!(
+            forms[0], all[0],
+            "the small form comes first and is complete"
+        );
+        assert_eq!(forms[1], None, "the product of 4 by 4 terms does not fit");
+        assert!(short.exhausted() && short.spent() < needed);
+        let mut exact = WorkBudget::new(needed);
+        let forms = Polynomial::from_exprs_within(&g, &[small, big], 100, &mut exact).unwrap();
+        assert_eq!(forms, all);
+        assert!(!exact.exhausted());
     }
 
     #[test]

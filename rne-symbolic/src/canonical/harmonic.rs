@@ -17,7 +17,8 @@
 //! Sines and cosines of parameters (twist angles) and of other expressions are not joint
 //! harmonics: they stay ordinary factors.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
 use super::atom::{Angle, Atom};
 use super::polynomial::Polynomial;
@@ -88,6 +89,50 @@ pub(super) fn harmonic_terms(p: &Polynomial) -> Vec<Term> {
             factors,
         })
         .collect()
+}
+
+/// A bound on the work of printing `p` ([`harmonic_terms`] and what follows): a term whose
+/// joint sines and cosines have total degree d spreads into at most 2^(d − 1) harmonics, built
+/// in d doublings, so it costs at most 2^(d + 1); a structural atom (`sqrt(…)`, `sin(…)` of
+/// another argument) is printed, with its own polynomial, wherever it occurs. The bound is
+/// found without expanding anything, in time linear in the terms (each structural atom's
+/// polynomial is visited once).
+pub(super) fn print_work(p: &Polynomial) -> usize {
+    print_work_memo(p, &mut HashMap::new())
+}
+
+fn print_work_memo(p: &Polynomial, seen: &mut HashMap<*const Polynomial, usize>) -> usize {
+    let mut work: usize = 1;
+    for (monomial, _) in p.terms() {
+        let mut degree: u32 = 0;
+        let mut nested: usize = 0;
+        for (atom, e) in monomial.factors() {
+            if joint_trig(atom).is_some() && *e > 0 {
+                degree = degree.saturating_add(e.unsigned_abs());
+                continue;
+            }
+            let inner = match atom {
+                Atom::Sin(Angle::Expr(q)) | Atom::Cos(Angle::Expr(q)) => q,
+                Atom::Sqrt(q) | Atom::Sign(q) => q,
+                _ => continue,
+            };
+            let key = Arc::as_ptr(inner);
+            let cost = match seen.get(&key) {
+                Some(&cost) => cost,
+                None => {
+                    let cost = print_work_memo(inner, seen);
+                    seen.insert(key, cost);
+                    cost
+                }
+            };
+            nested = nested.saturating_add(cost);
+        }
+        let spread = 1usize
+            .checked_shl(degree.saturating_add(1))
+            .unwrap_or(usize::MAX);
+        work = work.saturating_add(spread).saturating_add(nested);
+    }
+    work
 }
 
 /// `(is sine, joint)` of s_k or c_k.

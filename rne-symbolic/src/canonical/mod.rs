@@ -66,6 +66,7 @@
 //!   10¹⁵.
 
 mod atom;
+mod budget;
 mod error;
 mod expand;
 pub use expand::WORK_PER_TERM;
@@ -80,6 +81,7 @@ mod print;
 mod testing;
 
 pub use atom::{Angle, Atom};
+pub use budget::WorkBudget;
 pub use error::CanonicalError;
 pub use monomial::Monomial;
 pub use polynomial::{Polynomial, CANCELLATION_ULPS};

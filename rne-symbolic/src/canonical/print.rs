@@ -6,7 +6,8 @@
 use std::collections::BTreeMap;
 
 use super::atom::{Angle, Atom};
-use super::harmonic::{harmonic_terms, Factor, Harmonic, Term};
+use super::budget::WorkBudget;
+use super::harmonic::{harmonic_terms, print_work, Factor, Harmonic, Term};
 use super::layout::{common_factor, group, Item};
 use super::mathml;
 use super::monomial::Monomial;
@@ -85,6 +86,16 @@ impl<'a> Printer<'a> {
             self.push_group(key, coefficient, &mut chunks);
         }
         self.join(chunks)
+    }
+
+    /// The polynomial as [`print`](Printer::print) writes it, if a bound on the work of doing
+    /// so (its terms spread into harmonics, 2^(d + 1) for a term of trigonometric degree d,
+    /// structural atoms printed where they occur) is left in `work`, which then spends it;
+    /// `None`, and nothing spent, otherwise. The bound is found without expanding anything,
+    /// so a polynomial whose printed form would run to gigabytes is refused in time linear in
+    /// its terms.
+    pub fn print_within(&self, p: &Polynomial, work: &mut WorkBudget) -> Option<String> {
+        work.spend(print_work(p)).then(|| self.print(p))
     }
 
     /// The chunks of one group: `coefficient · key`.
@@ -458,6 +469,37 @@ mod tests {
 
     fn latex(g: &ExprGraph, p: &Polynomial) -> String {
         format_polynomial(p, g.symbols(), PrintFormat::Latex)
+    }
+
+    /// Printing within a budget refuses, spending nothing, what its bound says it cannot
+    /// afford, and prints what it can exactly as `print` does: the product of twelve joint
+    /// cosines spreads into 2^11 harmonics, the bound 2^13 per term.
+    #[test]
+    fn printing_within_a_budget_refuses_whole_what_it_cannot_afford() {
+        let joints: Vec<String> = (1..=12).map(|k| format!("q{k}")).collect();
+        let joints: Vec<&str> = joints.iter().map(String::as_str).collect();
+        let mut g = graph(&joints, &ELBOW_PARAMETERS);
+        let cosines: Vec<String> = joints.iter().map(|q| format!("(cos {q})")).collect();
+        let product = cosines[1..]
+            .iter()
+            .fold(cosines[0].clone(), |a, c| format!("(* {a} {c})"));
+        let p = parse(&mut g, &product);
+        let small = parse(&mut g, "(* m1 (cos q1))");
+        let printer = Printer::new(g.symbols(), PrintFormat::Text);
+        let mut short = WorkBudget::new(1 << 13);
+        assert_eq!(printer.print_within(&p, &mut short), None);
+        assert_eq!(short.spent(), 0);
+        assert!(short.exhausted());
+        let mut enough = WorkBudget::new(1 << 14);
+        let printed = printer.print_within(&p, &mut enough).unwrap();
+        assert_eq!(printed, printer.print(&p));
+        let harmonics = printed.matches("cos(").count() + printed.matches("c_").count();
+        assert_eq!(harmonics, 1 << 11, "{printed}");
+        let mut budget = WorkBudget::new(8);
+        assert_eq!(
+            printer.print_within(&small, &mut budget).as_deref(),
+            Some("m1 c1")
+        );
     }
 
     #[test]

@@ -1,11 +1,12 @@
 //! The expanded equations within a size limit: every entry brought into canonical form under
-//! a term budget (so a robot whose equations run to megabytes costs seconds, not minutes), then
-//! printed in order while the output stays within the limit; what does not fit is listed with
-//! its size.
+//! a term budget, then printed in order while the output stays within the limit, all of it
+//! under one work budget proportional to the limit (so a robot whose equations run to
+//! gigabytes costs seconds, not hours); what does not fit is listed with its size, what was
+//! not expanded or printed by name.
 
 use std::io::Write;
 
-use rne_symbolic::canonical::{mathml, Polynomial, Printer};
+use rne_symbolic::canonical::{mathml, Polynomial, Printer, WorkBudget};
 use rne_symbolic::ExprGraph;
 
 use super::entries::{EntryKey, Section};
@@ -29,12 +30,20 @@ const MIN_TERM_BYTES_MATHML: usize = 48;
 /// Bytes left below which the remaining sections are not expanded at all.
 const MIN_LINE_BYTES: usize = 64;
 
+/// The work (term operations: [`WorkBudget`]) allowed per byte of the size limit, for the
+/// expansion and the printing together. Printing a byte takes a few operations when the
+/// entries are short; an entry of a floating-base humanoid takes thousands per byte it would
+/// print, and is then refused as soon as the budget is spent, so the time of `rne show` grows
+/// with `--max-size` and not with the robot.
+pub const WORK_PER_BYTE: usize = 12;
+
 /// An entry left out, and why.
 #[derive(Clone, Debug)]
 pub struct Omitted {
     /// The entry.
     pub key: EntryKey,
-    /// Its printed size in bytes, or `None` when its expansion passed the budget.
+    /// Its printed size in bytes, or `None` when it was not expanded or not printed: its
+    /// expansion passed the term budget, or its work passed what was left of the work budget.
     pub bytes: Option<usize>,
 }
 
@@ -47,6 +56,10 @@ pub struct Printed {
     pub entries: usize,
     /// Entries left out.
     pub omitted: Vec<Omitted>,
+    /// The work spent and the work allowed.
+    pub work: (usize, usize),
+    /// Whether some expansion or printing was refused for want of work.
+    pub work_exhausted: bool,
 }
 
 /// How the entries are printed.
@@ -60,8 +73,9 @@ pub struct Style<'a> {
 }
 
 /// Expands and prints `sections` within `style.max_size` bytes (the header excluded), one
-/// section at a time, each under the budget the bytes left allow; once the limit is reached,
-/// the remaining sections are not expanded at all.
+/// section at a time, each under the term budget the bytes left allow, all under
+/// [`WORK_PER_BYTE`] times the limit of work; once the limit is reached, the remaining sections
+/// are not expanded at all.
 pub fn print(
     graph: &ExprGraph,
     sections: &[Section],
@@ -70,7 +84,9 @@ pub fn print(
     out: &mut dyn Write,
 ) -> Result<Printed, CliError> {
     let mut printed = Printed::default();
-    for section in sections {
+    let limit = style.max_size.saturating_mul(WORK_PER_BYTE);
+    let mut work = WorkBudget::new(limit);
+    for (k, section) in sections.iter().enumerate() {
         let left = style.max_size.saturating_sub(printed.bytes);
         if left < MIN_LINE_BYTES {
             let rest = section.entries.iter().map(|(key, _)| Omitted {
@@ -84,46 +100,58 @@ pub fn print(
             Format::Html => MIN_TERM_BYTES_MATHML,
             Format::Text | Format::Latex => MIN_TERM_BYTES,
         };
-        print_section(
+        let context = Context {
             graph,
-            section,
             style,
-            left / term_bytes + 1,
+            max_terms: left / term_bytes + 1,
             what,
-            out,
-            &mut printed,
-        )?;
+        };
+        let mut share = WorkBudget::new(work.left() / (sections.len() - k));
+        print_section(&context, section, &mut share, out, &mut printed)?;
+        work.spend(share.spent());
+        printed.work_exhausted |= share.exhausted();
     }
+    printed.work = (work.spent(), limit);
     Ok(printed)
 }
 
-/// Expands one section's entries under `max_terms` and prints those that fit.
-fn print_section(
-    graph: &ExprGraph,
-    section: &Section,
-    style: &Style<'_>,
+/// What a section is printed with.
+struct Context<'a> {
+    graph: &'a ExprGraph,
+    style: &'a Style<'a>,
+    /// The most terms an entry's expansion may have.
     max_terms: usize,
-    what: &str,
+    /// The progress line's subject.
+    what: &'a str,
+}
+
+/// Expands one section's entries under `context.max_terms` and `work`, and prints those that
+/// fit.
+fn print_section(
+    context: &Context<'_>,
+    section: &Section,
+    work: &mut WorkBudget,
     out: &mut dyn Write,
     printed: &mut Printed,
 ) -> Result<(), CliError> {
     let roots: Vec<_> = section.entries.iter().map(|(_, id)| *id).collect();
-    let forms = {
-        let _progress = Progress::start(&format!("expanding {what}: {}", section.title));
-        Polynomial::from_exprs_within(graph, &roots, max_terms).map_err(|e| {
-            CliError::Argument(format!("cannot expand the dynamics for printing: {e}"))
-        })?
-    };
+    let _progress = Progress::start(&format!("expanding {}: {}", context.what, section.title));
+    let forms = Polynomial::from_exprs_within(context.graph, &roots, context.max_terms, work)
+        .map_err(|e| CliError::Argument(format!("cannot expand the dynamics for printing: {e}")))?;
+    let style = context.style;
     let (mut title, close) = frame(style.format, &section.title);
     for ((key, _), form) in section.entries.iter().zip(forms) {
-        let Some(form) = form else {
+        let full = style.max_size.saturating_sub(printed.bytes) < MIN_LINE_BYTES;
+        let form = form.filter(|_| !full);
+        let text = form.and_then(|form| style.printer.print_within(&form, work));
+        let Some(text) = text else {
             printed.omitted.push(Omitted {
                 key: key.clone(),
                 bytes: None,
             });
             continue;
         };
-        let line = entry(style.format, key, &style.printer.print(&form));
+        let line = entry(style.format, key, &text);
         let title_bytes = title.as_ref().map_or(0, |t| t.len() + close.len());
         if printed.bytes + title_bytes + line.len() > style.max_size {
             printed.omitted.push(Omitted {

@@ -89,8 +89,10 @@ pub struct ShowArgs {
     #[arg(long)]
     pub symbolic_params: bool,
     /// The most bytes of equations to print (`300K`, `2M`, or bytes): the entries that fit are
-    /// printed, the others listed with their size. An entry's expansion also stops once it
-    /// could no longer fit, so a large robot costs seconds.
+    /// printed, the others listed with their size, or by name when they were not expanded. An
+    /// entry's expansion stops once it could no longer fit, and the expansion and printing of
+    /// all entries take at most a fixed amount of work per byte of the limit, so a large robot
+    /// costs seconds.
     #[arg(long, default_value = "300K", value_parser = size::parse)]
     pub max_size: usize,
     /// Print only this entry: `M[2,3]`, `g[1]`, `tau[4]`, `C[1,2]`, `dtau_dq[1,2]`, `T`, `V`.

@@ -1,6 +1,6 @@
-//! What `rne show` says after a size-limited print: the entries left out, each with its size,
-//! and the commands that print one of them or the compact form — as comment lines, or as
-//! paragraphs of the web page.
+//! What `rne show` says after a size-limited print: the entries left out (those too long for
+//! what was left by size, those not expanded by name and count), and the commands that print
+//! one of them or the compact form — as comment lines, or as paragraphs of the web page.
 
 use std::io::Write;
 
@@ -12,14 +12,16 @@ use super::expanded::{human_size, Omitted, Printed};
 use super::{Format, ShowArgs};
 use crate::CliError;
 
-/// At most this many left-out entries are listed one by one (the largest first).
+/// At most this many left-out entries are listed one by one with their size (the largest
+/// first).
 const LISTED: usize = 12;
 
-/// The note after expanded equations, when entries were left out.
+/// The note after expanded equations, when entries were left out: those printed but too long
+/// for what was left, by size; those not expanded or not printed, by name and count.
 pub fn expanded(args: &ShowArgs, printed: &Printed, out: &mut dyn Write) -> Result<(), CliError> {
-    if printed.omitted.is_empty() {
+    let Some(first) = printed.omitted.first() else {
         return Ok(());
-    }
+    };
     let total = printed.entries + printed.omitted.len();
     let mut lines = vec![format!(
         "{} of {total} entries printed ({} of at most {}, --max-size); not printed:",
@@ -27,19 +29,9 @@ pub fn expanded(args: &ShowArgs, printed: &Printed, out: &mut dyn Write) -> Resu
         human_size(printed.bytes),
         human_size(args.max_size)
     )];
-    let mut omitted: Vec<&Omitted> = printed.omitted.iter().collect();
-    omitted.sort_by_key(|o| std::cmp::Reverse(o.bytes.unwrap_or(usize::MAX)));
-    for o in omitted.iter().take(LISTED) {
-        let size = match o.bytes {
-            Some(bytes) => human_size(bytes),
-            None => "not expanded: past the limit (or its expansion alone passes it)".to_owned(),
-        };
-        lines.push(format!("  {:<14} {size}", o.key.text()));
-    }
-    if omitted.len() > LISTED {
-        lines.push(format!("  … and {} more", omitted.len() - LISTED));
-    }
-    let example = &omitted[0].key.text();
+    lines.extend(by_size(&printed.omitted));
+    lines.extend(by_name(printed));
+    let example = first.key.text();
     lines.push(format!(
         "one entry: {} --entry \"{example}\" (with --max-size to raise the limit); \
          all of them as a program with named intermediate quantities: {} --compact",
@@ -47,6 +39,73 @@ pub fn expanded(args: &ShowArgs, printed: &Printed, out: &mut dyn Write) -> Resu
         command(args)
     ));
     write_note(args.format, &lines, out)
+}
+
+/// The entries printed in full but longer than what was left, the largest first.
+fn by_size(omitted: &[Omitted]) -> Vec<String> {
+    let mut sized: Vec<(&Omitted, usize)> =
+        omitted.iter().filter_map(|o| Some((o, o.bytes?))).collect();
+    if sized.is_empty() {
+        return Vec::new();
+    }
+    sized.sort_by_key(|&(_, bytes)| std::cmp::Reverse(bytes));
+    let mut lines = vec!["longer than what was left, by printed size:".to_owned()];
+    for (o, bytes) in sized.iter().take(LISTED) {
+        lines.push(format!("  {:<14} {}", o.key.text(), human_size(*bytes)));
+    }
+    if sized.len() > LISTED {
+        lines.push(format!("  … and {} more", sized.len() - LISTED));
+    }
+    lines
+}
+
+/// The entries not expanded or not printed, by name and count only (their size is not
+/// estimated): one line per matrix or vector, in print order.
+fn by_name(printed: &Printed) -> Vec<String> {
+    // (name, count, first, last) of each matrix or vector.
+    let mut groups: Vec<(&str, usize, String, String)> = Vec::new();
+    for o in printed.omitted.iter().filter(|o| o.bytes.is_none()) {
+        let text = o.key.text();
+        match groups.iter_mut().find(|(name, ..)| *name == o.key.name) {
+            Some((_, count, _, last)) => {
+                *count += 1;
+                *last = text;
+            }
+            None => groups.push((&o.key.name, 1, text.clone(), text)),
+        }
+    }
+    if groups.is_empty() {
+        return Vec::new();
+    }
+    let (spent, allowed) = printed.work;
+    let why = if printed.work_exhausted {
+        format!(
+            "past the output limit, or the work it allows ({} of {} term operations spent)",
+            count(spent),
+            count(allowed)
+        )
+    } else {
+        "past the output limit".to_owned()
+    };
+    let mut lines = vec![format!(
+        "not expanded or not printed ({why}), by name and count only, size not estimated:"
+    )];
+    for (name, count, first, last) in groups {
+        lines.push(match count {
+            1 => format!("  {first}"),
+            n => format!("  {name}: {n} entries, {first} … {last}"),
+        });
+    }
+    lines
+}
+
+/// `812`, `12.3 M`.
+fn count(n: usize) -> String {
+    match n {
+        n if n >= 1_000_000 => format!("{:.1} M", n as f64 / 1e6),
+        n if n >= 1_000 => format!("{:.1} K", n as f64 / 1e3),
+        n => n.to_string(),
+    }
 }
 
 /// The note's lines as comments after a blank line, or as one preformatted block of the page.
