@@ -171,3 +171,101 @@ fn a_build_script_needs_nothing_but_the_facade() {
     assert!(missing.unwrap_err().to_string().contains("no/such.toml"));
     assert_eq!(KEEP_GENERATED_ENV, "RNE_KEEP_GENERATED");
 }
+
+/// The build-script API's names: what the facade exports only with the feature `builder`.
+const BUILDER_ONLY: &[&str] = &[
+    "generate_from_path",
+    "Builder",
+    "CodegenError",
+    "ForwardDynamicsChoice",
+    "ForwardDynamicsMethod",
+    "GeneratedModule",
+    "GenerationOptions",
+    "KernelReport",
+    "MimicMode",
+    "ParameterMode",
+    "ScalarType",
+    "Scene",
+    "KEEP_GENERATED_ENV",
+    "Base",
+    "SpecWarning",
+];
+
+/// The Rust files under `dir`, recursively.
+fn rust_files(dir: &std::path::Path, found: &mut Vec<std::path::PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for path in entries.flatten().map(|e| e.path()) {
+        if path.is_dir() {
+            rust_files(&path, found);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            found.push(path);
+        }
+    }
+}
+
+/// The build-script names `code` takes from the facade by a path `rne_codegen::…` (a `use`
+/// with or without braces, or a qualified name), up to the end of each statement.
+fn builder_names_used(code: &str) -> BTreeSet<String> {
+    let code = without_comments(code);
+    let mut used = BTreeSet::new();
+    for (start, _) in code.match_indices("rne_codegen::") {
+        let rest = &code[start + "rne_codegen::".len()..];
+        let statement = &rest[..rest.find([';', '(', '=']).unwrap_or(rest.len())];
+        for word in statement.split(|c: char| !(c.is_alphanumeric() || c == '_')) {
+            if BUILDER_ONLY.contains(&word) {
+                used.insert(word.to_owned());
+            }
+        }
+    }
+    used
+}
+
+/// A sibling crate whose manifest does not turn on the facade's `builder` takes none of the
+/// build-script names from the facade in its sources: it takes them from rne-codegen-core.
+/// Inside the workspace another crate's `builder` would hide the mistake (Cargo unifies
+/// features), but a build of that crate alone — the README's `cargo run -p rne-cli` — fails.
+#[test]
+fn crates_without_the_builder_feature_take_the_generator_from_core() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let manifest = std::fs::read_to_string(format!("{root}/Cargo.toml")).expect("root manifest");
+    let members: Vec<&str> = manifest
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('"') && l.ends_with("\","))
+        .map(|l| l.trim_matches(|c| c == '"' || c == ','))
+        .collect();
+    assert!(
+        members.contains(&"rne-models/cli"),
+        "members read: {members:?}"
+    );
+    let mut wrong = Vec::new();
+    for member in members {
+        let crate_manifest =
+            std::fs::read_to_string(format!("{root}/{member}/Cargo.toml")).unwrap_or_default();
+        if crate_manifest.contains("features = [\"builder\"]") || member == "rne-codegen" {
+            continue;
+        }
+        let mut files = Vec::new();
+        rust_files(format!("{root}/{member}/src").as_ref(), &mut files);
+        for file in files {
+            let used = builder_names_used(&std::fs::read_to_string(&file).unwrap_or_default());
+            if !used.is_empty() {
+                wrong.push(format!("{}: {used:?}", file.display()));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "take these from rne_codegen_core: {wrong:#?}"
+    );
+}
+
+#[test]
+fn the_builder_name_reader_sees_braced_and_qualified_paths() {
+    let code = "use rne_codegen::{Kernel, Scene};\nuse rne_codegen_core::Builder;\n\
+                let s = rne_codegen::GenerationOptions::default();\n// rne_codegen::Base\n";
+    let used: Vec<String> = builder_names_used(code).into_iter().collect();
+    assert_eq!(used, ["GenerationOptions", "Scene"]);
+}

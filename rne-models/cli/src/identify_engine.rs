@@ -6,7 +6,8 @@
 
 use clap::ValueEnum;
 use nalgebra::DMatrix;
-use rne_codegen::{GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_identify::{IdentifyError, Regressors};
 use rne_jit::{JitError, JitModel, State};
 use rne_reference::Reference;

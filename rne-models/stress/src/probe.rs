@@ -6,7 +6,8 @@
 
 use std::ops::Deref;
 
-use rne_codegen::{GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::{Interpreted, JointState};
 use rne_jit::{JitModel, State};
 use rne_symbolic::RobotModel;

@@ -4,7 +4,8 @@
 
 use std::time::Duration;
 
-use rne_codegen::{GenerationOptions, Kernel, Scene};
+use rne_codegen::Kernel;
+use rne_codegen_core::{GenerationOptions, Scene};
 use rne_interpreted::agreement::{check_kernels, random_states, KernelAgreement};
 use rne_jit::JitModel;
 use rne_models::{BuiltinRobot, RobotSource};
