@@ -122,6 +122,7 @@ fn a_floating_base_robot_stays_within_the_limit_and_ends_with_the_pointer() {
     assert!(last.contains(" --floating-base --entry \""), "{last}");
     assert!(last.ends_with(" --floating-base --compact"), "{last}");
     let printed = out.lines().filter(|l| l.contains(" = ")).count();
+    let note = out[..note].rfind('\n').map_or(0, |i| i + 1);
     let summary = out[note..].lines().next().unwrap();
     let total: usize = summary
         .split(" of ")
