@@ -31,7 +31,7 @@ pub struct GenerationOptions {
     /// The scalar type.
     pub scalar: ScalarType,
     /// The path of the `rne-codegen` crate as the generated code's crate sees it (the macro's
-    /// `crate:` setting, [`DEFAULT_CRATE_PATH`] by default); the code reaches the runtime
+    /// `crate:` setting, `DEFAULT_CRATE_PATH` by default); the code reaches the runtime
     /// through `<path>::__private`.
     pub crate_path: String,
     /// How `forward_dynamics` solves for q̈ (the `forward_dynamics:` setting).

@@ -36,7 +36,7 @@ pub struct KernelReport {
 #[derive(Clone, Debug)]
 pub struct GeneratedModule {
     /// The module's items (to be wrapped in `mod name { ... }`), as Rust source text: the
-    /// kernels are written as text ([`emit_kernel`]), which costs a small fraction of the
+    /// kernels are written as text (`emit_kernel`), which costs a small fraction of the
     /// memory and time of a token stream on the largest robots.
     pub source: String,
     /// Number of joint variables (after locking).
