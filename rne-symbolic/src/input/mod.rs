@@ -1,7 +1,7 @@
 //! The format-neutral input model both robot readers build, and the one step that turns it
 //! into a [`RobotModel`].
 //!
-//! The TOML reader ([`crate::spec`]) and the URDF reader ([`crate::urdf`]) each read their own
+//! The TOML reader ([`crate::spec`]) and the URDF reader (`urdf`) each read their own
 //! syntax into a `RobotInput`: the links in model order (parents first, joints numbered
 //! depth-first), each built in a scratch [`ExprGraph`] with its frame convention mapped onto
 //! `pre ∘ motion ∘ post` (`frames`) and its inertials in its body frame (`inertia`), plus

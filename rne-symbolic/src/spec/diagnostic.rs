@@ -94,8 +94,8 @@ impl<K: Copy> Diagnostic<K> {
         self.0.kind
     }
 
-    /// The file (the `origin` given to [`parse_str`](super::parse_str), or the path given to
-    /// [`load_file`](super::load_file)).
+    /// The file (the `origin` given to `parse_str`, or the path given to
+    /// `load_file`).
     pub fn file(&self) -> &str {
         &self.0.at.file
     }
