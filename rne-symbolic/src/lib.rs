@@ -19,7 +19,10 @@ pub mod spec;
 mod urdf;
 
 pub use dynamics::SymbolicDynamics;
-pub use expr::{ExprGraph, Id, Mat3, Node, OpCount, Symbol, SymbolTable, Vec3};
+pub use expr::{
+    BaseCoordinate, BaseQuantity, Coordinate, ExprGraph, Id, Mat3, Node, OpCount, Symbol,
+    SymbolTable, Vec3,
+};
 pub use input::{read_robot, Description, LoadOptions, RobotFormat};
 pub use model::{JointKind, Link, NumericLink, NumericModel, RobotModel};
 /// Sine and cosine for the kernels (`rne_runtime::trig`).

@@ -130,35 +130,7 @@ impl JitModel {
     ) -> Result<JitModel, JitError> {
         let programs = generate_programs(model, scene, options, source)?;
         let start = Instant::now();
-        let (mut module, fused) = host_module(options.fma, tier)?;
-        let mut lowering =
-            Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
-                kernel: programs
-                    .kernels
-                    .first()
-                    .map_or(Kernel::InverseDynamics, |k| k.kernel),
-                message,
-            })?;
-        let lowered = lower_all(&mut module, &mut lowering, &programs)?;
-        let functions: Vec<(Kernel, &Lowered)> = lowered
-            .iter()
-            .flat_map(|(kernel, _, parts)| parts.iter().map(move |part| (*kernel, part)))
-            .collect();
-        let parts: Vec<&Lowered> = functions.iter().map(|&(_, part)| part).collect();
-        compile::define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
-            kernel: functions[k].0,
-            message,
-        })?;
-        module
-            .finalize_definitions()
-            .map_err(|e| JitError::Compile {
-                kernel: Kernel::InverseDynamics,
-                message: e.to_string(),
-            })?;
-        let kernels = lowered
-            .into_iter()
-            .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, parts))
-            .collect();
+        let (module, fused, kernels) = compile_programs(&programs, options.fma, tier)?;
         let timings = Timings {
             generation: programs.generation_time,
             compilation: start.elapsed(),
@@ -419,6 +391,46 @@ impl Compiled {
     pub(crate) fn scratch(&self) -> Vec<f64> {
         vec![0.0; self.scratch]
     }
+}
+
+/// Lowers every kernel's programs to Cranelift IR, compiles all their functions in one pool
+/// (longest first) and finalises the code: the module that owns it, whether multiply-adds are
+/// fused, and each kernel's entry points.
+fn compile_programs(
+    programs: &GeneratedPrograms,
+    fma: bool,
+    tier: Tier,
+) -> Result<(JITModule, bool, Vec<Compiled>), JitError> {
+    let (mut module, fused) = host_module(fma, tier)?;
+    let first = programs
+        .kernels
+        .first()
+        .map_or(Kernel::InverseDynamics, |k| k.kernel);
+    let mut lowering = Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
+        kernel: first,
+        message,
+    })?;
+    let lowered = lower_all(&mut module, &mut lowering, programs)?;
+    let functions: Vec<(Kernel, &Lowered)> = lowered
+        .iter()
+        .flat_map(|(kernel, _, parts)| parts.iter().map(move |part| (*kernel, part)))
+        .collect();
+    let parts: Vec<&Lowered> = functions.iter().map(|&(_, part)| part).collect();
+    compile::define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
+        kernel: functions[k].0,
+        message,
+    })?;
+    module
+        .finalize_definitions()
+        .map_err(|e| JitError::Compile {
+            kernel: first,
+            message: e.to_string(),
+        })?;
+    let kernels = lowered
+        .into_iter()
+        .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, parts))
+        .collect();
+    Ok((module, fused, kernels))
 }
 
 /// Every kernel of `programs` lowered in `module`: the kernel, its number of outputs and its

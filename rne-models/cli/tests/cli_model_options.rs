@@ -1,5 +1,5 @@
 //! The model options every command taking a MODEL has (docs/design.md §5): `--mimic free` and
-//! `--floating-base`, on `check`, `eval`, `emit` and `stats`, and a robot without moving joints.
+//! `--floating-base`, on `check`, `eval`, `emit`, `stats` and `show`, and a robot without moving joints.
 
 mod common;
 use common::rne;
@@ -185,4 +185,50 @@ fn a_body_without_joints_is_an_error_fixed_and_a_rigid_body_floating() {
         "free fall of the body origin",
     );
     assert_close(&qdd[3..], &[0.0; 3], "no angular acceleration");
+}
+
+/// On a floating base `rne show` names the base's coordinates (x … qw in q, vx … wz in v, their
+/// rates, fx … nz in τ) and numbers the joints after them from 1, in the expanded equations
+/// and in the compact program; before, the quaternion printed as q4 … q7 and the first joint
+/// as q8.
+#[test]
+fn show_names_a_floating_bases_coordinates_and_numbers_the_joints_from_one() {
+    let g = rne(&["show", "planar-elbow", "--floating-base", "--what", "g"]).unwrap();
+    assert!(
+        g.starts_with("# planar-elbow (8 degrees of freedom: a floating base and 2 joints: q1, q2)\n# floating base: position x y z, orientation quaternion qx qy qz qw"),
+        "{g}"
+    );
+    assert!(g.contains("g2 = 294.3 - 588.6 qx^2 - 588.6 qz^2\n"), "{g}");
+    assert!(g.contains("(132.435 s1 + 44.145 s12)"), "{g}");
+    for wrong in ["q4", "q7", "q8", "s8", "s89"] {
+        assert!(!g.contains(wrong), "{wrong} in\n{g}");
+    }
+    let tau = rne(&["show", "planar-elbow", "--floating-base", "--what", "tau"]).unwrap();
+    for named in ["Dvx", "Dwz", "DDq1", "vx wz", "Dq1 Dq2"] {
+        assert!(tau.contains(named), "{named} in\n{tau}");
+    }
+    let latex = rne(&[
+        "show",
+        "planar-elbow",
+        "--floating-base",
+        "--what",
+        "tau",
+        "--format",
+        "latex",
+    ])
+    .unwrap();
+    for named in ["\\dot{v}_{x}", "\\omega_{z}", "q_{w}", "\\ddot{q}_{1}"] {
+        assert!(latex.contains(named), "{named} in\n{latex}");
+    }
+    let compact = rne(&[
+        "show",
+        "planar-elbow",
+        "--floating-base",
+        "--what",
+        "M",
+        "--compact",
+    ])
+    .unwrap();
+    assert!(compact.contains("\ns1 = sin(q1)\n"), "{compact}");
+    assert!(!compact.contains("q8"), "{compact}");
 }

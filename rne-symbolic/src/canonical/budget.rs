@@ -40,6 +40,13 @@ impl WorkBudget {
         true
     }
 
+    /// Takes on the work a part of this budget (made from what it had left) spent, and its
+    /// refusals.
+    pub fn absorb(&mut self, part: &WorkBudget) {
+        self.spent = self.spent.saturating_add(part.spent).min(self.limit);
+        self.refused |= part.refused;
+    }
+
     /// Units left.
     pub fn left(&self) -> usize {
         self.limit - self.spent
@@ -71,5 +78,10 @@ mod tests {
         assert!(budget.spend(3));
         assert_eq!(budget.left(), 0);
         assert!(WorkBudget::unlimited().spend(usize::MAX));
+        let mut whole = WorkBudget::new(10);
+        let mut part = WorkBudget::new(whole.left() / 2);
+        assert!(part.spend(4) && !part.spend(2));
+        whole.absorb(&part);
+        assert_eq!((whole.spent(), whole.exhausted()), (4, true));
     }
 }

@@ -187,6 +187,8 @@ fn phasor_size(angle: &Polynomial) -> usize {
 /// One expansion run over the nodes needed by a set of outputs.
 struct Expansion<'g> {
     graph: &'g ExprGraph,
+    /// The needed nodes, children before parents (by index).
+    nodes: Vec<Id>,
     /// Position in `values` of each node index (`u32::MAX` for nodes not needed).
     slot: Vec<u32>,
     /// Expanded form of each needed node, `None` before it is expanded and after its last use.
@@ -227,6 +229,7 @@ impl<'g> Expansion<'g> {
             phasors: HashMap::new(),
             max_terms,
             over: vec![false; order.len()],
+            nodes: order,
         }
     }
 
@@ -235,8 +238,7 @@ impl<'g> Expansion<'g> {
         outputs: &[Id],
         work: &mut WorkBudget,
     ) -> Result<Vec<Option<Polynomial>>, CanonicalError> {
-        let order = self.graph.reachable(outputs);
-        for id in order {
+        for id in self.schedule(outputs) {
             let value = match self.within_budget(id, work) {
                 true => Some(self.expand(id)?),
                 false => None,
@@ -262,6 +264,63 @@ impl<'g> Expansion<'g> {
             .iter()
             .map(|o| (!self.over[self.slot[o.index()] as usize]).then(|| self.get(*o).clone()))
             .collect())
+    }
+
+    /// The needed nodes in the order they are expanded: output by output, the outputs of
+    /// fewest estimated terms first ([`Expansion::term_estimates`]), each output's nodes not yet
+    /// scheduled children first. When the work budget runs out, the outputs expanded by then
+    /// are the cheap ones, not the first ones: a humanoid's gravity torques, not the first
+    /// of its joint torques.
+    fn schedule(&self, outputs: &[Id]) -> Vec<Id> {
+        let estimate = self.term_estimates();
+        let mut roots = outputs.to_vec();
+        roots.sort_by(|a, b| estimate[self.slot(*a)].total_cmp(&estimate[self.slot(*b)]));
+        let mut done = vec![false; self.values.len()];
+        let mut order = Vec::with_capacity(self.values.len());
+        for root in roots {
+            let mut stack = vec![(root, false)];
+            while let Some((id, children_done)) = stack.pop() {
+                if done[self.slot(id)] {
+                    continue;
+                }
+                if children_done {
+                    done[self.slot(id)] = true;
+                    order.push(id);
+                    continue;
+                }
+                stack.push((id, true));
+                let pending = self
+                    .graph
+                    .node(id)
+                    .children()
+                    .filter(|c| !done[self.slot(*c)]);
+                stack.extend(pending.map(|c| (c, false)));
+            }
+        }
+        order
+    }
+
+    /// An upper bound on each needed node's terms before like terms merge, by slot: a sum adds
+    /// its operands' bounds, a product multiplies them, the sine or cosine of an angle of n
+    /// terms has 2^(n−1) (saturating at infinity). It orders the outputs, nothing more.
+    fn term_estimates(&self) -> Vec<f64> {
+        let mut estimate = vec![1.0; self.values.len()];
+        for &id in &self.nodes {
+            let of = |c: Id| estimate[self.slot(c)];
+            estimate[self.slot(id)] = match self.graph.node(id) {
+                Node::Const(_) | Node::Symbol(_) => 1.0,
+                Node::Add(a, b) => of(a) + of(b),
+                Node::Mul(a, b) => of(a) * of(b),
+                Node::Neg(a) | Node::Div(a, _) | Node::Sqrt(a) | Node::Sign(a) => of(a),
+                Node::Sin(a) | Node::Cos(a) => 2f64.powf(of(a) - 1.0),
+            };
+        }
+        estimate
+    }
+
+    /// The position in `values` of a needed node.
+    fn slot(&self, id: Id) -> usize {
+        self.slot[id.index()] as usize
     }
 
     /// Whether `id` may be expanded: none of its children passed the bound, a product

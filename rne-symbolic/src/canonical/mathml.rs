@@ -6,7 +6,7 @@
 
 use super::harmonic::Harmonic;
 use super::notation::{joint_name, numbered_joint, GREEK};
-use crate::expr::SymbolTable;
+use crate::expr::{BaseCoordinate, BaseQuantity, SymbolTable};
 
 /// `text` with `&`, `<`, `>` and `"` escaped, for element text and attribute values.
 pub fn escape(text: &str) -> String {
@@ -170,6 +170,23 @@ pub fn identifier(name: &str) -> String {
     } else {
         subscripted(mi(head))
     }
+}
+
+/// A floating base's coordinate: `x`, q with subscript `w`, ω with subscript `x`, v̇ with
+/// subscript `z`.
+pub(super) fn base(coordinate: BaseCoordinate) -> String {
+    let axis = mi(&coordinate.axis.to_string());
+    let letter = match coordinate.quantity {
+        BaseQuantity::Position => return axis,
+        BaseQuantity::Orientation => mi("q"),
+        BaseQuantity::LinearVelocity => mi("v"),
+        BaseQuantity::AngularVelocity => mi("ω"),
+        BaseQuantity::LinearAcceleration => accented("v", '\u{2d9}'),
+        BaseQuantity::AngularAcceleration => accented("ω", '\u{2d9}'),
+        BaseQuantity::Force => mi("f"),
+        BaseQuantity::Moment => mi("n"),
+    };
+    msub(&letter, &axis)
 }
 
 /// The subscript of joint `k`: its number for a joint named `q<number>`, else its name.

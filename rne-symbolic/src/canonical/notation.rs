@@ -5,7 +5,7 @@
 use super::harmonic::Harmonic;
 use super::mathml;
 use super::print::PrintFormat;
-use crate::expr::SymbolTable;
+use crate::expr::{BaseCoordinate, BaseQuantity, SymbolTable};
 
 /// Greek letter names a parameter name may start with, and the letters (LaTeX `\alpha`,
 /// MathML `α`).
@@ -78,6 +78,21 @@ pub(super) fn latex_joint(symbols: &SymbolTable, joint: u16, accent: &str) -> St
         format!("{accent}{{q}}")
     };
     format!("{base}_{{{}}}", latex_label(symbols, joint))
+}
+
+/// A floating base's coordinate in LaTeX: `x`, `q_{w}`, `\omega_{x}`, `\dot{v}_{z}`, `n_{y}`.
+pub(super) fn latex_base(base: BaseCoordinate) -> String {
+    let letter = match base.quantity {
+        BaseQuantity::Position => return base.axis.to_string(),
+        BaseQuantity::Orientation => "q",
+        BaseQuantity::LinearVelocity => "v",
+        BaseQuantity::AngularVelocity => "\\omega",
+        BaseQuantity::LinearAcceleration => "\\dot{v}",
+        BaseQuantity::AngularAcceleration => "\\dot{\\omega}",
+        BaseQuantity::Force => "f",
+        BaseQuantity::Moment => "n",
+    };
+    format!("{letter}_{{{}}}", base.axis)
 }
 
 /// A joint label for a LaTeX subscript: `1`, `\mathrm{shoulder}`.

@@ -12,10 +12,10 @@ use super::layout::{common_factor, group, Item};
 use super::mathml;
 use super::monomial::Monomial;
 use super::notation::{
-    abbreviation, joint_name, latex_identifier, latex_joint, latex_label, number,
+    abbreviation, joint_name, latex_base, latex_identifier, latex_joint, latex_label, number,
 };
 use super::polynomial::Polynomial;
-use crate::expr::{Symbol, SymbolTable};
+use crate::expr::{Coordinate, Symbol, SymbolTable};
 
 /// Plain text (`l1 lc2 m2 s2 Dq1 Dq2`), LaTeX
 /// (`l_{1} l_{c2} m_{2} s_{2} \dot{q}_{1} \dot{q}_{2}`) or MathML.
@@ -299,6 +299,13 @@ impl<'a> Printer<'a> {
 
     fn symbol(&self, s: Symbol) -> String {
         let joint = |k, letter, accent| mathml::joint(self.symbols, k, letter, accent);
+        let s = match (self.format, self.symbols.coordinate(s)) {
+            (PrintFormat::Text, _) => return self.symbols.name(s),
+            (PrintFormat::Latex, Some(Coordinate::Base(base))) => return latex_base(base),
+            (PrintFormat::MathMl, Some(Coordinate::Base(base))) => return mathml::base(base),
+            (_, Some(Coordinate::Joint(j))) => same_kind(s, self.symbols.joint_position(j)),
+            (_, None) => s,
+        };
         match (self.format, s) {
             (PrintFormat::Text, _) => self.symbols.name(s),
             (PrintFormat::Latex, Symbol::Position(k)) => latex_joint(self.symbols, k, ""),
@@ -444,6 +451,22 @@ fn join(chunks: Vec<Chunk>) -> String {
         out.push('0');
     }
     out
+}
+
+/// `symbol`'s kind (velocity, acceleration, force) at the index of the joint's `position` in
+/// q: the notation helpers name a joint by its index in q, which on a floating base is not its
+/// index in v.
+fn same_kind(symbol: Symbol, position: Symbol) -> Symbol {
+    let Symbol::Position(k) = position else {
+        return symbol;
+    };
+    match symbol {
+        Symbol::Position(_) => Symbol::Position(k),
+        Symbol::Velocity(_) => Symbol::Velocity(k),
+        Symbol::Acceleration(_) => Symbol::Acceleration(k),
+        Symbol::Force(_) => Symbol::Force(k),
+        Symbol::Parameter(_) | Symbol::Lane(_) => symbol,
+    }
 }
 
 #[cfg(test)]

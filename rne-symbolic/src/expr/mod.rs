@@ -19,4 +19,4 @@ pub use graph::{ExprGraph, NODE_LIMIT, RIGHT_ANGLE_ULPS};
 pub use linalg::{transpose, Mat3, Vec3};
 pub use node::{Constant, Id, Node, Symbol};
 pub use sexpr::SexprError;
-pub use symbols::SymbolTable;
+pub use symbols::{BaseCoordinate, BaseQuantity, Coordinate, SymbolTable};

@@ -104,6 +104,13 @@ impl RobotModel {
     /// floating base, and M is singular unless the base carries mass). Fixed: the free-flyer,
     /// if any, becomes a fixed joint at the identity. Joint variables keep their numbering.
     pub fn set_base(&mut self, base: Base) {
+        self.attach(base);
+        let floating = self.is_floating();
+        self.graph.symbols_mut().set_floating_base(floating);
+    }
+
+    /// The free-flyer root that `base` asks for, made or removed.
+    fn attach(&mut self, base: Base) {
         self.base = base;
         match base {
             Base::Fixed => {

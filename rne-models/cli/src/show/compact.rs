@@ -12,7 +12,8 @@ use std::io::Write;
 
 use rne_codegen_core::{Instr, Operand, Program};
 use rne_symbolic::canonical::mathml;
-use rne_symbolic::{ExprGraph, Symbol, SymbolTable};
+use rne_symbolic::canonical::{PrintFormat, Printer};
+use rne_symbolic::{BaseCoordinate, Coordinate, ExprGraph, Symbol, SymbolTable};
 
 use super::entries::Section;
 use super::sections::{label, mathml_label};
@@ -103,19 +104,16 @@ impl<'a> Names<'a> {
             .instrs
             .iter()
             .enumerate()
-            .map(|(t, instr)| match (named_output[t], instr) {
-                (Some(k), _) => outputs[k].clone(),
-                (None, Instr::Sin(Operand::Input(Symbol::Position(j)))) => {
-                    subscript("s", &(j + 1).to_string(), format)
-                }
-                (None, Instr::Cos(Operand::Input(Symbol::Position(j)))) => {
-                    subscript("c", &(j + 1).to_string(), format)
-                }
-                _ => {
-                    next += 1;
-                    subscript("t", &next.to_string(), format)
-                }
-            })
+            .map(
+                |(t, instr)| match (named_output[t], abbreviation(symbols, instr)) {
+                    (Some(k), _) => outputs[k].clone(),
+                    (None, Some((letter, joint))) => subscript(letter, &joint, format),
+                    (None, None) => {
+                        next += 1;
+                        subscript("t", &next.to_string(), format)
+                    }
+                },
+            )
             .collect();
         Names {
             temps,
@@ -224,11 +222,16 @@ impl<'a> Names<'a> {
     }
 
     fn input(&self, symbol: Symbol) -> String {
-        let (text, tex, markup, j) = match symbol {
-            Symbol::Position(j) => ("q", "q", mathml::mi("q"), j),
-            Symbol::Velocity(j) => ("Dq", "\\dot{q}", mathml::accented("q", '\u{2d9}'), j),
-            Symbol::Acceleration(j) => ("DDq", "\\ddot{q}", mathml::accented("q", '\u{a8}'), j),
-            Symbol::Force(j) => ("tau", "\\tau", mathml::mi("τ"), j),
+        let j = match self.symbols.coordinate(symbol) {
+            Some(Coordinate::Base(base)) => return self.base(symbol, base),
+            Some(Coordinate::Joint(j)) => j,
+            None => 0,
+        };
+        let (text, tex, markup) = match symbol {
+            Symbol::Position(_) => ("q", "q", mathml::mi("q")),
+            Symbol::Velocity(_) => ("Dq", "\\dot{q}", mathml::accented("q", '\u{2d9}')),
+            Symbol::Acceleration(_) => ("DDq", "\\ddot{q}", mathml::accented("q", '\u{a8}')),
+            Symbol::Force(_) => ("tau", "\\tau", mathml::mi("τ")),
             Symbol::Parameter(_) if self.format == Format::Html => {
                 return mathml::identifier(&self.symbols.name(symbol))
             }
@@ -240,6 +243,32 @@ impl<'a> Names<'a> {
             Format::Latex => subscript(tex, &index, self.format),
             Format::Html => mathml::msub(&markup, &mathml::mn(&index)),
         }
+    }
+}
+
+impl Names<'_> {
+    /// A floating base's coordinate as the expanded equations print it (`qw`, `\omega_{x}`).
+    fn base(&self, symbol: Symbol, base: BaseCoordinate) -> String {
+        let format = match self.format {
+            Format::Text => return base.name(),
+            Format::Latex => PrintFormat::Latex,
+            Format::Html => PrintFormat::MathMl,
+        };
+        Printer::new(self.symbols, format).print_symbol(symbol)
+    }
+}
+
+/// The thesis's name of a joint's sine or cosine: `("s", "3")` for sin q3, the joints numbered
+/// past a floating base's coordinates; `None` for any other instruction.
+fn abbreviation(symbols: &SymbolTable, instr: &Instr) -> Option<(&'static str, String)> {
+    let (letter, q) = match instr {
+        Instr::Sin(Operand::Input(q @ Symbol::Position(_))) => ("s", q),
+        Instr::Cos(Operand::Input(q @ Symbol::Position(_))) => ("c", q),
+        _ => return None,
+    };
+    match symbols.coordinate(*q)? {
+        Coordinate::Joint(j) => Some((letter, (u32::from(j) + 1).to_string())),
+        Coordinate::Base(_) => None,
     }
 }
 

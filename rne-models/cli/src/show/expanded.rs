@@ -136,8 +136,15 @@ fn print_section(
 ) -> Result<(), CliError> {
     let roots: Vec<_> = section.entries.iter().map(|(_, id)| *id).collect();
     let _progress = Progress::start(&format!("expanding {}: {}", context.what, section.title));
-    let forms = Polynomial::from_exprs_within(context.graph, &roots, context.max_terms, work)
-        .map_err(|e| CliError::Argument(format!("cannot expand the dynamics for printing: {e}")))?;
+    // At most half the section's work expands, so what was expanded (the cheapest entries
+    // first) can still be printed.
+    let mut expansion = WorkBudget::new(work.left() / 2);
+    let forms =
+        Polynomial::from_exprs_within(context.graph, &roots, context.max_terms, &mut expansion)
+            .map_err(|e| {
+                CliError::Argument(format!("cannot expand the dynamics for printing: {e}"))
+            })?;
+    work.absorb(&expansion);
     let style = context.style;
     let (mut title, close) = frame(style.format, &section.title);
     for ((key, _), form) in section.entries.iter().zip(forms) {

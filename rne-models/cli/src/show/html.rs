@@ -83,9 +83,13 @@ fn head(header: &Header, page: &mut Vec<u8>) -> std::io::Result<()> {
         .iter()
         .map(|j| format!("<code>{}</code>", escape(j)))
         .collect();
+    let base = match header.floating {
+        true => format!("; {}", escape(super::BASE_NOTATION)),
+        false => String::new(),
+    };
     writeln!(
         page,
-        "<p>{} degrees of freedom; joints: {}.</p>",
+        "<p>{} degrees of freedom; joints: {}{base}.</p>",
         header.dofs,
         joints.join(", ")
     )?;

@@ -113,6 +113,30 @@ struct Header {
     /// Degrees of freedom (a floating base's six included).
     dofs: usize,
     joints: Vec<String>,
+    /// Whether q, v, q̈ and τ begin with a floating base's coordinates.
+    floating: bool,
+}
+
+/// How the equations name a floating base's coordinates (rne_symbolic::SymbolTable).
+const BASE_NOTATION: &str = "floating base: position x y z, orientation quaternion qx qy qz qw; \
+     velocity vx vy vz and angular velocity wx wy wz in the base frame, their rates Dvx … Dwz; \
+     force fx fy fz and moment nx ny nz on the base";
+
+impl Header {
+    /// The robot's name and what moves: `panda (7 joints: q1, …)`, or with a floating base
+    /// `g1 (35 degrees of freedom: a floating base and 29 joints: …)`.
+    fn describe(&self) -> String {
+        let joints = self.joints.join(", ");
+        match self.floating {
+            false => format!("{} ({} joints: {joints})", self.name, self.dofs),
+            true => format!(
+                "{} ({} degrees of freedom: a floating base and {} joints: {joints})",
+                self.name,
+                self.dofs,
+                self.joints.len()
+            ),
+        }
+    }
 }
 
 /// Prints the requested parts of the dynamics, or writes them as a web page.
@@ -139,6 +163,7 @@ pub fn run(args: &ShowArgs, out: &mut dyn Write) -> Result<(), CliError> {
         name: source.display_name(),
         dofs: dynamics.layout().nv(),
         joints: model.joint_names(),
+        floating: model.is_floating(),
     };
     let graph = &dynamics.model.graph;
     match &args.out {
@@ -182,13 +207,10 @@ fn print(
 ) -> Result<(), CliError> {
     let latex = args.format == Format::Latex;
     let comment = if latex { "%" } else { "#" };
-    writeln!(
-        out,
-        "{comment} {} ({} joints: {})",
-        header.name,
-        header.dofs,
-        header.joints.join(", ")
-    )?;
+    writeln!(out, "{comment} {}", header.describe())?;
+    if header.floating {
+        writeln!(out, "{comment} {BASE_NOTATION}")?;
+    }
     if args.compact {
         let printed = compact::print(graph, sections, args.format, args.max_size, out)?;
         return summary::compact(args, printed, out);
