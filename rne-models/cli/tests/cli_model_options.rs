@@ -193,7 +193,15 @@ fn a_body_without_joints_is_an_error_fixed_and_a_rigid_body_floating() {
 /// as q8.
 #[test]
 fn show_names_a_floating_bases_coordinates_and_numbers_the_joints_from_one() {
-    let g = rne(&["show", "planar-elbow", "--floating-base", "--what", "g"]).unwrap();
+    let show = |what: &[&str]| {
+        let args = [
+            &["show", "planar-elbow", "--floating-base", "--what"][..],
+            what,
+        ]
+        .concat();
+        rne(&args).unwrap()
+    };
+    let g = show(&["g"]);
     assert!(
         g.starts_with("# planar-elbow (8 degrees of freedom: a floating base and 2 joints: q1, q2)\n# floating base: position x y z, orientation quaternion qx qy qz qw"),
         "{g}"
@@ -203,32 +211,15 @@ fn show_names_a_floating_bases_coordinates_and_numbers_the_joints_from_one() {
     for wrong in ["q4", "q7", "q8", "s8", "s89"] {
         assert!(!g.contains(wrong), "{wrong} in\n{g}");
     }
-    let tau = rne(&["show", "planar-elbow", "--floating-base", "--what", "tau"]).unwrap();
+    let tau = show(&["tau"]);
     for named in ["Dvx", "Dwz", "DDq1", "vx wz", "Dq1 Dq2"] {
         assert!(tau.contains(named), "{named} in\n{tau}");
     }
-    let latex = rne(&[
-        "show",
-        "planar-elbow",
-        "--floating-base",
-        "--what",
-        "tau",
-        "--format",
-        "latex",
-    ])
-    .unwrap();
+    let latex = show(&["tau", "--format", "latex"]);
     for named in ["\\dot{v}_{x}", "\\omega_{z}", "q_{w}", "\\ddot{q}_{1}"] {
         assert!(latex.contains(named), "{named} in\n{latex}");
     }
-    let compact = rne(&[
-        "show",
-        "planar-elbow",
-        "--floating-base",
-        "--what",
-        "M",
-        "--compact",
-    ])
-    .unwrap();
+    let compact = show(&["M", "--compact"]);
     assert!(compact.contains("\ns1 = sin(q1)\n"), "{compact}");
     assert!(!compact.contains("q8"), "{compact}");
 }

@@ -298,6 +298,19 @@ fn derived(name: &str, joint: &str) -> bool {
 mod tests {
     use super::*;
 
+    /// Looks up the printed name of every symbol of q, v, q̈ and τ below index `n`.
+    fn every_name_is_found_again(table: &SymbolTable, n: u16) {
+        for form in COORDINATE_FORMS {
+            for symbol in (0..n).map(form) {
+                assert_eq!(
+                    table.lookup(&table.name(symbol)),
+                    Some(symbol),
+                    "{symbol:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn any_joint_name_prints_unambiguously_and_is_found_again() {
         let table = SymbolTable::with_joints(["q1", "8", "FL-hip", "sin", "a`b", "x", "Dx"]);
@@ -310,20 +323,7 @@ mod tests {
         assert_eq!(table.name(Symbol::Velocity(1)), "D`8`");
         assert_eq!(table.name(Symbol::Acceleration(2)), "DD`FL-hip`");
         assert_eq!(table.name(Symbol::Force(1)), "tau_`8`");
-        for k in 0..7 {
-            for symbol in [
-                Symbol::Position(k),
-                Symbol::Velocity(k),
-                Symbol::Acceleration(k),
-                Symbol::Force(k),
-            ] {
-                assert_eq!(
-                    table.lookup(&table.name(symbol)),
-                    Some(symbol),
-                    "{symbol:?}"
-                );
-            }
-        }
+        every_name_is_found_again(&table, 7);
         assert_eq!(table.lookup("FL-hip"), Some(Symbol::Position(2)));
     }
 
@@ -357,20 +357,7 @@ mod tests {
         assert_eq!(table.name(Symbol::Force(5)), "nz");
         assert_eq!(table.name(Symbol::Force(6)), "tau_q1");
         assert_eq!(table.joint_position(2), Symbol::Position(9));
-        for k in 0..9 {
-            for symbol in [
-                Symbol::Position(k),
-                Symbol::Velocity(k),
-                Symbol::Acceleration(k),
-                Symbol::Force(k),
-            ] {
-                assert_eq!(
-                    table.lookup(&table.name(symbol)),
-                    Some(symbol),
-                    "{symbol:?}"
-                );
-            }
-        }
+        every_name_is_found_again(&table, 9);
         assert_eq!(
             table.lookup("x"),
             Some(Symbol::Position(0)),
