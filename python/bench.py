@@ -33,20 +33,16 @@ SIZES = [1, 100, 10_000]
 KERNELS = ["inverse_dynamics", "forward_dynamics", "inverse_dynamics_derivatives"]
 
 
-def best(f, repeats, clock=time.perf_counter):
-    """The shortest of `repeats` runs of f(), s, by `clock`."""
-    times = []
-    for _ in range(repeats):
-        start = clock()
-        f()
-        times.append(clock() - start)
-    return min(times)
+def best(f, repeats, clock=time.perf_counter, number=1):
+    """The shortest of `repeats` runs of `number` calls of f(), s per call, by `clock`."""
+    return min(timeit.repeat(f, timer=clock, number=number, repeat=repeats)) / number
 
 
-def cpu(f, repeats):
-    """The shortest CPU time of this process over `repeats` runs of f() on one thread, s: what
-    a run costs whatever else the machine runs (its wall time grows with the machine's load)."""
-    return best(f, repeats, time.process_time)
+def cpu(f, repeats, number=1):
+    """The shortest CPU time of this process over `repeats` runs of f() on one thread, s per
+    call: what a run costs whatever else the machine runs (its wall time grows with the
+    machine's load)."""
+    return best(f, repeats, time.process_time, number)
 
 
 def states(model, n, seed=0):
@@ -80,7 +76,9 @@ def batch_rows(name, model, peer, threads, repeats):
     for n in SIZES:
         q, v, a = states(model, n)
         tau = model.rnea(q, v, a)
-        r = max(repeats, 3) if n == 10_000 else repeats * 20
+        # Each run covers 10 000 states (10 000 calls of one state, 100 of 100), so that the
+        # process clock's resolution is far below a run.
+        r, number = max(repeats, 3), 10_000 // n
         cases = [
             ("ID", lambda: model.rnea(q, v, a), lambda: model.rnea(q, v, a, threads=threads),
              peer.loop(pin.rnea, q, v, a), peer.parallel(pin.rneaInParallel, q, v, a)),
@@ -91,9 +89,9 @@ def batch_rows(name, model, peer, threads, repeats):
              peer.loop(pin.computeRNEADerivatives, q, v, a), None),
         ]
         for kernel, ours, ours_t, loop, parallel in cases:
-            t1, tl = (cpu(f, r) / n * 1e6 for f in (ours, loop))
-            tt = best(ours_t, r) / n * 1e6
-            tp = best(parallel, r) / n * 1e6 if parallel else None
+            t1, tl = (cpu(f, r, number) / n * 1e6 for f in (ours, loop))
+            tt = best(ours_t, r, number=number) / n * 1e6
+            tp = best(parallel, r, number=number) / n * 1e6 if parallel else None
             rows.append((name, kernel, n, t1, tt, tl, tp))
     return rows
 
