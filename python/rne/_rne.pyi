@@ -2,7 +2,8 @@
 
 Every kernel takes one state (1-D arrays: q of nq values, v, a, tau of nv) and returns one
 result, or N states (2-D arrays (N, nq), (N, nv)) and returns results with N first, computed
-with the GIL released on ``threads`` threads (1 by default, 0 for every core).
+with the GIL released on ``threads`` threads (1 by default, 0 for every core; at most one
+thread per 256 states).
 """
 import os
 from typing import Dict, List, Optional, Sequence, Tuple, Union

@@ -14,6 +14,11 @@ use crate::layout::{self, Part};
 /// values for the larger kernels, so that they are gathered from the cache.
 const CHUNK: usize = 32;
 
+/// The fewest states a thread is started for. Threads are started per call (scoped), and
+/// starting one costs as much as an arm's inverse dynamics at a hundred or so states
+/// (docs/python.md), so a batch takes at most one thread per this many states.
+const MIN_STATES_PER_THREAD: usize = 256;
+
 /// One kernel over a batch of states.
 pub(crate) struct Job<'a> {
     /// The compiled kernels.
@@ -31,13 +36,14 @@ pub(crate) struct Job<'a> {
 }
 
 impl<'a> Job<'a> {
-    /// Computes `n` states into `outs` (one slice per part, each `n · part.len()` long) on
-    /// `threads` threads.
+    /// Computes `n` states into `outs` (one slice per part, each `n · part.len()` long) on at
+    /// most `threads` threads ([`MIN_STATES_PER_THREAD`]).
     pub fn run(&self, n: usize, outs: Vec<&mut [f64]>, threads: usize) -> Result<(), JitError> {
         let (model, kernel) = (self.model, self.kernel);
         if n == 0 {
             return Ok(());
         }
+        let threads = threads.min(n.div_ceil(MIN_STATES_PER_THREAD)).max(1);
         if self.whole {
             let Some(out) = outs.into_iter().next() else {
                 return Ok(());

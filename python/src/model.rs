@@ -19,7 +19,7 @@ use crate::load::{read_and_compile, robot_path, settings, Options};
 /// Made by `rne.load`. Every kernel takes numpy arrays (lists too): a 1-D `q` of `nq` values
 /// (and `v`, `a`, `tau` of `nv`) is one state and gives one result; 2-D `(N, nq)` arrays are N
 /// states and give results with N first, computed with the GIL released, on `threads` threads
-/// (1 by default, 0 for every core). The kernels perform the generated programs' operations in
+/// (1 by default, 0 for every core; at most one per 256 states). The kernels perform the generated programs' operations in
 /// their order: the values are those of rne's Rust kernels, bit for bit (with `fma=False`).
 #[pyclass(module = "rne._rne", name = "Model")]
 pub struct Model {
