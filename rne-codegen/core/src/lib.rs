@@ -67,6 +67,7 @@ mod program;
 mod programs;
 mod scene;
 mod schedule;
+mod scratch_slots;
 mod shape;
 mod split;
 
@@ -83,4 +84,5 @@ pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport}
 pub use program::{Instr, Operand, Program};
 pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
 pub use scene::{MimicMode, Scene};
+pub use scratch_slots::ScratchSlots;
 pub use split::{PART_LEN, SPLIT_ABOVE};

@@ -14,10 +14,10 @@
 //! The plan is a function of the program alone, so the emitted text is the same on every
 //! build.
 
-use std::cmp::Reverse;
-use std::collections::{BTreeMap, BTreeSet, BinaryHeap};
+use std::collections::BTreeMap;
 
 use crate::program::{Operand, Program};
+use crate::scratch_slots::ScratchSlots;
 
 /// Programs with more instructions than this are split.
 pub const SPLIT_ABOVE: usize = 15000;
@@ -202,27 +202,12 @@ fn readers(
 /// run; and the number of slots.
 fn slots(travelling: &[(usize, usize, usize)], outputs: usize) -> (BTreeMap<usize, usize>, usize) {
     let mut slots = BTreeMap::new();
-    let mut free: BTreeSet<usize> = BTreeSet::new();
-    // (part last reading the value in it, slot), the earliest-freed first.
-    let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
-    let mut len = outputs;
+    let mut scratch = ScratchSlots::starting_at(outputs);
     for &(home, last, value) in travelling {
-        // Written in part `home − 1`, after every read of a value last read before it.
-        while let Some(&Reverse((last_read, slot))) = busy.peek() {
-            if last_read + 1 >= home {
-                break;
-            }
-            busy.pop();
-            free.insert(slot);
-        }
-        let slot = free.pop_first().unwrap_or_else(|| {
-            len += 1;
-            len - 1
-        });
-        busy.push(Reverse((last, slot)));
-        slots.insert(value, slot);
+        // Written in part `home − 1` (a prologue value, `home` 0, before part 0).
+        slots.insert(value, scratch.place(home.saturating_sub(1), last));
     }
-    (slots, len)
+    (slots, scratch.count())
 }
 
 /// The named and prologue values `operand` reads, through the unnamed instructions written

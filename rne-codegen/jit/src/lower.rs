@@ -19,9 +19,7 @@
 //! computes them at the top of the function. Cranelift neither reassociates nor contracts
 //! floating-point operations, so the compiled code computes the program's values bit for bit.
 
-use std::cmp::Reverse;
 use std::collections::HashMap;
-use std::collections::{BTreeSet, BinaryHeap};
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
@@ -31,7 +29,7 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Linkage, Module};
-use rne_codegen_core::{Instr, Operand, Program, PART_LEN};
+use rne_codegen_core::{Instr, Operand, Program, ScratchSlots, PART_LEN};
 use rne_symbolic::Symbol;
 
 use crate::code::Extents;
@@ -207,28 +205,12 @@ fn crossing_slots(program: &Program, parts: &[Part]) -> (Slots, usize) {
         }
     }
     let mut slots = Slots::new();
-    let mut free: BTreeSet<usize> = BTreeSet::new();
-    // (last part reading the value in it, slot), the earliest freed first.
-    let mut busy: BinaryHeap<Reverse<(usize, usize)>> = BinaryHeap::new();
-    let mut len = 0;
+    let mut scratch = ScratchSlots::starting_at(0);
     for (t, last) in last_reader.iter().enumerate() {
         let Some(last) = *last else { continue };
-        let home = part_of(t);
-        while let Some(&Reverse((last_read, slot))) = busy.peek() {
-            if last_read >= home {
-                break;
-            }
-            busy.pop();
-            free.insert(slot);
-        }
-        let slot = free.pop_first().unwrap_or_else(|| {
-            len += 1;
-            len - 1
-        });
-        busy.push(Reverse((last, slot)));
-        slots.insert(t, slot);
+        slots.insert(t, scratch.place(part_of(t), last));
     }
-    (slots, len)
+    (slots, scratch.count())
 }
 
 /// The pointer parameters of a compiled function, in order.
