@@ -2,13 +2,15 @@
 inverse dynamics (ID), forward dynamics (FD) and the derivatives of ID (dID) of UR5 and the
 Panda arm (rne-models/robots, the same URDF files for both) over batches of 1, 100 and 10 000
 states, against a Python loop of `pin.rnea` / `pin.aba` / `pin.computeRNEADerivatives` and
-against `pin.rneaInParallel` / `pin.abaInParallel` at the same thread count; then one call's
+against `pin.rneaInParallel` / `pin.abaInParallel` at the same thread count, and against a
+Python loop of MuJoCo's `mj_rne` (ID) and `mj_forward` (FD) on the same URDF; then one call's
 time against the kernel's own (a state's share of a 10 000-state batch on one thread).
 
 usage: PYTHON bench.py [--threads T] [--repeats R]     (from the repository root)
 
-PYTHON must import both `rne` (pip install python/) and `pinocchio`; docs/python.md gives
-the command and the table it printed. Times are the best of R repetitions, in µs per state:
+PYTHON must import both `rne` (pip install python/) and `pinocchio`, and `mujoco` for its
+column (left empty, saying so, without it); docs/python.md gives the command and the table it
+printed. Times are the best of R repetitions, in µs per state:
 one thread's by the process's CPU time (time.process_time: what a run costs, whatever else the
 machine runs), the threaded ones' by wall time (time.perf_counter).
 """
@@ -26,6 +28,11 @@ import numpy as np  # noqa: E402
 import pinocchio as pin  # noqa: E402
 
 import rne  # noqa: E402
+
+try:
+    import mujoco  # noqa: E402
+except ImportError:
+    mujoco = None
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBOTS = [("UR5", "rne-models/robots/ur5.urdf"), ("Panda arm", "rne-models/robots/panda-arm.urdf")]
@@ -71,7 +78,48 @@ class Peer:
         return lambda: f(self.threads, self.pool, *columns, out)
 
 
-def batch_rows(name, model, peer, threads, repeats):
+class MuJoCo:
+    """MuJoCo on the same URDF (its compiler reads URDF): a Python loop of calls, one state at a
+    time. ID is `mj_rne` with the accelerations after the position and velocity stages it
+    reads (`mj_kinematics`, `mj_comPos`, `mj_comVel`); FD is `mj_forward` with the constraint
+    stage off (the URDF's joint limits would otherwise act: rne's FD has none), τ as
+    `qfrc_applied`. The URDFs have no damping, armature or friction, so both compute what rne
+    does (checked in `main`)."""
+
+    def __init__(self, path):
+        self.model = mujoco.MjModel.from_xml_path(path)
+        self.model.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONSTRAINT
+        self.data = mujoco.MjData(self.model)
+
+    def rnea(self, q, v, a):
+        m, d = self.model, self.data
+        d.qpos[:], d.qvel[:], d.qacc[:] = q, v, a
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_comPos(m, d)
+        mujoco.mj_comVel(m, d)
+        out = np.empty(m.nv)
+        mujoco.mj_rne(m, d, 1, out)
+        return out
+
+    def aba(self, q, v, tau):
+        m, d = self.model, self.data
+        d.qpos[:], d.qvel[:], d.qfrc_applied[:] = q, v, tau
+        mujoco.mj_forward(m, d)
+        return d.qacc.copy()
+
+    def loop(self, f, *arrays):
+        return lambda: [f(*row) for row in zip(*arrays)]
+
+
+def agree(ours, theirs, what, tolerance):
+    """Asserts that the peer computes what rne does, relative to the largest entry."""
+    ours, theirs = np.asarray(ours), np.asarray(theirs)
+    error = np.max(np.abs(ours - theirs)) / np.max(np.abs(ours))
+    assert error < tolerance, f"{what}: relative difference {error:.1e}"
+    return error
+
+
+def batch_rows(name, model, peer, mj, threads, repeats):
     rows = []
     for n in SIZES:
         q, v, a = states(model, n)
@@ -81,22 +129,25 @@ def batch_rows(name, model, peer, threads, repeats):
         r, number = max(repeats, 3), 10_000 // n
         cases = [
             ("ID", lambda: model.rnea(q, v, a), lambda: model.rnea(q, v, a, threads=threads),
-             peer.loop(pin.rnea, q, v, a), peer.parallel(pin.rneaInParallel, q, v, a)),
+             peer.loop(pin.rnea, q, v, a), peer.parallel(pin.rneaInParallel, q, v, a),
+             mj and mj.loop(mj.rnea, q, v, a)),
             ("FD", lambda: model.aba(q, v, tau), lambda: model.aba(q, v, tau, threads=threads),
-             peer.loop(pin.aba, q, v, tau), peer.parallel(pin.abaInParallel, q, v, tau)),
+             peer.loop(pin.aba, q, v, tau), peer.parallel(pin.abaInParallel, q, v, tau),
+             mj and mj.loop(mj.aba, q, v, tau)),
             ("dID", lambda: model.computeRNEADerivatives(q, v, a),
              lambda: model.computeRNEADerivatives(q, v, a, threads=threads),
-             peer.loop(pin.computeRNEADerivatives, q, v, a), None),
+             peer.loop(pin.computeRNEADerivatives, q, v, a), None, None),
         ]
-        for kernel, ours, ours_t, loop, parallel in cases:
+        for kernel, ours, ours_t, loop, parallel, mj_loop in cases:
             t1, tl = (cpu(f, r, number) / n * 1e6 for f in (ours, loop))
             tt = best(ours_t, r, number=number) / n * 1e6
             tp = best(parallel, r, number=number) / n * 1e6 if parallel else None
-            rows.append((name, kernel, n, t1, tt, tl, tp))
+            tm = cpu(mj_loop, r, number) / n * 1e6 if mj_loop else None
+            rows.append((name, kernel, n, t1, tt, tl, tp, tm))
     return rows
 
 
-def single_rows(name, model, peer, repeats):
+def single_rows(name, model, peer, mj, repeats):
     """One call (1-D arrays) against the kernel's own time (a share of a 10 000-state batch)."""
     q, v, a = states(model, 10_000)
     tau = model.rnea(q, v, a)
@@ -104,19 +155,19 @@ def single_rows(name, model, peer, repeats):
     m, d = peer.model, peer.data
     calls = 20_000
     rows = []
-    for kernel, one, batch, theirs in [
+    for kernel, one, batch, theirs, mj_one in [
         ("ID", lambda: model.rnea(q0, v0, a0), lambda: model.rnea(q, v, a),
-         lambda: pin.rnea(m, d, q0, v0, a0)),
+         lambda: pin.rnea(m, d, q0, v0, a0), mj and (lambda: mj.rnea(q0, v0, a0))),
         ("FD", lambda: model.aba(q0, v0, t0), lambda: model.aba(q, v, tau),
-         lambda: pin.aba(m, d, q0, v0, t0)),
+         lambda: pin.aba(m, d, q0, v0, t0), mj and (lambda: mj.aba(q0, v0, t0))),
         ("dID", lambda: model.computeRNEADerivatives(q0, v0, a0),
          lambda: model.computeRNEADerivatives(q, v, a),
-         lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0)),
+         lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0), None),
     ]:
-        call = min(timeit.repeat(one, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
+        call, pin_call = (cpu(f, repeats, calls) * 1e6 for f in (one, theirs))
         own = cpu(batch, max(repeats, 3)) / 10_000 * 1e6
-        pin_call = min(timeit.repeat(theirs, timer=time.process_time, number=calls, repeat=repeats)) / calls * 1e6
-        rows.append((name, kernel, call, own, call - own, pin_call))
+        mj_call = cpu(mj_one, repeats, calls) * 1e6 if mj_one else None
+        rows.append((name, kernel, call, own, call - own, pin_call, mj_call))
     return rows
 
 
@@ -126,8 +177,8 @@ def main():
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores; "
-          f"Python {platform.python_version()}, numpy {np.__version__}, Pinocchio {pin.__version__}; "
-          f"{args.threads} threads\n")
+          f"Python {platform.python_version()}, numpy {np.__version__}, Pinocchio {pin.__version__}, "
+          f"MuJoCo {mujoco.__version__ if mujoco else 'not installed'}; {args.threads} threads\n")
     batch, single = [], []
     for name, file in ROBOTS:
         path = os.path.join(ROOT, file)
@@ -135,22 +186,36 @@ def main():
         peer = Peer(path, args.threads)
         q, v, a = states(model, 3)
         assert np.allclose(model.rnea(q, v, a), [pin.rnea(peer.model, peer.data, *s) for s in zip(q, v, a)])
-        batch += batch_rows(name, model, peer, args.threads, args.repeats)
-        single += single_rows(name, model, peer, args.repeats)
+        mj = MuJoCo(path) if mujoco else None
+        if mj:
+            # MuJoCo's compiler turns each inertia to its principal axes (an eigendecomposition
+            # to about 1e-10 for the Panda arm's), hence the tolerances.
+            tau = model.rnea(q, v, a)
+            errors = (agree(tau, [mj.rnea(*s) for s in zip(q, v, a)], f"{name} mj_rne", 1e-8),
+                      agree(model.aba(q, v, tau), [mj.aba(*s) for s in zip(q, v, tau)],
+                            f"{name} mj_forward", 1e-6))
+            print(f"{name}: MuJoCo's ID and FD differ from rne's by {errors[0]:.1e} and "
+                  f"{errors[1]:.1e} relative to the largest entry")
+        batch += batch_rows(name, model, peer, mj, args.threads, args.repeats)
+        single += single_rows(name, model, peer, mj, args.repeats)
     t = args.threads
     print(f"| robot | kernel | states | rne, 1 thread | rne, {t} threads | Pinocchio loop | "
-          f"Pinocchio InParallel, {t} threads | loop / rne {t}t | InParallel / rne {t}t |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
-    for name, kernel, n, t1, tt, tl, tp in batch:
-        par = f"{tp:.3f}" if tp else "—"
-        ratio = f"{tp / tt:.1f}×" if tp else "—"
-        print(f"| {name} | {kernel} | {n} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {tl / tt:.1f}× | {ratio} |")
+          f"Pinocchio InParallel, {t} threads | MuJoCo loop | loop / rne {t}t | InParallel / rne {t}t | "
+          f"MuJoCo loop / rne {t}t |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, kernel, n, t1, tt, tl, tp, tm in batch:
+        par, ratio = (f"{tp:.3f}", f"{tp / tt:.1f}×") if tp else ("—", "—")
+        mj, mj_ratio = (f"{tm:.3f}", f"{tm / tt:.1f}×") if tm else ("—", "—")
+        print(f"| {name} | {kernel} | {n} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {mj} | "
+              f"{tl / tt:.1f}× | {ratio} | {mj_ratio} |")
     print("\nµs per state, best of the repetitions: CPU time of the process for the one-thread "
           "columns, wall time for the threaded ones.\n")
-    print("| robot | kernel | rne, one call (1-D) | rne kernel's own time | overhead | Pinocchio, one call |")
-    print("|---|---|---:|---:|---:|---:|")
-    for name, kernel, call, own, over, pin_call in single:
-        print(f"| {name} | {kernel} | {call:.3f} | {own:.3f} | {over:.3f} | {pin_call:.3f} |")
+    print("| robot | kernel | rne, one call (1-D) | rne kernel's own time | overhead | Pinocchio, one call | "
+          "MuJoCo, one call |")
+    print("|---|---|---:|---:|---:|---:|---:|")
+    for name, kernel, call, own, over, pin_call, mj_call in single:
+        mj = f"{mj_call:.3f}" if mj_call else "—"
+        print(f"| {name} | {kernel} | {call:.3f} | {own:.3f} | {over:.3f} | {pin_call:.3f} | {mj} |")
     print("\nµs per call (CPU time); the kernel's own time is a state's share of a 10 000-state "
           "batch on one thread.")
 

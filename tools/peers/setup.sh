@@ -24,7 +24,7 @@ mkdir -p "$peers_dir"
 if [ ! -x "$peers_python" ]; then
   python3 -m venv "$peers_dir/venv"
 fi
-"$peers_dir/venv/bin/pip" install -q "pin==4.1.0" cmeel-eigen example-robot-data
+"$peers_dir/venv/bin/pip" install -q "pin==4.1.0" cmeel-eigen example-robot-data "mujoco==3.3.7"
 peers_build bench
 peers_build bench_extra
 if [ "$codegen" = 1 ]; then
