@@ -93,6 +93,7 @@ fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
             continue;
         }
         let mut out = vec![0.0; kp.program.outputs.len()];
+        let mut all = Vec::new();
         for k in 0..states.len() {
             let state = states.state(k);
             jit.evaluate(kp.kernel, state, &mut out).unwrap();
@@ -102,8 +103,39 @@ fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
                 "{what}: `{}` at state {k} differs from its program",
                 kp.kernel
             );
+            all.extend(expected);
         }
+        check_batch(jit, kp.kernel, states, &all, what);
     }
+}
+
+/// `kernel` over all of `states` as one batch (two states a call in two lanes, an odd last
+/// one alone) gives `expected`, the states' results end to end, bit for bit.
+fn check_batch(jit: &JitModel, kernel: Kernel, states: &States, expected: &[f64], what: &str) {
+    let flat = |v: &[Vec<f64>]| v.concat();
+    let (q, qd, qdd, tau) = (
+        flat(&states.q),
+        flat(&states.qd),
+        flat(&states.qdd),
+        flat(&states.tau),
+    );
+    let batch = Batch {
+        q: &q,
+        qd: &qd,
+        qdd: &qdd,
+        tau: &tau,
+    };
+    let mut out = vec![0.0; expected.len()];
+    jit.evaluate_batch(kernel, batch, &mut out).unwrap();
+    let per = jit.output_len(kernel).unwrap_or(1).max(1);
+    let first = (0..states.len()).find(|&k| {
+        let at = k * per..(k + 1) * per;
+        !same_bits(&out[at.clone()], &expected[at])
+    });
+    assert_eq!(
+        first, None,
+        "{what}: `{kernel}` in a batch differs at a state"
+    );
 }
 
 fn all_kernels() -> GenerationOptions {
@@ -303,6 +335,36 @@ fn with_fma_every_kernel_is_its_fused_program() {
         );
         check_against_programs(&jit, &States::new(&jit, 500, 0x71a), robot.name);
     }
+}
+
+/// Joint friction (the regressor's Coulomb columns: `sign` of the velocities, in scalars and
+/// in lanes), with velocities of ±0 among the states: every kernel its program, bit for bit,
+/// alone and in batches.
+#[test]
+fn with_friction_every_kernel_is_its_program() {
+    let robot = rne_models::builtin::builtin("planar-elbow").unwrap();
+    let scene = Scene {
+        friction: true,
+        ..Scene::default()
+    };
+    let jit = JitModel::compile(&builtin(robot), &scene, &all_kernels(), robot.name).unwrap();
+    let has_sign = jit.programs().kernels.iter().any(|kp| {
+        kp.program
+            .instrs
+            .iter()
+            .any(|i| matches!(i, rne_codegen_core::Instr::Sign(_)))
+    });
+    assert!(
+        has_sign,
+        "friction's kernels take the sign of the velocities"
+    );
+    let mut states = States::new(&jit, 41, 0x7f1);
+    for (k, qd) in states.qd.iter_mut().enumerate().step_by(3) {
+        let n = qd.len();
+        qd[k % n] = 0.0;
+        qd[(k + 1) % n] = -0.0;
+    }
+    check_against_programs(&jit, &states, "planar-elbow with friction");
 }
 
 /// Run-time parameters: the kernels read the values set, bit for bit the program at them.

@@ -4,6 +4,7 @@
 use rne_codegen_core::{Input, Kernel};
 
 use crate::error::JitError;
+use crate::lanes::Pair;
 use crate::model::{JitModel, State};
 
 /// The arrays of N states, each laid end to end (state i's q is `q[i·NQ..(i+1)·NQ]`); the
@@ -37,8 +38,34 @@ impl JitModel {
     }
 
     /// `kernel` at states `first`, `first + 1`, … of `batch` into `out`, one kernel's outputs
-    /// per state, each state checked, one scratch array for all.
+    /// per state, each state checked: two states a call in two lanes (`lanes.rs`), an odd
+    /// last one alone.
     fn evaluate_share(
+        &self,
+        kernel: Kernel,
+        batch: &Batch<'_>,
+        first: usize,
+        out: &mut [f64],
+    ) -> Result<(), JitError> {
+        let compiled = self.compiled_kernel(kernel)?;
+        let per = compiled.outputs().max(1);
+        if out.len() < 2 * per {
+            return self.evaluate_singles(kernel, batch, first, out);
+        }
+        let lane = self.lane_kernel(kernel)?;
+        let mut pair = Pair::new(lane);
+        let done = out.len() / (2 * per) * 2;
+        let (paired, rest) = out.split_at_mut(done * per);
+        for (k, out) in paired.chunks_exact_mut(2 * per).enumerate() {
+            let at = first + 2 * k;
+            let states = [self.state(batch, at), self.state(batch, at + 1)];
+            self.run_pair(lane, states, out, &mut pair)?;
+        }
+        self.evaluate_singles(kernel, batch, first + done, rest)
+    }
+
+    /// [`JitModel::evaluate_share`] one state a call, one scratch array for all.
+    fn evaluate_singles(
         &self,
         kernel: Kernel,
         batch: &Batch<'_>,
@@ -70,7 +97,12 @@ impl JitModel {
         let states = self.batch_states(kernel, &batch, out.len())?;
         let per = self.compiled_kernel(kernel)?.outputs().max(1);
         let threads = threads.clamp(1, states.max(1));
-        let share = states.div_ceil(threads);
+        // Even shares, so that no pair of lanes straddles two threads; the lanes compiled
+        // before the threads start.
+        let share = states.div_ceil(threads).next_multiple_of(2);
+        if states >= 2 {
+            self.lane_kernel(kernel)?;
+        }
         std::thread::scope(|scope| {
             let handles: Vec<_> = out
                 .chunks_mut(share * per)

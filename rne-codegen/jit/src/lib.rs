@@ -39,8 +39,15 @@
 //! `RNE_JIT_SPLIT_ABOVE=n` and `RNE_JIT_PART_LEN=n` set the cut, `RNE_JIT_TIMINGS=1` prints
 //! each function's compile time to stderr (for measuring).
 //!
+//! # Batches
+//! [`JitModel::evaluate_batch`] computes two states a call: at a kernel's first batch of two
+//! or more states it is compiled again in two lanes (`f64x2`, one lane a state; `lanes.rs`),
+//! kept until the model is dropped. Each lane performs the scalar kernel's operations, so a
+//! batch gives the single calls' bits.
+//!
 //! # Limits
-//! - `f64` only, and the derivative kernels in scalars (lanes are the Rust emitter's).
+//! - `f64` only; the derivative kernels are built in scalars (the Rust emitter's lanes of
+//!   directions are not used), batches in lanes of two states.
 //! - Processors Cranelift has no backend for (other than x86-64, AArch64, RISC-V 64, s390x)
 //!   get [`JitError::UnsupportedHost`]; rne's interpreter is the fallback there.
 //!
@@ -51,6 +58,7 @@ mod batch;
 mod code;
 mod compile;
 mod error;
+mod lanes;
 mod lower;
 mod model;
 

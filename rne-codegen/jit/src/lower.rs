@@ -18,13 +18,19 @@
 //! of the runtime's `sin_cos_array` ([`crate::code::sin_cos_array`]), as the emitted Rust
 //! computes them at the top of the function. Cranelift neither reassociates nor contracts
 //! floating-point operations, so the compiled code computes the program's values bit for bit.
+//!
+//! A program is lowered in scalars (`f64`, one state per call) or in two lanes (`f64x2`, two
+//! states per call, for batches): the same instructions on vectors, each lane one state's IEEE
+//! operation, so each lane gets the scalar function's bits. In two lanes every array but the
+//! parameters holds its values interleaved, state 0's and state 1's side by side (`q[2k + l]`
+//! is state l's q_k); the parameters, shared by the states, are loaded once and splat.
 
 use std::collections::HashMap;
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
-    types, AbiParam, FuncRef, Function, InstBuilder, MemFlagsData, Signature, StackSlotData,
-    StackSlotKind, Type, UserFuncName, Value,
+    types, AbiParam, Endianness, FuncRef, Function, InstBuilder, MemFlagsData, Signature,
+    StackSlotData, StackSlotKind, Type, UserFuncName, Value,
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
@@ -41,6 +47,8 @@ pub(crate) const SIN_COS: &str = "rne_jit_sin_cos_array";
 /// signatures and the function it calls.
 pub(crate) struct Lowering {
     pointer: Type,
+    /// States per call: 1 (scalars) or 2 (`f64x2` lanes).
+    lanes: usize,
     kernel_signature: Signature,
     sin_cos: FuncId,
     /// Whether multiply-adds are fused (`fma` on and the processor has FMA).
@@ -95,8 +103,16 @@ impl Split {
 }
 
 impl Lowering {
-    /// Declares `sin_cos_array` in `module`; `fused` as [`Lowering::fused`].
-    pub(crate) fn new(module: &mut JITModule, fused: bool) -> Result<Lowering, String> {
+    /// Declares `sin_cos_array` in `module`; `fused` as [`Lowering::fused`]; `lanes` states
+    /// per call (1 or 2).
+    pub(crate) fn new(
+        module: &mut JITModule,
+        fused: bool,
+        lanes: usize,
+    ) -> Result<Lowering, String> {
+        if !matches!(lanes, 1 | 2) {
+            return Err(format!("{lanes} lanes (1 or 2 are lowered)"));
+        }
         let pointer = module.target_config().pointer_type();
         let mut kernel_signature = module.make_signature();
         for _ in 0..7 {
@@ -111,6 +127,7 @@ impl Lowering {
             .map_err(|e| e.to_string())?;
         Ok(Lowering {
             pointer,
+            lanes,
             kernel_signature,
             sin_cos,
             fused,
@@ -141,13 +158,13 @@ impl Lowering {
             );
             let sin_cos = module.declare_func_in_func(self.sin_cos, &mut function);
             let mut extents = Extents {
-                scratch,
+                scratch: scratch * self.lanes,
                 ..Extents::default()
             };
             let config = module.target_config();
             {
                 let builder = FunctionBuilder::new(&mut function, &mut self.builder);
-                let mut body = Body::new(builder, self.pointer, sin_cos, self.fused);
+                let mut body = Body::new(builder, self.pointer, sin_cos, self.fused, self.lanes);
                 body.run(program, part, &slots, &mut extents)?;
                 body.builder.finalize(config);
             }
@@ -231,6 +248,9 @@ struct Body<'f> {
     pointer: Type,
     sin_cos: FuncRef,
     fused: bool,
+    /// States per call (1 or 2) and the type of a value: `f64` or `f64x2`.
+    lanes: usize,
+    ty: Type,
     arrays: [Value; 7],
     /// Values of this function: instructions', inputs' and constants'.
     temps: HashMap<usize, Value>,
@@ -239,7 +259,13 @@ struct Body<'f> {
 }
 
 impl<'f> Body<'f> {
-    fn new(mut builder: FunctionBuilder<'f>, pointer: Type, sin_cos: FuncRef, fused: bool) -> Self {
+    fn new(
+        mut builder: FunctionBuilder<'f>,
+        pointer: Type,
+        sin_cos: FuncRef,
+        fused: bool,
+        lanes: usize,
+    ) -> Self {
         let block = builder.create_block();
         builder.append_block_params_for_function_params(block);
         builder.switch_to_block(block);
@@ -251,6 +277,8 @@ impl<'f> Body<'f> {
             pointer,
             sin_cos,
             fused,
+            lanes,
+            ty: if lanes == 1 { types::F64 } else { types::F64X2 },
             arrays,
             temps: HashMap::new(),
             inputs: HashMap::new(),
@@ -298,7 +326,7 @@ impl<'f> Body<'f> {
                 }
             }
         }
-        extents.out = program.outputs.len();
+        extents.out = program.outputs.len() * self.lanes;
         self.builder.ins().return_(&[]);
         Ok(())
     }
@@ -339,14 +367,15 @@ impl<'f> Body<'f> {
     }
 
     /// `(sin xᵢ, cos xᵢ)` of `angles` through the runtime, by a stack array of the angles and
-    /// their sines and cosines.
+    /// their sines and cosines (in lanes, each lane's side by side: one call for all).
     fn sin_cos(&mut self, angles: &[Value]) -> (Vec<Value>, Vec<Value>) {
-        let n = angles.len();
+        let n = angles.len() * self.lanes;
+        let width = 8 * self.lanes as i32;
         let bytes = u32::try_from(24 * n).expect("a few joints");
         let slot = self.builder.create_sized_stack_slot(StackSlotData::new(
             StackSlotKind::ExplicitSlot,
             bytes,
-            3,
+            4,
         ));
         let address = |b: &mut FunctionBuilder, offset: usize| {
             b.ins().stack_addr(self.pointer, slot, (8 * offset) as i32)
@@ -354,7 +383,7 @@ impl<'f> Body<'f> {
         for (k, &angle) in angles.iter().enumerate() {
             self.builder
                 .ins()
-                .stack_store(self.pointer, angle, slot, (8 * k) as i32);
+                .stack_store(self.pointer, angle, slot, width * k as i32);
         }
         let start = address(&mut self.builder, 0);
         let sines = address(&mut self.builder, n);
@@ -363,13 +392,16 @@ impl<'f> Body<'f> {
         self.builder
             .ins()
             .call(self.sin_cos, &[start, count, sines, cosines]);
-        let pointer = self.pointer;
-        let load = |b: &mut FunctionBuilder, offset: usize| {
-            b.ins()
-                .stack_load(pointer, types::F64, slot, (8 * offset) as i32)
-        };
-        let s = (0..n).map(|k| load(&mut self.builder, n + k)).collect();
-        let c = (0..n).map(|k| load(&mut self.builder, 2 * n + k)).collect();
+        let (pointer, ty) = (self.pointer, self.ty);
+        let load =
+            |b: &mut FunctionBuilder, offset: i32| b.ins().stack_load(pointer, ty, slot, offset);
+        let at = |k: usize, array: usize| 8 * (array * n) as i32 + width * k as i32;
+        let s = (0..angles.len())
+            .map(|k| load(&mut self.builder, at(k, 1)))
+            .collect();
+        let c = (0..angles.len())
+            .map(|k| load(&mut self.builder, at(k, 2)))
+            .collect();
         (s, c)
     }
 
@@ -449,16 +481,27 @@ impl<'f> Body<'f> {
         }
     }
 
-    /// The runtime's sign: 1 above zero, −1 below, the value itself for ±0 and NaN.
+    /// The runtime's sign: 1 above zero, −1 below, the value itself for ±0 and NaN (in lanes,
+    /// lane by lane).
     fn sign(&mut self, x: Value) -> Value {
         let zero = self.constant(0.0);
         let one = self.constant(1.0);
         let minus_one = self.constant(-1.0);
-        let ins = self.builder.ins();
-        let below = ins.fcmp(FloatCC::LessThan, x, zero);
-        let not_above = self.builder.ins().select(below, minus_one, x);
+        let below = self.builder.ins().fcmp(FloatCC::LessThan, x, zero);
+        let not_above = self.choose(below, minus_one, x);
         let above = self.builder.ins().fcmp(FloatCC::GreaterThan, x, zero);
-        self.builder.ins().select(above, one, not_above)
+        self.choose(above, one, not_above)
+    }
+
+    /// `condition ? a : b` for a comparison's result: a select on scalars, a bit select by the
+    /// comparison's lane masks on vectors.
+    fn choose(&mut self, condition: Value, a: Value, b: Value) -> Value {
+        if self.lanes == 1 {
+            return self.builder.ins().select(condition, a, b);
+        }
+        let little = MemFlagsData::new().with_endianness(Endianness::Little);
+        let mask = self.builder.ins().bitcast(self.ty, little, condition);
+        self.builder.ins().bitselect(mask, a, b)
     }
 
     /// An operand's value: an instruction of this part, one of an earlier part (from its
@@ -494,7 +537,10 @@ impl<'f> Body<'f> {
         if let Some(&v) = self.constants.get(&c.to_bits()) {
             return v;
         }
-        let v = self.builder.ins().f64const(c);
+        let mut v = self.builder.ins().f64const(c);
+        if self.lanes > 1 {
+            v = self.builder.ins().splat(self.ty, v);
+        }
         self.constants.insert(c.to_bits(), v);
         v
     }
@@ -512,27 +558,45 @@ impl<'f> Body<'f> {
             Symbol::Parameter(k) => (Array::Parameters, k, &mut extents.parameters),
             Symbol::Lane(_) => unreachable!("lanes are refused by `operand`"),
         };
-        *extent = (*extent).max(usize::from(index) + 1);
+        let lanes = match array {
+            Array::Parameters => 1,
+            _ => self.lanes,
+        };
+        *extent = (*extent).max(lanes * (usize::from(index) + 1));
         let v = self.load(array, usize::from(index));
         self.inputs.insert(s, v);
         v
     }
 
+    /// Value `index` of `array`: in lanes, the pair at `2·index` (the parameters, shared by
+    /// the states, one value splat).
     fn load(&mut self, array: Array, index: usize) -> Value {
         let base = self.arrays[array as usize];
-        self.builder.ins().load(
-            types::F64,
-            MemFlagsData::trusted(),
-            base,
-            (8 * index) as i32,
-        )
+        if self.lanes > 1 && matches!(array, Array::Parameters) {
+            let flags = MemFlagsData::trusted();
+            let scalar = self
+                .builder
+                .ins()
+                .load(types::F64, flags, base, (8 * index) as i32);
+            return self.builder.ins().splat(self.ty, scalar);
+        }
+        let (offset, flags, ty) = ((8 * self.lanes * index) as i32, self.flags(), self.ty);
+        self.builder.ins().load(ty, flags, base, offset)
     }
 
     fn store(&mut self, array: Array, index: usize, value: Value) {
         let base = self.arrays[array as usize];
-        self.builder
-            .ins()
-            .store(MemFlagsData::trusted(), value, base, (8 * index) as i32);
+        let (offset, flags) = ((8 * self.lanes * index) as i32, self.flags());
+        self.builder.ins().store(flags, value, base, offset);
+    }
+
+    /// The arrays' accesses: in bounds (`Entry::call` checks the extents) and aligned to the
+    /// scalar; vectors are aligned to 8 bytes only, so they are not marked aligned.
+    fn flags(&self) -> MemFlagsData {
+        match self.lanes {
+            1 => MemFlagsData::trusted(),
+            _ => MemFlagsData::new().with_notrap(),
+        }
     }
 }
 

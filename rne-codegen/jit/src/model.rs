@@ -2,19 +2,22 @@
 
 use std::cell::RefCell;
 use std::path::Path;
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::default_libcall_names;
 use rne_codegen_core::{
-    generate_programs, read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel, Scene,
+    generate_programs, read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel,
+    KernelProgram, Scene,
 };
 use rne_symbolic::RobotModel;
 
 use crate::code::{self, Arrays, Code, Entry};
 use crate::compile;
 use crate::error::JitError;
+use crate::lanes::LaneKernel;
 use crate::lower::{Lowered, Lowering, SIN_COS};
 
 /// The arrays of one state, borrowed. A kernel reads the ones it takes
@@ -89,8 +92,13 @@ pub struct JitModel {
     parameter_symbols: Vec<String>,
     parameters: Vec<f64>,
     fused: bool,
+    /// The options' `fma` and the tier, for the kernels compiled later (in lanes).
+    fma: bool,
+    tier: Tier,
     timings: Timings,
     kernels: Vec<Compiled>,
+    /// Each kernel of `kernels` in two lanes, compiled at its first batch (`lanes.rs`).
+    lanes: Vec<OnceLock<Result<LaneKernel, String>>>,
     programs: GeneratedPrograms,
     /// The memory the entries above point into, freed when the model is dropped.
     _code: Code,
@@ -130,7 +138,9 @@ impl JitModel {
     ) -> Result<JitModel, JitError> {
         let programs = generate_programs(model, scene, options, source)?;
         let start = Instant::now();
-        let (module, fused, kernels) = compile_programs(&programs, options.fma, tier)?;
+        let all: Vec<&KernelProgram> = programs.kernels.iter().collect();
+        let (module, fused, kernels) = compile_programs(&all, options.fma, tier, 1)?;
+        let lanes = kernels.iter().map(|_| OnceLock::new()).collect();
         let timings = Timings {
             generation: programs.generation_time,
             compilation: start.elapsed(),
@@ -146,8 +156,11 @@ impl JitModel {
             parameter_symbols: programs.parameter_symbols.clone(),
             parameters: programs.parameter_values.clone(),
             fused,
+            fma: options.fma,
+            tier,
             timings,
             kernels,
+            lanes,
             programs,
             _code: Code::new(module),
         })
@@ -243,6 +256,24 @@ impl JitModel {
 
     fn compiled(&self, kernel: Kernel) -> Option<&Compiled> {
         self.kernels.iter().find(|k| k.kernel == kernel)
+    }
+
+    /// `kernel` in two lanes (two states a call), compiled at the first call (`lanes.rs`).
+    pub(crate) fn lane_kernel(&self, kernel: Kernel) -> Result<&Compiled, JitError> {
+        let missing = JitError::MissingKernel { kernel };
+        let index = self.kernels.iter().position(|k| k.kernel == kernel);
+        let program = self.programs.kernels.iter().find(|k| k.kernel == kernel);
+        let (Some(index), Some(program)) = (index, program) else {
+            return Err(missing);
+        };
+        self.lanes[index]
+            .get_or_init(|| LaneKernel::compile(program, self.fma, self.tier))
+            .as_ref()
+            .map(LaneKernel::compiled)
+            .map_err(|message| JitError::Compile {
+                kernel,
+                message: message.clone(),
+            })
     }
 
     /// `kernel` at `state` into `out` (its [`JitModel::output_len`] values). The arrays the
@@ -382,6 +413,11 @@ impl JitModel {
 }
 
 impl Compiled {
+    /// The kernel.
+    pub(crate) fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+
     /// Values per call.
     pub(crate) fn outputs(&self) -> usize {
         self.outputs
@@ -393,24 +429,25 @@ impl Compiled {
     }
 }
 
-/// Lowers every kernel's programs to Cranelift IR, compiles all their functions in one pool
-/// (longest first) and finalises the code: the module that owns it, whether multiply-adds are
-/// fused, and each kernel's entry points.
-fn compile_programs(
-    programs: &GeneratedPrograms,
+/// Lowers the kernels' programs to Cranelift IR in `lanes` lanes, compiles all their functions
+/// in one pool (longest first) and finalises the code: the module that owns it, whether
+/// multiply-adds are fused, and each kernel's entry points.
+pub(crate) fn compile_programs(
+    kernels: &[&KernelProgram],
     fma: bool,
     tier: Tier,
+    lanes: usize,
 ) -> Result<(JITModule, bool, Vec<Compiled>), JitError> {
     let (mut module, fused) = host_module(fma, tier)?;
-    let first = programs
-        .kernels
+    let first = kernels
         .first()
         .map_or(Kernel::InverseDynamics, |k| k.kernel);
-    let mut lowering = Lowering::new(&mut module, fused).map_err(|message| JitError::Compile {
-        kernel: first,
-        message,
-    })?;
-    let lowered = lower_all(&mut module, &mut lowering, programs)?;
+    let mut lowering =
+        Lowering::new(&mut module, fused, lanes).map_err(|message| JitError::Compile {
+            kernel: first,
+            message,
+        })?;
+    let lowered = lower_all(&mut module, &mut lowering, kernels)?;
     let functions: Vec<(Kernel, &Lowered)> = lowered
         .iter()
         .flat_map(|(kernel, _, parts)| parts.iter().map(move |part| (*kernel, part)))
@@ -433,15 +470,14 @@ fn compile_programs(
     Ok((module, fused, kernels))
 }
 
-/// Every kernel of `programs` lowered in `module`: the kernel, its number of outputs and its
+/// Every kernel of `kernels` lowered in `module`: the kernel, its number of outputs and its
 /// functions.
 fn lower_all(
     module: &mut JITModule,
     lowering: &mut Lowering,
-    programs: &GeneratedPrograms,
+    kernels: &[&KernelProgram],
 ) -> Result<Vec<(Kernel, usize, Vec<Lowered>)>, JitError> {
-    programs
-        .kernels
+    kernels
         .iter()
         .map(|k| {
             let parts = lowering

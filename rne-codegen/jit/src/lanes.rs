@@ -1,0 +1,119 @@
+//! Two states a call: a kernel lowered in two lanes (`f64x2`, `lower.rs`) for batches.
+//!
+//! A batch of two or more states compiles its kernel in two lanes at its first call (once per
+//! model and kernel, kept until the model is dropped) and then computes the states two at a
+//! time: their inputs interleaved into one array each, one call, the two results
+//! de-interleaved. Each lane performs the scalar kernel's operations on its own state, so the
+//! results are the single calls' bits; an odd last state takes the scalar kernel.
+
+use rne_codegen_core::KernelProgram;
+
+use crate::code::Code;
+use crate::error::JitError;
+use crate::model::{compile_programs, Compiled, JitModel, State, Tier};
+
+/// One kernel compiled in two lanes, with the code it runs.
+pub(crate) struct LaneKernel {
+    compiled: Compiled,
+    /// The memory `compiled` points into, freed with it.
+    _code: Code,
+}
+
+impl LaneKernel {
+    /// `program` in two lanes, with the model's `fma` and tier; Cranelift's message if it
+    /// fails (a bug: the scalar kernel compiled).
+    pub(crate) fn compile(program: &KernelProgram, fma: bool, tier: Tier) -> Result<Self, String> {
+        let (module, _, mut kernels) =
+            compile_programs(&[program], fma, tier, 2).map_err(|e| e.to_string())?;
+        let compiled = kernels.pop().ok_or("no kernel was compiled")?;
+        Ok(LaneKernel {
+            compiled,
+            _code: Code::new(module),
+        })
+    }
+
+    pub(crate) fn compiled(&self) -> &Compiled {
+        &self.compiled
+    }
+}
+
+/// The interleaved arrays of two states and of their results, reused from pair to pair.
+#[derive(Default)]
+pub(crate) struct Pair {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    tau: Vec<f64>,
+    out: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+impl Pair {
+    /// The arrays for `lane`'s calls.
+    pub(crate) fn new(lane: &Compiled) -> Pair {
+        Pair {
+            out: vec![0.0; 2 * lane.outputs()],
+            scratch: lane.scratch(),
+            ..Pair::default()
+        }
+    }
+}
+
+impl JitModel {
+    /// The two-lane kernel `lane` at two states, checked, each one's results into its slice of
+    /// `out` (the kernel's outputs twice, state 0's first).
+    pub(crate) fn run_pair(
+        &self,
+        lane: &Compiled,
+        states: [State<'_>; 2],
+        out: &mut [f64],
+        pair: &mut Pair,
+    ) -> Result<(), JitError> {
+        let kernel = lane.kernel();
+        for state in &states {
+            self.check_state(kernel, state)?;
+        }
+        let [a, b] = states;
+        interleave(a.q, b.q, &mut pair.q);
+        interleave(a.qd, b.qd, &mut pair.qd);
+        interleave(a.qdd, b.qdd, &mut pair.qdd);
+        interleave(a.tau, b.tau, &mut pair.tau);
+        let Pair {
+            q,
+            qd,
+            qdd,
+            tau,
+            out: both,
+            scratch,
+        } = pair;
+        let state = State { q, qd, qdd, tau };
+        self.run_in(lane, state, self.parameters(), both, scratch);
+        let (first, second) = out.split_at_mut(out.len() / 2);
+        for (k, pair) in both.chunks_exact(2).enumerate() {
+            first[k] = pair[0];
+            second[k] = pair[1];
+        }
+        Ok(())
+    }
+}
+
+/// `a` and `b` side by side into `into`: `a[0], b[0], a[1], b[1], …` (arrays of equal length,
+/// both empty for an input the kernel does not take).
+fn interleave(a: &[f64], b: &[f64], into: &mut Vec<f64>) {
+    into.clear();
+    into.extend(a.iter().zip(b).flat_map(|(&x, &y)| [x, y]));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::interleave;
+
+    #[test]
+    fn interleave_puts_the_two_states_side_by_side() {
+        let mut into = vec![9.0];
+        interleave(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0], &mut into);
+        assert_eq!(into, [1.0, 4.0, 2.0, 5.0, 3.0, 6.0]);
+        interleave(&[], &[], &mut into);
+        assert!(into.is_empty());
+    }
+}
