@@ -40,6 +40,11 @@ impl States {
         self.q.len()
     }
 
+    /// The states' arrays laid end to end, as a batch takes them.
+    fn end_to_end(&self) -> EndToEnd {
+        EndToEnd([&self.q, &self.qd, &self.qdd, &self.tau].map(|v| v.concat()))
+    }
+
     fn state(&self, k: usize) -> State<'_> {
         State {
             q: &self.q[k],
@@ -47,6 +52,16 @@ impl States {
             qdd: &self.qdd[k],
             tau: &self.tau[k],
         }
+    }
+}
+
+/// q, q̇, q̈ and τ of many states, each array's states end to end.
+struct EndToEnd([Vec<f64>; 4]);
+
+impl EndToEnd {
+    fn batch(&self) -> Batch<'_> {
+        let [q, qd, qdd, tau] = &self.0;
+        Batch { q, qd, qdd, tau }
     }
 }
 
@@ -112,19 +127,8 @@ fn check_against_programs(jit: &JitModel, states: &States, what: &str) {
 /// `kernel` over all of `states` as one batch (two states a call in two lanes, an odd last
 /// one alone) gives `expected`, the states' results end to end, bit for bit.
 fn check_batch(jit: &JitModel, kernel: Kernel, states: &States, expected: &[f64], what: &str) {
-    let flat = |v: &[Vec<f64>]| v.concat();
-    let (q, qd, qdd, tau) = (
-        flat(&states.q),
-        flat(&states.qd),
-        flat(&states.qdd),
-        flat(&states.tau),
-    );
-    let batch = Batch {
-        q: &q,
-        qd: &qd,
-        qdd: &qdd,
-        tau: &tau,
-    };
+    let arrays = states.end_to_end();
+    let batch = arrays.batch();
     let mut out = vec![0.0; expected.len()];
     jit.evaluate_batch(kernel, batch, &mut out).unwrap();
     let per = jit.output_len(kernel).unwrap_or(1).max(1);
@@ -490,19 +494,8 @@ fn batches_and_threads_give_the_single_calls() {
     };
     let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
     let states = States::new(&jit, 333, 0x71c);
-    let flat = |v: &[Vec<f64>]| v.concat();
-    let (q, qd, qdd, tau) = (
-        flat(&states.q),
-        flat(&states.qd),
-        flat(&states.qdd),
-        flat(&states.tau),
-    );
-    let batch = Batch {
-        q: &q,
-        qd: &qd,
-        qdd: &qdd,
-        tau: &tau,
-    };
+    let arrays = states.end_to_end();
+    let batch = arrays.batch();
     for kernel in jit.kernels() {
         let per = jit.output_len(kernel).unwrap();
         let singles: Vec<f64> = (0..states.len())
