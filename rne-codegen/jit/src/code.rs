@@ -138,8 +138,8 @@ unsafe impl Send for Code {}
 unsafe impl Sync for Code {}
 
 /// `sines[i], cosines[i] = sin_cos(angles[i])` for i < n, bit for bit the runtime's `sin_cos`
-/// (computed four at a time by `sin_cos_array`, which gives the same bits): what compiled
-/// kernels call for their joints' sines and cosines.
+/// (computed by `sin_cos_array::<N>`, which gives the same bits, as the emitted Rust does):
+/// what compiled kernels call for their joints' sines and cosines.
 ///
 /// # Safety
 /// `angles`, `sines` and `cosines` point to `n` valid `f64` each (the compiled kernels pass
@@ -158,18 +158,34 @@ pub(crate) unsafe extern "C" fn sin_cos_array(
             std::slice::from_raw_parts_mut(cosines, n),
         )
     };
+    // As the emitted Rust: all angles by one `sin_cos_array::<N>` (pairs through SSE2), in
+    // chunks of 16, rather than fours and the rest one by one.
     let mut k = 0;
-    while k + 4 <= n {
-        let x: [f64; 4] = [angles[k], angles[k + 1], angles[k + 2], angles[k + 3]];
-        let (s, c) = rne_runtime::sin_cos_array(&x);
-        sines[k..k + 4].copy_from_slice(&s);
-        cosines[k..k + 4].copy_from_slice(&c);
-        k += 4;
-    }
     while k < n {
-        let (s, c) = rne_runtime::sin_cos(angles[k]);
-        sines[k] = s;
-        cosines[k] = c;
-        k += 1;
+        let m = (n - k).min(16);
+        by_count(
+            &angles[k..k + m],
+            &mut sines[k..k + m],
+            &mut cosines[k..k + m],
+        );
+        k += m;
     }
+}
+
+/// `rne_runtime::sin_cos_array::<N>` for `N = angles.len()` (1 to 16).
+fn by_count(angles: &[f64], sines: &mut [f64], cosines: &mut [f64]) {
+    macro_rules! dispatch {
+        ($($n:literal)*) => {
+            match angles.len() {
+                $($n => {
+                    let x: [f64; $n] = angles.try_into().expect("n angles");
+                    let (s, c) = rne_runtime::sin_cos_array(&x);
+                    sines.copy_from_slice(&s);
+                    cosines.copy_from_slice(&c);
+                })*
+                _ => unreachable!("1 to 16 angles"),
+            }
+        };
+    }
+    dispatch!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
 }

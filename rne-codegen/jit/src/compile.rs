@@ -9,7 +9,10 @@
 //! is left to compile alone at the end.
 //!
 //! `RNE_JIT_THREADS=n` sets the number of threads (default: one per core);
-//! `RNE_JIT_TIMINGS=1` prints each function's compile time to stderr.
+//! `RNE_JIT_TIMINGS=1` prints each function's compile time to stderr;
+//! `RNE_JIT_DUMP=DIR` writes each function's machine code (`NAME.bin`, for
+//! `objdump -D -b binary -m i386:x86-64`), its code after register allocation (`NAME.vcode`)
+//! and its IR (`NAME.clif`) to the existing directory DIR.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -125,9 +128,25 @@ fn compile_all(isa: &dyn TargetIsa, functions: &[&Lowered]) -> Vec<Outcome> {
 /// One function to machine code.
 fn compile(isa: &dyn TargetIsa, lowered: &Lowered) -> Result<Machine, String> {
     let mut context = Context::for_function(lowered.function.clone());
+    let dump = std::env::var_os("RNE_JIT_DUMP").map(std::path::PathBuf::from);
+    context.set_disasm(dump.is_some());
     let code = context
         .compile(isa, &mut ControlPlane::default())
         .map_err(|e| format!("{:?}", e.inner))?;
+    if let Some(dir) = dump {
+        let _ = std::fs::write(
+            dir.join(format!("{}.bin", lowered.name)),
+            code.code_buffer(),
+        );
+        let _ = std::fs::write(
+            dir.join(format!("{}.vcode", lowered.name)),
+            code.vcode.as_deref().unwrap_or(""),
+        );
+        let _ = std::fs::write(
+            dir.join(format!("{}.clif", lowered.name)),
+            lowered.function.display().to_string(),
+        );
+    }
     let alignment = u64::from(code.buffer.alignment);
     let bytes = code.code_buffer().to_vec();
     let relocs = code

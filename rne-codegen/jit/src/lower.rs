@@ -418,6 +418,7 @@ impl<'f> Body<'f> {
         }
         Ok(match instr {
             Instr::Add(a, b) => {
+                let (a, b) = leaf_second(a, b);
                 let (a, b) = (v(a, self)?, v(b, self)?);
                 ins(self).fadd(a, b)
             }
@@ -426,6 +427,7 @@ impl<'f> Body<'f> {
                 ins(self).fsub(a, b)
             }
             Instr::Mul(a, b) => {
+                let (a, b) = leaf_second(a, b);
                 let (a, b) = (v(a, self)?, v(b, self)?);
                 ins(self).fmul(a, b)
             }
@@ -597,6 +599,22 @@ impl<'f> Body<'f> {
             1 => MemFlagsData::trusted(),
             _ => MemFlagsData::new().with_notrap(),
         }
+    }
+}
+
+/// A sum's or product's operands with a constant or an input second when the other is
+/// neither. x86-64 takes an operation's second operand from memory but its first only from
+/// a register: the program writes products constant first (`c·x`), and Cranelift
+/// materialises such a constant in a register (`movabs` and `movq`) that then lives from its
+/// first use to its last, spilled and reloaded, while second it is read from the constant
+/// pool by the operation itself. Swapping the operands of an addition or a multiplication
+/// changes no bit of its result.
+fn leaf_second(a: Operand, b: Operand) -> (Operand, Operand) {
+    let leaf = |o: Operand| matches!(o, Operand::Const(_) | Operand::Input(_));
+    if leaf(a) && !leaf(b) {
+        (b, a)
+    } else {
+        (a, b)
     }
 }
 
