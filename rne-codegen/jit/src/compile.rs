@@ -12,15 +12,16 @@
 //! `RNE_JIT_TIMINGS=1` prints each function's compile time to stderr;
 //! `RNE_JIT_DUMP=DIR` writes each function's machine code (`NAME.bin`, for
 //! `objdump -D -b binary -m i386:x86-64`), its code after register allocation (`NAME.vcode`)
-//! and its IR (`NAME.clif`) to the existing directory DIR.
+//! and its IR (`NAME.clif`) to the existing directory DIR (`NAME_x2.*` in two lanes).
 
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use cranelift_codegen::control::ControlPlane;
 use cranelift_codegen::isa::TargetIsa;
-use cranelift_codegen::Context;
+use cranelift_codegen::{CompiledCode, Context};
 use cranelift_jit::JITModule;
 use cranelift_module::{Module, ModuleReloc};
 
@@ -128,24 +129,13 @@ fn compile_all(isa: &dyn TargetIsa, functions: &[&Lowered]) -> Vec<Outcome> {
 /// One function to machine code.
 fn compile(isa: &dyn TargetIsa, lowered: &Lowered) -> Result<Machine, String> {
     let mut context = Context::for_function(lowered.function.clone());
-    let dump = std::env::var_os("RNE_JIT_DUMP").map(std::path::PathBuf::from);
-    context.set_disasm(dump.is_some());
+    let dump_dir = std::env::var_os("RNE_JIT_DUMP").map(PathBuf::from);
+    context.set_disasm(dump_dir.is_some());
     let code = context
         .compile(isa, &mut ControlPlane::default())
         .map_err(|e| format!("{:?}", e.inner))?;
-    if let Some(dir) = dump {
-        let _ = std::fs::write(
-            dir.join(format!("{}.bin", lowered.name)),
-            code.code_buffer(),
-        );
-        let _ = std::fs::write(
-            dir.join(format!("{}.vcode", lowered.name)),
-            code.vcode.as_deref().unwrap_or(""),
-        );
-        let _ = std::fs::write(
-            dir.join(format!("{}.clif", lowered.name)),
-            lowered.function.display().to_string(),
-        );
+    if let Some(dir) = dump_dir {
+        dump(&dir, lowered, code);
     }
     let alignment = u64::from(code.buffer.alignment);
     let bytes = code.code_buffer().to_vec();
@@ -160,6 +150,27 @@ fn compile(isa: &dyn TargetIsa, lowered: &Lowered) -> Result<Machine, String> {
         alignment,
         relocs,
     })
+}
+
+/// `RNE_JIT_DUMP`: the function's machine code, its code after register allocation and its IR
+/// into `dir`, named after the function and, in two lanes, `_x2`; a file that cannot be
+/// written is said on stderr (a diagnostic: compiling goes on).
+fn dump(dir: &Path, lowered: &Lowered, code: &CompiledCode) {
+    let lanes = if lowered.lanes > 1 { "_x2" } else { "" };
+    let files = [
+        ("bin", code.code_buffer().to_vec()),
+        ("vcode", code.vcode.clone().unwrap_or_default().into_bytes()),
+        ("clif", lowered.function.display().to_string().into_bytes()),
+    ];
+    for (extension, bytes) in files {
+        let path = dir.join(format!("{}{lanes}.{extension}", lowered.name));
+        if let Err(e) = std::fs::write(&path, bytes) {
+            eprintln!(
+                "rne-jit: RNE_JIT_DUMP: cannot write {}: {e}",
+                path.display()
+            );
+        }
+    }
 }
 
 /// `RNE_JIT_TIMINGS`: one line per function (name, IR instructions, thread, milliseconds),

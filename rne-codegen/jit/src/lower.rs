@@ -173,6 +173,7 @@ impl Lowering {
                 name,
                 function,
                 extents,
+                lanes: self.lanes,
             });
         }
         Ok(functions)
@@ -189,6 +190,8 @@ pub(crate) struct Lowered {
     pub function: Function,
     /// The array lengths it reads and writes.
     pub extents: Extents,
+    /// States per call.
+    pub lanes: usize,
 }
 
 /// The parts of `program` as `split` cuts it: one, or the fewest of at most `part_len`
