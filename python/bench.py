@@ -4,7 +4,9 @@ Panda arm (rne-models/robots, the same URDF files for both) over batches of 1, 1
 states, against a Python loop of `pin.rnea` / `pin.aba` / `pin.computeRNEADerivatives` and
 against `pin.rneaInParallel` / `pin.abaInParallel` at the same thread count, and against a
 Python loop of MuJoCo's `mj_rne` (ID) and `mj_forward` (FD) on the same URDF; then one call's
-time against the kernel's own (a state's share of a 10 000-state batch on one thread).
+time against the kernel's own (a state's share of a 10 000-state batch on one thread, one
+state a call). rne's batches compute two states a call (SIMD lanes); the first column times
+them one state a call (`RNE_JIT_LANES=1`), for what the lanes gain.
 
 usage: PYTHON bench.py [--threads T] [--repeats R]     (from the repository root)
 
@@ -17,8 +19,16 @@ machine runs), the threaded ones' by wall time (time.perf_counter).
 import argparse
 import os
 import platform
+import sys
 import time
 import timeit
+
+# Python puts this script's folder first on the path, and that folder holds the package's
+# sources (python/rne) with whatever extension `maturin develop` last built there: the rne
+# to time is the installed one, so that first entry goes (the header prints which rne was
+# taken; an editable install still finds its folder through its own path entry).
+if sys.path and os.path.abspath(sys.path[0]) == os.path.dirname(os.path.abspath(__file__)):
+    del sys.path[0]
 
 # Pinocchio's OpenMP threads sleep between parallel calls instead of spinning, which would add
 # their CPU time to the one-thread measurements that follow (set before OpenMP starts).
@@ -50,6 +60,16 @@ def cpu(f, repeats, number=1):
     call: what a run costs whatever else the machine runs (its wall time grows with the
     machine's load)."""
     return best(f, repeats, time.process_time, number)
+
+
+def cpu_alternating(fs, repeats, number=1):
+    """[`cpu`] of each of `fs`, their runs alternating (f₁, f₂, …, f₁, f₂, …), so that a slow
+    spell of the machine falls on all of them alike."""
+    times = [[] for _ in fs]
+    for _ in range(repeats):
+        for f, t in zip(fs, times):
+            t.append(cpu(f, 1, number))
+    return [min(t) for t in times]
 
 
 def states(model, n, seed=0):
@@ -119,7 +139,17 @@ def agree(ours, theirs, what, tolerance):
     return error
 
 
-def batch_rows(name, model, peer, mj, threads, repeats):
+def scalar_model(path):
+    """The same kernels with batches one state a call (`RNE_JIT_LANES=1`, read when a model
+    is compiled): a kernel's own time per state, and what the two lanes gain."""
+    os.environ["RNE_JIT_LANES"] = "1"
+    try:
+        return rne.load(path, kernels=KERNELS)
+    finally:
+        del os.environ["RNE_JIT_LANES"]
+
+
+def batch_rows(name, model, scalar, peer, mj, threads, repeats):
     rows = []
     for n in SIZES:
         q, v, a = states(model, n)
@@ -128,27 +158,32 @@ def batch_rows(name, model, peer, mj, threads, repeats):
         # process clock's resolution is far below a run.
         r, number = max(repeats, 3), 10_000 // n
         cases = [
-            ("ID", lambda: model.rnea(q, v, a), lambda: model.rnea(q, v, a, threads=threads),
+            ("ID", lambda: model.rnea(q, v, a), lambda: scalar.rnea(q, v, a),
+             lambda: model.rnea(q, v, a, threads=threads),
              peer.loop(pin.rnea, q, v, a), peer.parallel(pin.rneaInParallel, q, v, a),
              mj and mj.loop(mj.rnea, q, v, a)),
-            ("FD", lambda: model.aba(q, v, tau), lambda: model.aba(q, v, tau, threads=threads),
+            ("FD", lambda: model.aba(q, v, tau), lambda: scalar.aba(q, v, tau),
+             lambda: model.aba(q, v, tau, threads=threads),
              peer.loop(pin.aba, q, v, tau), peer.parallel(pin.abaInParallel, q, v, tau),
              mj and mj.loop(mj.aba, q, v, tau)),
             ("dID", lambda: model.computeRNEADerivatives(q, v, a),
+             lambda: scalar.computeRNEADerivatives(q, v, a),
              lambda: model.computeRNEADerivatives(q, v, a, threads=threads),
              peer.loop(pin.computeRNEADerivatives, q, v, a), None, None),
         ]
-        for kernel, ours, ours_t, loop, parallel, mj_loop in cases:
-            t1, tl = (cpu(f, r, number) / n * 1e6 for f in (ours, loop))
+        for kernel, ours, ours_scalar, ours_t, loop, parallel, mj_loop in cases:
+            t1, ts = (t / n * 1e6 for t in cpu_alternating((ours, ours_scalar), r, number))
+            tl = cpu(loop, r, number) / n * 1e6
             tt = best(ours_t, r, number=number) / n * 1e6
             tp = best(parallel, r, number=number) / n * 1e6 if parallel else None
             tm = cpu(mj_loop, r, number) / n * 1e6 if mj_loop else None
-            rows.append((name, kernel, n, t1, tt, tl, tp, tm))
+            rows.append((name, kernel, n, ts, t1, tt, tl, tp, tm))
     return rows
 
 
-def single_rows(name, model, peer, mj, repeats):
-    """One call (1-D arrays) against the kernel's own time (a share of a 10 000-state batch)."""
+def single_rows(name, model, scalar, peer, mj, repeats):
+    """One call (1-D arrays) against the kernel's own time (a share of a 10 000-state batch
+    one state a call, as a single call computes it)."""
     q, v, a = states(model, 10_000)
     tau = model.rnea(q, v, a)
     q0, v0, a0, t0 = q[0], v[0], a[0], tau[0]
@@ -156,12 +191,12 @@ def single_rows(name, model, peer, mj, repeats):
     calls = 20_000
     rows = []
     for kernel, one, batch, theirs, mj_one in [
-        ("ID", lambda: model.rnea(q0, v0, a0), lambda: model.rnea(q, v, a),
+        ("ID", lambda: model.rnea(q0, v0, a0), lambda: scalar.rnea(q, v, a),
          lambda: pin.rnea(m, d, q0, v0, a0), mj and (lambda: mj.rnea(q0, v0, a0))),
-        ("FD", lambda: model.aba(q0, v0, t0), lambda: model.aba(q, v, tau),
+        ("FD", lambda: model.aba(q0, v0, t0), lambda: scalar.aba(q, v, tau),
          lambda: pin.aba(m, d, q0, v0, t0), mj and (lambda: mj.aba(q0, v0, t0))),
         ("dID", lambda: model.computeRNEADerivatives(q0, v0, a0),
-         lambda: model.computeRNEADerivatives(q, v, a),
+         lambda: scalar.computeRNEADerivatives(q, v, a),
          lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0), None),
     ]:
         call, pin_call = (cpu(f, repeats, calls) * 1e6 for f in (one, theirs))
@@ -178,11 +213,12 @@ def main():
     args = parser.parse_args()
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} cores; "
           f"Python {platform.python_version()}, numpy {np.__version__}, Pinocchio {pin.__version__}, "
-          f"MuJoCo {mujoco.__version__ if mujoco else 'not installed'}; {args.threads} threads\n")
+          f"MuJoCo {mujoco.__version__ if mujoco else 'not installed'}; {args.threads} threads; "
+          f"rne from {os.path.dirname(rne.__file__)}\n")
     batch, single = [], []
     for name, file in ROBOTS:
         path = os.path.join(ROOT, file)
-        model = rne.load(path, kernels=KERNELS)
+        model, scalar = rne.load(path, kernels=KERNELS), scalar_model(path)
         peer = Peer(path, args.threads)
         q, v, a = states(model, 3)
         assert np.allclose(model.rnea(q, v, a), [pin.rnea(peer.model, peer.data, *s) for s in zip(q, v, a)])
@@ -196,20 +232,21 @@ def main():
                             f"{name} mj_forward", 1e-6))
             print(f"{name}: MuJoCo's ID and FD differ from rne's by {errors[0]:.1e} and "
                   f"{errors[1]:.1e} relative to the largest entry")
-        batch += batch_rows(name, model, peer, mj, args.threads, args.repeats)
-        single += single_rows(name, model, peer, mj, args.repeats)
+        batch += batch_rows(name, model, scalar, peer, mj, args.threads, args.repeats)
+        single += single_rows(name, model, scalar, peer, mj, args.repeats)
     t = args.threads
-    print(f"| robot | kernel | states | rne, 1 thread | rne, {t} threads | Pinocchio loop | "
+    print(f"| robot | kernel | states | rne, 1 thread, 1 state a call | rne, 1 thread | rne, {t} threads | Pinocchio loop | "
           f"Pinocchio InParallel, {t} threads | MuJoCo loop | loop / rne {t}t | InParallel / rne {t}t | "
           f"MuJoCo loop / rne {t}t |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for name, kernel, n, t1, tt, tl, tp, tm in batch:
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, kernel, n, ts, t1, tt, tl, tp, tm in batch:
         par, ratio = (f"{tp:.3f}", f"{tp / tt:.1f}×") if tp else ("—", "—")
         mj, mj_ratio = (f"{tm:.3f}", f"{tm / tt:.1f}×") if tm else ("—", "—")
-        print(f"| {name} | {kernel} | {n} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {mj} | "
+        print(f"| {name} | {kernel} | {n} | {ts:.3f} | {t1:.3f} | {tt:.3f} | {tl:.3f} | {par} | {mj} | "
               f"{tl / tt:.1f}× | {ratio} | {mj_ratio} |")
     print("\nµs per state, best of the repetitions: CPU time of the process for the one-thread "
-          "columns, wall time for the threaded ones.\n")
+          "columns, wall time for the threaded ones; rne computes two states a call (SIMD lanes) "
+          "but in the first column.\n")
     print("| robot | kernel | rne, one call (1-D) | rne kernel's own time | overhead | Pinocchio, one call | "
           "MuJoCo, one call |")
     print("|---|---|---:|---:|---:|---:|---:|")
@@ -217,7 +254,7 @@ def main():
         mj = f"{mj_call:.3f}" if mj_call else "—"
         print(f"| {name} | {kernel} | {call:.3f} | {own:.3f} | {over:.3f} | {pin_call:.3f} | {mj} |")
     print("\nµs per call (CPU time); the kernel's own time is a state's share of a 10 000-state "
-          "batch on one thread.")
+          "batch on one thread, one state a call.")
 
 
 if __name__ == "__main__":

@@ -52,7 +52,9 @@ impl JitModel {
         if out.len() < 2 * per {
             return self.evaluate_singles(kernel, batch, first, out);
         }
-        let lane = self.lane_kernel(kernel)?;
+        let Some(lane) = self.lane_kernel(kernel)? else {
+            return self.evaluate_singles(kernel, batch, first, out);
+        };
         let mut pair = Pair::new(lane);
         let done = out.len() / (2 * per) * 2;
         let (paired, rest) = out.split_at_mut(done * per);

@@ -12,6 +12,15 @@ use crate::code::Code;
 use crate::error::JitError;
 use crate::model::{compile_programs, Compiled, JitModel, State, Tier};
 
+/// States a batch computes per call: `RNE_JIT_LANES=1` for one (to measure what the lanes
+/// gain, or a kernel's own time per state), else two; read when a model is compiled.
+pub(crate) fn from_env() -> usize {
+    match std::env::var("RNE_JIT_LANES").as_deref() {
+        Ok("1") => 1,
+        _ => 2,
+    }
+}
+
 /// One kernel compiled in two lanes, with the code it runs.
 pub(crate) struct LaneKernel {
     compiled: Compiled,

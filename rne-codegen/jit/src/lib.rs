@@ -43,7 +43,8 @@
 //! [`JitModel::evaluate_batch`] computes two states a call: at a kernel's first batch of two
 //! or more states it is compiled again in two lanes (`f64x2`, one lane a state; `lanes.rs`),
 //! kept until the model is dropped. Each lane performs the scalar kernel's operations, so a
-//! batch gives the single calls' bits.
+//! batch gives the single calls' bits. `RNE_JIT_LANES=1`, set when a model is compiled, makes
+//! its batches one state a call (for measuring what the lanes gain).
 //!
 //! # Limits
 //! - `f64` only; the derivative kernels are built in scalars (the Rust emitter's lanes of

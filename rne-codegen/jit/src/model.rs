@@ -17,7 +17,7 @@ use rne_symbolic::RobotModel;
 use crate::code::{self, Arrays, Code, Entry};
 use crate::compile;
 use crate::error::JitError;
-use crate::lanes::LaneKernel;
+use crate::lanes::{self, LaneKernel};
 use crate::lower::{Lowered, Lowering, SIN_COS};
 
 /// The arrays of one state, borrowed. A kernel reads the ones it takes
@@ -99,6 +99,8 @@ pub struct JitModel {
     kernels: Vec<Compiled>,
     /// Each kernel of `kernels` in two lanes, compiled at its first batch (`lanes.rs`).
     lanes: Vec<OnceLock<Result<LaneKernel, String>>>,
+    /// States a batch computes per call: 2, or 1 as `RNE_JIT_LANES` says.
+    batch_lanes: usize,
     programs: GeneratedPrograms,
     /// The memory the entries above point into, freed when the model is dropped.
     _code: Code,
@@ -161,6 +163,7 @@ impl JitModel {
             timings,
             kernels,
             lanes,
+            batch_lanes: lanes::from_env(),
             programs,
             _code: Code::new(module),
         })
@@ -258,8 +261,12 @@ impl JitModel {
         self.kernels.iter().find(|k| k.kernel == kernel)
     }
 
-    /// `kernel` in two lanes (two states a call), compiled at the first call (`lanes.rs`).
-    pub(crate) fn lane_kernel(&self, kernel: Kernel) -> Result<&Compiled, JitError> {
+    /// `kernel` in two lanes (two states a call), compiled at the first call (`lanes.rs`);
+    /// `None` where batches run one state a call ([`lanes::from_env`]).
+    pub(crate) fn lane_kernel(&self, kernel: Kernel) -> Result<Option<&Compiled>, JitError> {
+        if self.batch_lanes == 1 {
+            return Ok(None);
+        }
         let missing = JitError::MissingKernel { kernel };
         let index = self.kernels.iter().position(|k| k.kernel == kernel);
         let program = self.programs.kernels.iter().find(|k| k.kernel == kernel);
@@ -269,7 +276,7 @@ impl JitModel {
         self.lanes[index]
             .get_or_init(|| LaneKernel::compile(program, self.fma, self.tier))
             .as_ref()
-            .map(LaneKernel::compiled)
+            .map(|lane| Some(lane.compiled()))
             .map_err(|message| JitError::Compile {
                 kernel,
                 message: message.clone(),
