@@ -4,7 +4,7 @@
 use rne_codegen_core::{Input, Kernel};
 
 use crate::error::JitError;
-use crate::lanes::Pair;
+use crate::lanes::{Pair, LANES};
 use crate::model::{JitModel, State};
 
 /// The arrays of N states, each laid end to end (state i's q is `q[i·NQ..(i+1)·NQ]`); the
@@ -49,17 +49,17 @@ impl JitModel {
     ) -> Result<(), JitError> {
         let compiled = self.compiled_kernel(kernel)?;
         let per = compiled.outputs().max(1);
-        if out.len() < 2 * per {
+        if out.len() < LANES * per {
             return self.evaluate_singles(kernel, batch, first, out);
         }
         let Some(lane) = self.lane_kernel(kernel)? else {
             return self.evaluate_singles(kernel, batch, first, out);
         };
         let mut pair = Pair::new(lane);
-        let done = out.len() / (2 * per) * 2;
+        let done = out.len() / (LANES * per) * LANES;
         let (paired, rest) = out.split_at_mut(done * per);
-        for (k, out) in paired.chunks_exact_mut(2 * per).enumerate() {
-            let at = first + 2 * k;
+        for (k, out) in paired.chunks_exact_mut(LANES * per).enumerate() {
+            let at = first + LANES * k;
             let states = [self.state(batch, at), self.state(batch, at + 1)];
             self.run_pair(lane, states, out, &mut pair)?;
         }
@@ -101,8 +101,8 @@ impl JitModel {
         let threads = threads.clamp(1, states.max(1));
         // Even shares, so that no pair of lanes straddles two threads; the lanes compiled
         // before the threads start.
-        let share = states.div_ceil(threads).next_multiple_of(2);
-        if states >= 2 {
+        let share = states.div_ceil(threads).next_multiple_of(LANES);
+        if states >= LANES {
             self.lane_kernel(kernel)?;
         }
         std::thread::scope(|scope| {

@@ -12,12 +12,15 @@ use crate::code::Code;
 use crate::error::JitError;
 use crate::model::{compile_programs, Compiled, JitModel, State, Tier};
 
+/// States per call of a lane kernel (`f64x2`).
+pub(crate) const LANES: usize = 2;
+
 /// States a batch computes per call: `RNE_JIT_LANES=1` for one (to measure what the lanes
 /// gain, or a kernel's own time per state), else two; read when a model is compiled.
 pub(crate) fn from_env() -> usize {
     match std::env::var("RNE_JIT_LANES").as_deref() {
         Ok("1") => 1,
-        _ => 2,
+        _ => LANES,
     }
 }
 
@@ -33,7 +36,7 @@ impl LaneKernel {
     /// fails (a bug: the scalar kernel compiled).
     pub(crate) fn compile(program: &KernelProgram, fma: bool, tier: Tier) -> Result<Self, String> {
         let (module, _, mut kernels) =
-            compile_programs(&[program], fma, tier, 2).map_err(|e| e.to_string())?;
+            compile_programs(&[program], fma, tier, LANES).map_err(|e| e.to_string())?;
         let compiled = kernels.pop().ok_or("no kernel was compiled")?;
         Ok(LaneKernel {
             compiled,
@@ -61,7 +64,7 @@ impl Pair {
     /// The arrays for `lane`'s calls.
     pub(crate) fn new(lane: &Compiled) -> Pair {
         Pair {
-            out: vec![0.0; 2 * lane.outputs()],
+            out: vec![0.0; LANES * lane.outputs()],
             scratch: lane.scratch(),
             ..Pair::default()
         }
@@ -74,7 +77,7 @@ impl JitModel {
     pub(crate) fn run_pair(
         &self,
         lane: &Compiled,
-        states: [State<'_>; 2],
+        states: [State<'_>; LANES],
         out: &mut [f64],
         pair: &mut Pair,
     ) -> Result<(), JitError> {
@@ -98,7 +101,7 @@ impl JitModel {
         let state = State { q, qd, qdd, tau };
         self.run_in(lane, state, self.parameters(), both, scratch);
         let (first, second) = out.split_at_mut(out.len() / 2);
-        for (k, pair) in both.chunks_exact(2).enumerate() {
+        for (k, pair) in both.chunks_exact(LANES).enumerate() {
             first[k] = pair[0];
             second[k] = pair[1];
         }
