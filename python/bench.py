@@ -149,6 +149,21 @@ def scalar_model(path):
         del os.environ["RNE_JIT_LANES"]
 
 
+def lane_compile_ms(model):
+    """Per kernel, a fresh model's first 100-state batch less its second, in ms: the time to
+    compile the kernel's two-lane version, which the first batch does."""
+    q, v, a = states(model, 100)
+    tau = model.rnea(q[0], v[0], a[0])
+    calls = {"ID": lambda: model.rnea(q, v, a),
+             "FD": lambda: model.aba(q, v, np.tile(tau, (100, 1))),
+             "dID": lambda: model.computeRNEADerivatives(q, v, a)}
+    times = {}
+    for kernel, f in calls.items():
+        first = best(f, 1)
+        times[kernel] = (first - best(f, 3)) * 1e3
+    return times
+
+
 def batch_rows(name, model, scalar, peer, mj, threads, repeats):
     rows = []
     for n in SIZES:
@@ -219,6 +234,9 @@ def main():
     for name, file in ROBOTS:
         path = os.path.join(ROOT, file)
         model, scalar = rne.load(path, kernels=KERNELS), scalar_model(path)
+        lanes = lane_compile_ms(rne.load(path, kernels=KERNELS))
+        print(f"{name}: a kernel's first batch compiles its lanes: "
+              + ", ".join(f"{k} {ms:.1f} ms" for k, ms in lanes.items()))
         peer = Peer(path, args.threads)
         q, v, a = states(model, 3)
         assert np.allclose(model.rnea(q, v, a), [pin.rnea(peer.model, peer.data, *s) for s in zip(q, v, a)])
