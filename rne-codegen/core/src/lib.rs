@@ -82,7 +82,7 @@ pub use linear::distribute_constants;
 pub use load::{generate_from_path, read_robot};
 pub use module::{generate, ForwardDynamicsChoice, GeneratedModule, KernelReport};
 pub use program::{Instr, Operand, Program};
-pub use programs::{generate_programs, GeneratedPrograms, KernelProgram};
+pub use programs::{generate_programs, generate_programs_each, GeneratedPrograms, KernelProgram};
 pub use scene::{MimicMode, Scene};
 pub use scratch_slots::ScratchSlots;
 pub use split::{PART_LEN, SPLIT_ABOVE};

@@ -84,6 +84,20 @@ pub fn generate_programs(
     options: &GenerationOptions,
     source: &str,
 ) -> Result<GeneratedPrograms, CodegenError> {
+    generate_programs_each(model, scene, options, source, &|_| {})
+}
+
+/// [`generate_programs`], handing each kernel's program to `on_program` as soon as it is
+/// built, on the thread that built it, in the order the kernels are finished (not the
+/// options' order): a backend can start on the first kernels while the costliest are still
+/// being built.
+pub fn generate_programs_each(
+    model: &RobotModel,
+    scene: &Scene,
+    options: &GenerationOptions,
+    source: &str,
+    on_program: &(dyn Fn(&KernelProgram) + Sync),
+) -> Result<GeneratedPrograms, CodegenError> {
     let start = Instant::now();
     let scalar_options = GenerationOptions {
         derivative_lanes: false,
@@ -101,11 +115,13 @@ pub fn generate_programs(
             critical_path: program.critical_path(),
             generation_time: start.elapsed(),
         };
-        Ok(KernelProgram {
+        let finished = KernelProgram {
             kernel,
             program,
             report,
-        })
+        };
+        on_program(&finished);
+        Ok(finished)
     };
     let built = schedule::build(&plan, &finish)?;
     let symbols = plan.dynamics.model.graph.symbols();

@@ -3,10 +3,12 @@
 //!
 //! Cranelift compiles one function without looking at any other, so the functions of all
 //! kernels are compiled together in parallel (as Wasmtime compiles a module's functions) and
-//! their bytes and relocations handed to the module one by one, in the order they were
-//! lowered: the code, and where it lands in memory, are those of compiling them one after
-//! another. Threads take the longest function not yet taken first, so that no long function
-//! is left to compile alone at the end.
+//! their bytes and relocations handed to the module one by one, in the order the caller
+//! gives: the code, and where it lands in memory, are those of compiling them one after
+//! another. A [`Pool`] compiles functions as they are sent to it (`pipeline.rs` sends each
+//! kernel's as soon as it is built); given all at once ([`compile_and_define`]), threads take
+//! the longest function not yet taken first, so that no long function is left to compile
+//! alone at the end.
 //!
 //! `RNE_JIT_THREADS=n` sets the number of threads (default: one per core);
 //! `RNE_JIT_TIMINGS=1` prints each function's compile time to stderr;
@@ -15,8 +17,8 @@
 //! and its IR (`NAME.clif`) to the existing directory DIR (`NAME_x2.*` in two lanes).
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
+use std::sync::mpsc::{channel, Receiver};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use cranelift_codegen::control::ControlPlane;
@@ -36,7 +38,7 @@ struct Machine {
 
 /// One function's outcome: its machine code or the error, the thread that compiled it and
 /// how long it took.
-struct Outcome {
+pub(crate) struct Outcome {
     machine: Result<Machine, String>,
     thread: usize,
     time: Duration,
@@ -45,10 +47,102 @@ struct Outcome {
 /// A function that failed to compile or be defined: its index in `functions`, the message.
 pub(crate) type Failure = (usize, String);
 
-/// Compiles `functions` on up to [`threads`] threads and defines them in `module`,
-/// in order. An error names the function that failed by its index.
-pub(crate) fn define(module: &mut JITModule, functions: &[&Lowered]) -> Result<(), Failure> {
-    let outcomes = compile_all(module.isa(), functions);
+/// A function to compile and its index among the functions to define.
+pub(crate) type Job = (usize, Arc<Lowered>);
+
+/// Threads compiling the functions sent to them, each taking the next function as it finishes
+/// one, until the sender is dropped and none is left.
+pub(crate) struct Pool<'i> {
+    isa: &'i dyn TargetIsa,
+    jobs: Mutex<Receiver<Job>>,
+    outcomes: Mutex<Vec<Option<Outcome>>>,
+}
+
+impl<'i> Pool<'i> {
+    /// A pool compiling for `isa` the functions `jobs` receives.
+    pub(crate) fn new(isa: &'i dyn TargetIsa, jobs: Receiver<Job>) -> Pool<'i> {
+        Pool {
+            isa,
+            jobs: Mutex::new(jobs),
+            outcomes: Mutex::new(Vec::new()),
+        }
+    }
+
+    /// Compiles functions on this thread, numbered `thread` in reports, until there are none.
+    pub(crate) fn work(&self, thread: usize) {
+        loop {
+            let job = match self.jobs.lock() {
+                Ok(jobs) => jobs.recv(),
+                Err(_) => return,
+            };
+            let Ok((k, lowered)) = job else { return };
+            let start = Instant::now();
+            let machine = compile(self.isa, &lowered);
+            let outcome = Outcome {
+                machine,
+                thread,
+                time: start.elapsed(),
+            };
+            if let Ok(mut outcomes) = self.outcomes.lock() {
+                if outcomes.len() <= k {
+                    outcomes.resize_with(k + 1, || None);
+                }
+                outcomes[k] = Some(outcome);
+            }
+        }
+    }
+
+    /// The outcome of each of the `n` functions, by index: an error for one no thread compiled.
+    pub(crate) fn into_outcomes(self, n: usize) -> Vec<Outcome> {
+        let mut outcomes = self
+            .outcomes
+            .into_inner()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        outcomes.resize_with(n, || None);
+        outcomes
+            .into_iter()
+            .map(|o| {
+                o.unwrap_or_else(|| Outcome {
+                    machine: Err("a compiling thread stopped".to_owned()),
+                    thread: 0,
+                    time: Duration::ZERO,
+                })
+            })
+            .collect()
+    }
+}
+
+/// Compiles `functions` on up to [`threads`] threads, longest first, and defines them in
+/// `module`, in order. An error names the function that failed by its index.
+pub(crate) fn compile_and_define(
+    module: &mut JITModule,
+    functions: &[Arc<Lowered>],
+) -> Result<(), Failure> {
+    let threads = threads().min(functions.len()).max(1);
+    let (sender, jobs) = channel();
+    for k in longest_first(functions) {
+        // The receiver lives in `pool` below: sending cannot fail.
+        let _ = sender.send((k, Arc::clone(&functions[k])));
+    }
+    drop(sender);
+    let pool = Pool::new(module.isa(), jobs);
+    std::thread::scope(|scope| {
+        for thread in 1..threads {
+            let pool = &pool;
+            scope.spawn(move || pool.work(thread));
+        }
+        pool.work(0);
+    });
+    let outcomes = pool.into_outcomes(functions.len());
+    define(module, functions, outcomes)
+}
+
+/// Defines `functions` in `module` in their order, each from its outcome (same index).
+pub(crate) fn define(
+    module: &mut JITModule,
+    functions: &[Arc<Lowered>],
+    outcomes: Vec<Outcome>,
+) -> Result<(), Failure> {
     if std::env::var_os("RNE_JIT_TIMINGS").is_some() {
         report(functions, &outcomes);
     }
@@ -68,7 +162,7 @@ pub(crate) fn define(module: &mut JITModule, functions: &[&Lowered]) -> Result<(
 
 /// How many threads compile: `RNE_JIT_THREADS` if set to a positive number, else the number
 /// of cores.
-fn threads() -> usize {
+pub(crate) fn threads() -> usize {
     std::env::var("RNE_JIT_THREADS")
         .ok()
         .and_then(|n| n.parse::<usize>().ok())
@@ -77,53 +171,10 @@ fn threads() -> usize {
 }
 
 /// The indices of `functions`, longest (most IR instructions) first, in order among equals.
-fn longest_first(functions: &[&Lowered]) -> Vec<usize> {
+fn longest_first(functions: &[Arc<Lowered>]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..functions.len()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(functions[k].function.dfg.num_insts()));
     order
-}
-
-/// Every function compiled, in the order of `functions`; threads take the longest function
-/// left as they finish one.
-fn compile_all(isa: &dyn TargetIsa, functions: &[&Lowered]) -> Vec<Outcome> {
-    let threads = threads().min(functions.len()).max(1);
-    let order = longest_first(functions);
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Outcome>>> =
-        Mutex::new((0..functions.len()).map(|_| None).collect());
-    let work = |thread: usize| loop {
-        let Some(&k) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
-            return;
-        };
-        let start = Instant::now();
-        let machine = compile(isa, functions[k]);
-        let outcome = Outcome {
-            machine,
-            thread,
-            time: start.elapsed(),
-        };
-        if let Ok(mut results) = results.lock() {
-            results[k] = Some(outcome);
-        }
-    };
-    std::thread::scope(|scope| {
-        for thread in 1..threads {
-            scope.spawn(move || work(thread));
-        }
-        work(0);
-    });
-    results
-        .into_inner()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-        .into_iter()
-        .map(|r| {
-            r.unwrap_or_else(|| Outcome {
-                machine: Err("a compiling thread stopped".to_owned()),
-                thread: 0,
-                time: Duration::ZERO,
-            })
-        })
-        .collect()
 }
 
 /// One function to machine code.
@@ -175,12 +226,12 @@ fn dump(dir: &Path, lowered: &Lowered, code: &CompiledCode) {
 
 /// `RNE_JIT_TIMINGS`: one line per function (name, IR instructions, thread, milliseconds),
 /// longest compile first, then each thread's busy time.
-fn report(functions: &[&Lowered], outcomes: &[Outcome]) {
+fn report(functions: &[Arc<Lowered>], outcomes: &[Outcome]) {
     let mut order: Vec<usize> = (0..functions.len()).collect();
     order.sort_by_key(|&k| std::cmp::Reverse(outcomes[k].time));
     let mut busy: Vec<Duration> = Vec::new();
     for &k in &order {
-        let (lowered, outcome) = (functions[k], &outcomes[k]);
+        let (lowered, outcome) = (&functions[k], &outcomes[k]);
         eprintln!(
             "rne-jit: {:<40} {:>7} IR instructions, thread {}, {:9.3} ms",
             lowered.name,

@@ -29,9 +29,11 @@
 //! are those of the runtime as this program was compiled (fused only in a build with FMA).
 //!
 //! # Threads
-//! The functions of all kernels are compiled together on one thread per core
-//! (`RNE_JIT_THREADS=n` sets the number), the longest first, and defined in the order they
-//! were lowered: the code does not depend on the number of threads. Programs of more than
+//! Each kernel is lowered and compiled as soon as the generator has built it, while it builds
+//! the costliest ones (`pipeline.rs`); the functions of all kernels are compiled together on
+//! one thread per core (`RNE_JIT_THREADS=n` sets the number) and defined in the options'
+//! order of the kernels: the code does not depend on the number of threads or on which
+//! kernel was built first. Programs of more than
 //! 2000 instructions (the derivative kernels of arms, most kernels of large robots) are
 //! compiled as parts of at most 1000, so that one long kernel does not keep one thread busy
 //! while the others wait, and the register allocator, whose time grows faster than the
@@ -62,6 +64,7 @@ mod error;
 mod lanes;
 mod lower;
 mod model;
+mod pipeline;
 
 pub use batch::Batch;
 pub use error::JitError;

@@ -25,8 +25,6 @@
 //! parameters holds its values interleaved, state 0's and state 1's side by side (`q[2k + l]`
 //! is state l's q_k); the parameters, shared by the states, are loaded once and splat.
 
-use std::collections::HashMap;
-
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
     types, AbiParam, Endianness, FuncRef, Function, InstBuilder, MemFlagsData, Signature,
@@ -37,6 +35,7 @@ use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Linkage, Module};
 use rne_codegen_core::{Instr, Operand, Program, ScratchSlots, PART_LEN};
 use rne_symbolic::Symbol;
+use rustc_hash::FxHashMap;
 
 use crate::code::Extents;
 
@@ -64,7 +63,7 @@ struct Part {
 }
 
 /// Where the values that cross parts live: instruction index → scratch slot.
-type Slots = HashMap<usize, usize>;
+type Slots = FxHashMap<usize, usize>;
 
 /// Where the JIT cuts long programs: a program of more than `above` instructions becomes
 /// parts of at most `part_len` instructions, of about equal length.
@@ -146,6 +145,7 @@ impl Lowering {
     ) -> Result<Vec<Lowered>, String> {
         let parts = parts(program, Split::from_env());
         let (slots, scratch) = crossing_slots(program, &parts);
+        let outputs = temp_outputs(program)?;
         let mut functions = Vec::with_capacity(parts.len());
         for (k, &part) in parts.iter().enumerate() {
             let name = format!("{name}_{k}");
@@ -165,7 +165,9 @@ impl Lowering {
             {
                 let builder = FunctionBuilder::new(&mut function, &mut self.builder);
                 let mut body = Body::new(builder, self.pointer, sin_cos, self.fused, self.lanes);
-                body.run(program, part, &slots, &mut extents)?;
+                body.temps.start = part.start;
+                body.temps.own = vec![None; part.end - part.start];
+                body.run(program, part, &slots, &outputs, &mut extents)?;
                 body.builder.finalize(config);
             }
             functions.push(Lowered {
@@ -192,6 +194,48 @@ pub(crate) struct Lowered {
     pub extents: Extents,
     /// States per call.
     pub lanes: usize,
+}
+
+/// The outputs that are instructions' values, as (instruction, output) pairs in the order of
+/// the instructions; an error for a program in lanes.
+fn temp_outputs(program: &Program) -> Result<Vec<(usize, usize)>, String> {
+    let mut outputs = Vec::with_capacity(program.outputs.len());
+    for (k, &o) in program.outputs.iter().enumerate() {
+        match o {
+            Operand::Temp(t) => outputs.push((t as usize, k)),
+            Operand::Lane { .. } => return Err("a program in lanes".to_owned()),
+            _ => {}
+        }
+    }
+    outputs.sort_unstable();
+    Ok(outputs)
+}
+
+/// The values of a function's instructions: those of its own part by index, those of earlier
+/// parts (loaded from scratch) by instruction.
+#[derive(Default)]
+struct Temps {
+    start: usize,
+    own: Vec<Option<Value>>,
+    earlier: FxHashMap<usize, Value>,
+}
+
+impl Temps {
+    fn get(&self, t: usize) -> Option<Value> {
+        match t.checked_sub(self.start) {
+            Some(k) if k < self.own.len() => self.own[k],
+            _ => self.earlier.get(&t).copied(),
+        }
+    }
+
+    fn insert(&mut self, t: usize, value: Value) {
+        match t.checked_sub(self.start) {
+            Some(k) if k < self.own.len() => self.own[k] = Some(value),
+            _ => {
+                self.earlier.insert(t, value);
+            }
+        }
+    }
 }
 
 /// The parts of `program` as `split` cuts it: one, or the fewest of at most `part_len`
@@ -224,7 +268,7 @@ fn crossing_slots(program: &Program, parts: &[Part]) -> (Slots, usize) {
             }
         }
     }
-    let mut slots = Slots::new();
+    let mut slots = Slots::default();
     let mut scratch = ScratchSlots::starting_at(0);
     for (t, last) in last_reader.iter().enumerate() {
         let Some(last) = *last else { continue };
@@ -256,9 +300,9 @@ struct Body<'f> {
     ty: Type,
     arrays: [Value; 7],
     /// Values of this function: instructions', inputs' and constants'.
-    temps: HashMap<usize, Value>,
-    inputs: HashMap<Symbol, Value>,
-    constants: HashMap<u64, Value>,
+    temps: Temps,
+    inputs: FxHashMap<Symbol, Value>,
+    constants: FxHashMap<u64, Value>,
 }
 
 impl<'f> Body<'f> {
@@ -283,9 +327,9 @@ impl<'f> Body<'f> {
             lanes,
             ty: if lanes == 1 { types::F64 } else { types::F64X2 },
             arrays,
-            temps: HashMap::new(),
-            inputs: HashMap::new(),
-            constants: HashMap::new(),
+            temps: Temps::default(),
+            inputs: FxHashMap::default(),
+            constants: FxHashMap::default(),
         }
     }
 
@@ -297,28 +341,23 @@ impl<'f> Body<'f> {
         program: &Program,
         part: Part,
         slots: &Slots,
+        outputs: &[(usize, usize)],
         extents: &mut Extents,
     ) -> Result<(), String> {
-        let mut outputs_of: HashMap<usize, Vec<usize>> = HashMap::new();
-        for (k, &o) in program.outputs.iter().enumerate() {
-            match o {
-                Operand::Temp(t) => outputs_of.entry(t as usize).or_default().push(k),
-                Operand::Lane { .. } => return Err("a program in lanes".to_owned()),
-                _ => {}
-            }
-        }
         self.joint_trig(program, part, extents);
+        let mut next_output = outputs.partition_point(|&(t, _)| t < part.start);
         for t in part.start..part.end {
-            let value = match self.temps.get(&t) {
-                Some(&v) => v,
+            let value = match self.temps.get(t) {
+                Some(v) => v,
                 None => self.instruction(program.instrs[t], slots, extents)?,
             };
             self.temps.insert(t, value);
             if let Some(&slot) = slots.get(&t) {
                 self.store(Array::Scratch, slot, value);
             }
-            for &k in outputs_of.get(&t).into_iter().flatten() {
+            while let Some(&(_, k)) = outputs.get(next_output).filter(|&&(o, _)| o == t) {
                 self.store(Array::Out, k, value);
+                next_output += 1;
             }
         }
         if part.end == program.instrs.len() {
@@ -525,8 +564,8 @@ impl<'f> Body<'f> {
             Operand::Input(s) => self.input(s, extents),
             Operand::Temp(t) => {
                 let t = t as usize;
-                match self.temps.get(&t) {
-                    Some(&v) => v,
+                match self.temps.get(t) {
+                    Some(v) => v,
                     None => {
                         let slot = *slots.get(&t).ok_or("a value read before it is computed")?;
                         let v = self.load(Array::Scratch, slot);

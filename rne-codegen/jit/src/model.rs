@@ -2,15 +2,15 @@
 
 use std::cell::RefCell;
 use std::path::Path;
-use std::sync::OnceLock;
-use std::time::{Duration, Instant};
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
 
+use cranelift_codegen::isa::OwnedTargetIsa;
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::default_libcall_names;
 use rne_codegen_core::{
-    generate_programs, read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel,
-    KernelProgram, Scene,
+    read_robot, GeneratedPrograms, GenerationOptions, Input, Kernel, KernelProgram, Scene,
 };
 use rne_symbolic::RobotModel;
 
@@ -19,6 +19,7 @@ use crate::compile;
 use crate::error::JitError;
 use crate::lanes::{self, LaneKernel};
 use crate::lower::{Lowered, Lowering, SIN_COS};
+use crate::pipeline::{generate_and_compile, Pipelined};
 
 /// The arrays of one state, borrowed. A kernel reads the ones it takes
 /// ([`Kernel::inputs`]): q has NQ entries, the others NV; the arrays it does not take may be
@@ -59,8 +60,9 @@ pub enum Tier {
     /// Cranelift's backtracking register allocator: the faster code.
     #[default]
     Optimized,
-    /// Cranelift's single-pass register allocator: compiles about ten times faster, code about
-    /// half as fast.
+    /// Cranelift's single-pass register allocator, without its optimiser: compiles several
+    /// times faster, code about half as fast (the optimiser moves values so that more are
+    /// live at once, which this allocator spills: without it the code is faster too).
     Fast,
 }
 
@@ -138,15 +140,14 @@ impl JitModel {
         source: &str,
         tier: Tier,
     ) -> Result<JitModel, JitError> {
-        let programs = generate_programs(model, scene, options, source)?;
-        let start = Instant::now();
-        let all: Vec<&KernelProgram> = programs.kernels.iter().collect();
-        let (module, fused, kernels) = compile_programs(&all, options.fma, tier, 1)?;
+        let Pipelined {
+            programs,
+            module,
+            fused,
+            kernels,
+            timings,
+        } = generate_and_compile(model, scene, options, source, tier)?;
         let lanes = kernels.iter().map(|_| OnceLock::new()).collect();
-        let timings = Timings {
-            generation: programs.generation_time,
-            compilation: start.elapsed(),
-        };
         Ok(JitModel {
             robot: programs.robot.clone(),
             joints: programs.joints.clone(),
@@ -445,7 +446,7 @@ pub(crate) fn compile_programs(
     tier: Tier,
     lanes: usize,
 ) -> Result<(JITModule, bool, Vec<Compiled>), JitError> {
-    let (mut module, fused) = host_module(fma, tier)?;
+    let (mut module, _, fused) = host_module(fma, tier)?;
     let first = kernels
         .first()
         .map_or(Kernel::InverseDynamics, |k| k.kernel);
@@ -455,12 +456,12 @@ pub(crate) fn compile_programs(
             message,
         })?;
     let lowered = lower_all(&mut module, &mut lowering, kernels)?;
-    let functions: Vec<(Kernel, &Lowered)> = lowered
+    let functions: Vec<(Kernel, Arc<Lowered>)> = lowered
         .iter()
-        .flat_map(|(kernel, _, parts)| parts.iter().map(move |part| (*kernel, part)))
+        .flat_map(|(kernel, _, parts)| parts.iter().map(|part| (*kernel, Arc::clone(part))))
         .collect();
-    let parts: Vec<&Lowered> = functions.iter().map(|&(_, part)| part).collect();
-    compile::define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
+    let parts: Vec<Arc<Lowered>> = functions.iter().map(|(_, part)| Arc::clone(part)).collect();
+    compile::compile_and_define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
         kernel: functions[k].0,
         message,
     })?;
@@ -472,7 +473,7 @@ pub(crate) fn compile_programs(
         })?;
     let kernels = lowered
         .into_iter()
-        .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, parts))
+        .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, &parts))
         .collect();
     Ok((module, fused, kernels))
 }
@@ -483,7 +484,7 @@ fn lower_all(
     module: &mut JITModule,
     lowering: &mut Lowering,
     kernels: &[&KernelProgram],
-) -> Result<Vec<(Kernel, usize, Vec<Lowered>)>, JitError> {
+) -> Result<Vec<(Kernel, usize, Vec<Arc<Lowered>>)>, JitError> {
     kernels
         .iter()
         .map(|k| {
@@ -493,16 +494,22 @@ fn lower_all(
                     kernel: k.kernel,
                     message,
                 })?;
+            let parts = parts.into_iter().map(Arc::new).collect();
             Ok((k.kernel, k.program.outputs.len(), parts))
         })
         .collect()
 }
 
 /// The entries into `kernel`'s finalized `parts` in `module`.
-fn entries(module: &JITModule, kernel: Kernel, outputs: usize, parts: Vec<Lowered>) -> Compiled {
+pub(crate) fn entries(
+    module: &JITModule,
+    kernel: Kernel,
+    outputs: usize,
+    parts: &[Arc<Lowered>],
+) -> Compiled {
     let scratch = parts.iter().map(|p| p.extents.scratch).max().unwrap_or(0);
     let parts = parts
-        .into_iter()
+        .iter()
         .map(|part| {
             let address = module.get_finalized_function(part.id);
             // SAFETY: `part.id` was defined with the kernels' signature from the IR
@@ -538,21 +545,28 @@ pub fn host_support() -> Result<(), JitError> {
     host_module(false, Tier::Fast).map(|_| ())
 }
 
-/// A JIT module for this processor, its features detected at run time, with the runtime's
-/// sines and cosines linked in; and whether multiply-adds are fused there (`fma` asked for and
-/// the processor has FMA).
-fn host_module(fma: bool, tier: Tier) -> Result<(JITModule, bool), JitError> {
+/// A JIT module for this processor (below), the processor's ISA, shared with the module, for
+/// compiling outside it, and whether multiply-adds are fused.
+
+///
+/// The module is for this processor, its features detected at run time, with the runtime's
+/// sines and cosines linked in; multiply-adds are fused when `fma` is asked for and the
+/// processor has FMA.
+pub(crate) fn host_module(
+    fma: bool,
+    tier: Tier,
+) -> Result<(JITModule, OwnedTargetIsa, bool), JitError> {
     let mut flags = settings::builder();
     let set = |flags: &mut settings::Builder, name: &str, value: &str| {
         flags
             .set(name, value)
             .map_err(|e| JitError::UnsupportedHost(format!("setting {name}: {e}")))
     };
-    set(&mut flags, "opt_level", "speed")?;
-    let allocator = match tier {
-        Tier::Optimized => "backtracking",
-        Tier::Fast => "single_pass",
+    let (optimizer, allocator) = match tier {
+        Tier::Optimized => ("speed", "backtracking"),
+        Tier::Fast => ("none", "single_pass"),
     };
+    set(&mut flags, "opt_level", optimizer)?;
     set(&mut flags, "regalloc_algorithm", allocator)?;
     set(&mut flags, "use_colocated_libcalls", "false")?;
     set(&mut flags, "is_pic", "false")?;
@@ -575,7 +589,7 @@ fn host_module(fma: bool, tier: Tier) -> Result<(JITModule, bool), JitError> {
             .isa_flags()
             .iter()
             .any(|flag| flag.name == "has_fma" && flag.as_bool() == Some(true));
-    let mut builder = JITBuilder::with_isa(isa, default_libcall_names());
+    let mut builder = JITBuilder::with_isa(isa.clone(), default_libcall_names());
     builder.symbol(SIN_COS, code::sin_cos_array as *const u8);
-    Ok((JITModule::new(builder), fma && processor_fuses))
+    Ok((JITModule::new(builder), isa, fma && processor_fuses))
 }
