@@ -8,7 +8,8 @@
 //! the sweep inverse dynamics' chose in scalars (the same torques). Built in scalars, the
 //! graph of ∂ID is built both ways at once, by forward sweeps on this thread and by reverse
 //! sweeps on the other, which sends its cost; this thread chooses ([`Sweep::cheaper`], as one
-//! thread trying both would), hands over its graph if the forward sweeps won, and builds ∂FD
+//! thread trying both would; its forward sweeps stop as soon as they cost more than the reverse
+//! ones, once that cost has arrived), hands over its graph if the forward sweeps won, and builds ∂FD
 //! by the chosen sweep while the other finishes ∂ID from the graph it was handed or its own.
 //! Built in lanes (`derivatives: lanes`), this thread builds ∂ID and then ∂FD: only a ∂ID too
 //! long for lanes falls back to scalars and chooses a sweep, known once it is built. Every
@@ -178,8 +179,12 @@ pub(crate) fn build<T: Send>(
     })
 }
 
-/// Builds ∂ID by forward sweeps, waits for the other thread's cost of the reverse sweeps,
-/// keeps the cheaper, and hands its graph over if it won: the dynamics with the sweep chosen.
+/// Builds ∂ID by forward sweeps, keeps the cheaper of them and the other thread's reverse
+/// sweeps, and hands its graph over if it won: the dynamics with the sweep chosen. Once the
+/// reverse sweeps' cost has arrived, the forward sweeps stop as soon as what they have built
+/// costs more ([`SymbolicDynamics::forward_derivatives_cost_within`]): the choice is the one
+/// the whole would give, and on robots where the reverse sweeps win by far (the humanoids) the
+/// derivative kernels start sooner.
 fn choose_sweep(
     dynamics: SymbolicDynamics,
     reverse_cost: &Receiver<usize>,
@@ -187,10 +192,22 @@ fn choose_sweep(
 ) -> SymbolicDynamics {
     let start = Instant::now();
     let mut forward = dynamics.clone().with_derivative_sweep(Sweep::Forward);
-    let forward_cost = forward.inverse_dynamics_derivatives_cost();
-    // Fails only when the other thread has ended early, which its join reports; until then
-    // this thread goes on as if the reverse sweeps had lost.
-    let sweep = Sweep::cheaper(forward_cost, reverse_cost.recv().unwrap_or(usize::MAX));
+    let mut reverse: Option<usize> = None;
+    let mut bound = || {
+        if reverse.is_none() {
+            reverse = reverse_cost.try_recv().ok();
+        }
+        reverse
+    };
+    let sweep = match forward.forward_derivatives_cost_within(&mut bound) {
+        // Fails only when the other thread has ended early, which its join reports; until
+        // then this thread goes on as if the reverse sweeps had lost.
+        Some(forward_cost) => {
+            let reverse = reverse.or_else(|| reverse_cost.recv().ok());
+            Sweep::cheaper(forward_cost, reverse.unwrap_or(usize::MAX))
+        }
+        None => Sweep::Reverse,
+    };
     let _ = handover.send((sweep == Sweep::Forward).then(|| (forward, start.elapsed())));
     dynamics.with_derivative_sweep(sweep)
 }

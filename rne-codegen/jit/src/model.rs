@@ -478,13 +478,16 @@ pub(crate) fn compile_programs(
     Ok((module, fused, kernels))
 }
 
+/// A kernel, its number of outputs and its lowered functions.
+type KernelParts = (Kernel, usize, Vec<Arc<Lowered>>);
+
 /// Every kernel of `kernels` lowered in `module`: the kernel, its number of outputs and its
 /// functions.
 fn lower_all(
     module: &mut JITModule,
     lowering: &mut Lowering,
     kernels: &[&KernelProgram],
-) -> Result<Vec<(Kernel, usize, Vec<Arc<Lowered>>)>, JitError> {
+) -> Result<Vec<KernelParts>, JitError> {
     kernels
         .iter()
         .map(|k| {
@@ -547,7 +550,6 @@ pub fn host_support() -> Result<(), JitError> {
 
 /// A JIT module for this processor (below), the processor's ISA, shared with the module, for
 /// compiling outside it, and whether multiply-adds are fused.
-
 ///
 /// The module is for this processor, its features detected at run time, with the runtime's
 /// sines and cosines linked in; multiply-adds are fused when `fma` is asked for and the

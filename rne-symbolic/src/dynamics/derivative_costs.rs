@@ -129,3 +129,35 @@ fn forward_sweeps_are_cheaper_than_reverse_ones_for_ur5() {
     cost(robot, Construction::ForwardQTwiceC);
     assert!(cost(robot, Construction::Forward) < cost(robot, Construction::Reverse));
 }
+
+/// Forward sweeps bounded by the reverse sweeps' cost give up only when the reverse sweeps
+/// are the cheaper, and otherwise cost what the whole forward sweeps cost: the choice is the
+/// one the whole would give. On the Panda arm, where the reverse sweeps win, they give up.
+#[test]
+fn bounded_forward_sweeps_give_up_only_when_the_reverse_ones_are_cheaper() {
+    let robots = [
+        ("panda-arm", super::fixture_robot("panda-arm.urdf")),
+        ("ur5", super::fixture_robot("ur5.urdf")),
+        ("legged, floating", super::floating_tests::legged()),
+    ];
+    for (robot, model) in robots {
+        let whole = |sweep| {
+            SymbolicDynamics::new(&model)
+                .with_derivative_sweep(sweep)
+                .inverse_dynamics_derivatives_cost()
+        };
+        let (forward, reverse) = (whole(Sweep::Forward), whole(Sweep::Reverse));
+        let bounded =
+            SymbolicDynamics::new(&model).forward_derivatives_cost_within(&mut || Some(reverse));
+        eprintln!("{robot}: bounded by {reverse}: {bounded:?} (whole: {forward})");
+        match bounded {
+            Some(c) => assert_eq!(c, forward, "{robot}"),
+            None => assert!(reverse < forward, "{robot} gave up"),
+        }
+        let unbounded = SymbolicDynamics::new(&model).forward_derivatives_cost_within(&mut || None);
+        assert_eq!(unbounded, Some(forward), "{robot}");
+        if robot == "panda-arm" {
+            assert_eq!(bounded, None, "the Panda arm's forward sweeps stop early");
+        }
+    }
+}

@@ -40,6 +40,9 @@ use crate::motion::quaternion_rotation;
 
 use super::ldlt::LtdlFactor;
 
+/// Rows of expressions.
+type Matrix = Vec<Vec<Id>>;
+
 /// How the partial derivatives of a kernel's outputs are built in the graph.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub enum Sweep {
@@ -72,27 +75,86 @@ pub fn state_jacobians(
     layout: StateLayout,
     sweep: Sweep,
 ) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
-    let symbols: Vec<Symbol> = (0..layout.nq())
-        .map(|c| Symbol::Position(c as u16))
-        .chain((0..layout.nv()).map(|k| Symbol::Velocity(k as u16)))
-        .collect();
+    let symbols = state_symbols(layout);
     // partials[s][i] = ∂outputs[i]/∂symbols[s].
     let partials: Vec<Vec<Id>> = match sweep {
-        Sweep::Forward => symbols
-            .iter()
-            .map(|&s| {
-                let mut d = Differentiator::new(s);
-                outputs.iter().map(|&o| d.derivative(g, o)).collect()
-            })
-            .collect(),
+        Sweep::Forward => forward_partials(g, outputs, &symbols, layout, &mut || None)
+            .expect("a sweep without a bound is never given up"),
         Sweep::Reverse => {
             let rows: Vec<Vec<Id>> = outputs.iter().map(|&o| g.gradient(o, &symbols)).collect();
             transpose(&rows, symbols.len())
         }
     };
+    jacobians_from_partials(g, &partials, layout, outputs.len())
+}
+
+/// [`state_jacobians`] by forward sweeps, given up (`None`) as soon as the derivatives built
+/// so far that are final already cost more than `bound` says, when it says (the caller's
+/// cost of the reverse sweeps, once known): the whole would cost more too, since a cost
+/// only grows with the outputs it counts ([`ExprGraph::op_count`]), so the reverse sweeps
+/// are the cheaper. The graph grows exactly as [`state_jacobians`] grows it, so a result,
+/// when there is one, is the same.
+pub fn forward_state_jacobians_within(
+    g: &mut ExprGraph,
+    outputs: &[Id],
+    layout: StateLayout,
+    bound: &mut dyn FnMut() -> Option<usize>,
+) -> Option<(Matrix, Matrix)> {
+    let symbols = state_symbols(layout);
+    let partials = forward_partials(g, outputs, &symbols, layout, bound)?;
+    Some(jacobians_from_partials(g, &partials, layout, outputs.len()))
+}
+
+/// q's symbols, then q̇'s.
+fn state_symbols(layout: StateLayout) -> Vec<Symbol> {
+    (0..layout.nq())
+        .map(|c| Symbol::Position(c as u16))
+        .chain((0..layout.nv()).map(|k| Symbol::Velocity(k as u16)))
+        .collect()
+}
+
+/// `(∂outputs/∂q, ∂outputs/∂q̇)` from the partials with respect to `state_symbols`.
+fn jacobians_from_partials(
+    g: &mut ExprGraph,
+    partials: &[Vec<Id>],
+    layout: StateLayout,
+    n: usize,
+) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
     let (positions, velocities) = partials.split_at(layout.nq());
-    let dq = tangent_jacobian(g, positions, layout, outputs.len());
-    (dq, transpose(velocities, outputs.len()))
+    let dq = tangent_jacobian(g, positions, layout, n);
+    (dq, transpose(velocities, n))
+}
+
+/// How many times a bounded forward sweep compares its cost so far with the bound: at each
+/// quarter of the symbols (each comparison counts the operations built so far).
+const BOUND_CHECKS: usize = 4;
+
+/// One forward sweep per symbol, `partials[s][i]` = ∂outputs[i]/∂symbols[s]; `None` once the
+/// final partials built so far cost more than `bound()` ([`forward_state_jacobians_within`]).
+/// Final are the partials that are columns of the Jacobians as they are: the velocities' and
+/// the joint positions' (the tangent directions of a free-flyer's seven configuration
+/// symbols are combinations built after the sweeps).
+fn forward_partials(
+    g: &mut ExprGraph,
+    outputs: &[Id],
+    symbols: &[Symbol],
+    layout: StateLayout,
+    bound: &mut dyn FnMut() -> Option<usize>,
+) -> Option<Vec<Vec<Id>>> {
+    let every = symbols.len().div_ceil(BOUND_CHECKS).max(1);
+    let mut partials: Vec<Vec<Id>> = Vec::with_capacity(symbols.len());
+    for (k, &s) in symbols.iter().enumerate() {
+        let mut d = Differentiator::new(s);
+        partials.push(outputs.iter().map(|&o| d.derivative(g, o)).collect());
+        let checkpoint = (k + 1) % every == 0 && k + 1 < symbols.len();
+        if let Some(limit) = bound().filter(|_| checkpoint) {
+            let final_so_far = partials[layout.q_offset().min(partials.len())..].concat();
+            if g.op_count(&final_so_far).cost() > limit {
+                return None;
+            }
+        }
+    }
+    Some(partials)
 }
 
 /// The tangent-space Jacobian from the partials with respect to the configuration symbols

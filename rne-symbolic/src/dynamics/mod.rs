@@ -469,6 +469,24 @@ impl SymbolicDynamics {
         jacobians_cost(&self.model.graph, &dq, &dv)
     }
 
+    /// [`Self::inverse_dynamics_derivatives_cost`] by forward sweeps, or `None` as soon as the
+    /// derivatives built so far cost more than `bound` says
+    /// ([`derivatives::forward_state_jacobians_within`]); then the dynamics' graph holds a part
+    /// of the sweeps and is of no further use.
+    pub fn forward_derivatives_cost_within(
+        &mut self,
+        bound: &mut dyn FnMut() -> Option<usize>,
+    ) -> Option<usize> {
+        let tau = self.inverse_dynamics();
+        let layout = self.layout();
+        let g = &mut self.model.graph;
+        let (dq, dv) = derivatives::forward_state_jacobians_within(g, &tau, layout, bound)?;
+        let cost = jacobians_cost(g, &dq, &dv);
+        self.derivative_sweep = Some(derivatives::Sweep::Forward);
+        self.inverse_dynamics_derivatives = Some((dq, dv));
+        Some(cost)
+    }
+
     /// The state Jacobians of the torques `tau` ([`derivatives::state_jacobians`]).
     ///
     /// Built by forward sweeps (one per symbol) and by reverse sweeps (one per torque), one
