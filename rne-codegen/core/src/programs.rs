@@ -105,21 +105,7 @@ pub fn generate_programs_each(
     };
     let plan = Plan::new(model, scene, &scalar_options, source)?;
     let finish = |built: BuiltKernel, kernel: Kernel, _: Dims, start: Instant| {
-        let program = match options.fma {
-            true => built.program.fuse_multiply_add(),
-            false => built.program,
-        };
-        let report = KernelReport {
-            kernel,
-            ops: program.op_count(),
-            critical_path: program.critical_path(),
-            generation_time: start.elapsed(),
-        };
-        let finished = KernelProgram {
-            kernel,
-            program,
-            report,
-        };
+        let finished = kernel_program(built, kernel, options.fma, start);
         on_program(&finished);
         Ok(finished)
     };
@@ -171,4 +157,24 @@ pub fn generate_programs_each(
         model: plan.model.clone(),
         generation_time: start.elapsed(),
     })
+}
+
+/// A built kernel's program (multiply-adds fused when `fma`) with its report; `start` is when
+/// its building started.
+fn kernel_program(built: BuiltKernel, kernel: Kernel, fma: bool, start: Instant) -> KernelProgram {
+    let program = match fma {
+        true => built.program.fuse_multiply_add(),
+        false => built.program,
+    };
+    let report = KernelReport {
+        kernel,
+        ops: program.op_count(),
+        critical_path: program.critical_path(),
+        generation_time: start.elapsed(),
+    };
+    KernelProgram {
+        kernel,
+        program,
+        report,
+    }
 }
