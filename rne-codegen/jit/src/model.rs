@@ -491,16 +491,25 @@ fn lower_all(
     kernels
         .iter()
         .map(|k| {
-            let parts = lowering
-                .lower(module, k.kernel.name(), &k.program)
-                .map_err(|message| JitError::Compile {
-                    kernel: k.kernel,
-                    message,
-                })?;
-            let parts = parts.into_iter().map(Arc::new).collect();
+            let parts = lower_kernel(module, lowering, k)?;
             Ok((k.kernel, k.program.outputs.len(), parts))
         })
         .collect()
+}
+
+/// One kernel's program lowered in `module`: its functions, in order.
+pub(crate) fn lower_kernel(
+    module: &mut JITModule,
+    lowering: &mut Lowering,
+    k: &KernelProgram,
+) -> Result<Vec<Arc<Lowered>>, JitError> {
+    let parts = lowering
+        .lower(module, k.kernel.name(), &k.program)
+        .map_err(|message| JitError::Compile {
+            kernel: k.kernel,
+            message,
+        })?;
+    Ok(parts.into_iter().map(Arc::new).collect())
 }
 
 /// The entries into `kernel`'s finalized `parts` in `module`.

@@ -24,7 +24,7 @@ use rne_symbolic::RobotModel;
 use crate::compile::{self, Job, Pool};
 use crate::error::JitError;
 use crate::lower::{Lowered, Lowering};
-use crate::model::{entries, host_module, Compiled, Tier, Timings};
+use crate::model::{entries, host_module, lower_kernel, Compiled, Tier, Timings};
 
 /// What [`generate_and_compile`] gives: the programs, the module owning the code, whether
 /// multiply-adds are fused, each kernel's entries (in the programs' order) and the timings.
@@ -134,15 +134,9 @@ fn lower_as_finished(
     let mut lowered = Vec::new();
     let mut next = 0;
     for k in finished {
-        let parts = lowering
-            .lower(module, k.kernel.name(), &k.program)
-            .map_err(|message| JitError::Compile {
-                kernel: k.kernel,
-                message,
-            })?;
+        let parts = lower_kernel(module, lowering, &k)?;
         let mut numbered = Vec::with_capacity(parts.len());
         for part in parts {
-            let part = Arc::new(part);
             // The pool's receiver outlives this function: sending cannot fail.
             let _ = jobs.send((next, Arc::clone(&part)));
             numbered.push((next, part));
