@@ -6,7 +6,7 @@
 //! their bytes and relocations handed to the module one by one, in the order the caller
 //! gives: the code, and where it lands in memory, are those of compiling them one after
 //! another. A [`Pool`] compiles functions as they are sent to it (`pipeline.rs` sends each
-//! kernel's as soon as it is built); given all at once ([`compile_and_define`]), threads take
+//! kernel's as soon as it is built); given all at once ([`compile_all`]), threads take
 //! the longest function not yet taken first, so that no long function is left to compile
 //! alone at the end.
 //!
@@ -70,6 +70,8 @@ impl<'i> Pool<'i> {
 
     /// Compiles functions on this thread, numbered `thread` in reports, until there are none.
     pub(crate) fn work(&self, thread: usize) {
+        // One context a thread, reused: Cranelift keeps its register allocator's memory there.
+        let mut context = Context::new();
         loop {
             let job = match self.jobs.lock() {
                 Ok(jobs) => jobs.recv(),
@@ -77,7 +79,7 @@ impl<'i> Pool<'i> {
             };
             let Ok((k, lowered)) = job else { return };
             let start = Instant::now();
-            let machine = compile(self.isa, &lowered);
+            let machine = compile(self.isa, &lowered, &mut context);
             let outcome = Outcome {
                 machine,
                 thread,
@@ -112,12 +114,9 @@ impl<'i> Pool<'i> {
     }
 }
 
-/// Compiles `functions` on up to [`threads`] threads, longest first, and defines them in
-/// `module`, in order. An error names the function that failed by its index.
-pub(crate) fn compile_and_define(
-    module: &mut JITModule,
-    functions: &[Arc<Lowered>],
-) -> Result<(), Failure> {
+/// Compiles `functions` for `isa` on up to [`threads`] threads, longest first: each one's
+/// outcome, by index.
+pub(crate) fn compile_all(isa: &dyn TargetIsa, functions: &[Arc<Lowered>]) -> Vec<Outcome> {
     let threads = threads().min(functions.len()).max(1);
     let (sender, jobs) = channel();
     for k in longest_first(functions) {
@@ -125,7 +124,7 @@ pub(crate) fn compile_and_define(
         let _ = sender.send((k, Arc::clone(&functions[k])));
     }
     drop(sender);
-    let pool = Pool::new(module.isa(), jobs);
+    let pool = Pool::new(isa, jobs);
     std::thread::scope(|scope| {
         for thread in 1..threads {
             let pool = &pool;
@@ -133,8 +132,7 @@ pub(crate) fn compile_and_define(
         }
         pool.work(0);
     });
-    let outcomes = pool.into_outcomes(functions.len());
-    define(module, functions, outcomes)
+    pool.into_outcomes(functions.len())
 }
 
 /// Defines `functions` in `module` in their order, each from its outcome (same index).
@@ -178,8 +176,13 @@ fn longest_first(functions: &[Arc<Lowered>]) -> Vec<usize> {
 }
 
 /// One function to machine code.
-fn compile(isa: &dyn TargetIsa, lowered: &Lowered) -> Result<Machine, String> {
-    let mut context = Context::for_function(lowered.function.clone());
+fn compile(
+    isa: &dyn TargetIsa,
+    lowered: &Lowered,
+    context: &mut Context,
+) -> Result<Machine, String> {
+    context.clear();
+    context.func = lowered.function.clone();
     let dump_dir = std::env::var_os("RNE_JIT_DUMP").map(PathBuf::from);
     context.set_disasm(dump_dir.is_some());
     let code = context

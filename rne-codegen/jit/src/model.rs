@@ -446,7 +446,7 @@ pub(crate) fn compile_programs(
     tier: Tier,
     lanes: usize,
 ) -> Result<(JITModule, bool, Vec<Compiled>), JitError> {
-    let (mut module, _, fused) = host_module(fma, tier)?;
+    let (mut module, isa, fused) = host_module(fma, tier)?;
     let first = kernels
         .first()
         .map_or(Kernel::InverseDynamics, |k| k.kernel);
@@ -456,13 +456,52 @@ pub(crate) fn compile_programs(
             message,
         })?;
     let lowered = lower_all(&mut module, &mut lowering, kernels)?;
-    let functions: Vec<(Kernel, Arc<Lowered>)> = lowered
+    let functions: Vec<Arc<Lowered>> = lowered
         .iter()
-        .flat_map(|(kernel, _, parts)| parts.iter().map(|part| (*kernel, Arc::clone(part))))
+        .flat_map(|(_, _, parts)| parts.iter().cloned())
         .collect();
-    let parts: Vec<Arc<Lowered>> = functions.iter().map(|(_, part)| Arc::clone(part)).collect();
-    compile::compile_and_define(&mut module, &parts).map_err(|(k, message)| JitError::Compile {
-        kernel: functions[k].0,
+    let mut outcomes = compile::compile_all(&*isa, &functions).into_iter();
+    let compiled = lowered
+        .into_iter()
+        .map(|(kernel, outputs, parts)| {
+            let parts = parts
+                .into_iter()
+                .map(|part| (part, outcomes.next().expect("one outcome a function")))
+                .collect();
+            (kernel, outputs, parts)
+        })
+        .collect();
+    let kernels = define_kernels(&mut module, compiled)?;
+    Ok((module, fused, kernels))
+}
+
+/// A kernel, its number of outputs and its functions, each with how its compilation went.
+pub(crate) type CompiledParts = (Kernel, usize, Vec<(Arc<Lowered>, compile::Outcome)>);
+
+/// Defines the functions of `kernels` in `module` from their outcomes, in the kernels' order
+/// (the code and its layout do not depend on the order they were compiled in), finalises the
+/// code and gives each kernel's entry points. A failure names the kernel whose function failed.
+pub(crate) fn define_kernels(
+    module: &mut JITModule,
+    kernels: Vec<CompiledParts>,
+) -> Result<Vec<Compiled>, JitError> {
+    let first = kernels
+        .first()
+        .map_or(Kernel::InverseDynamics, |(kernel, _, _)| *kernel);
+    let (mut owners, mut functions, mut outcomes) = (Vec::new(), Vec::new(), Vec::new());
+    let mut layout = Vec::with_capacity(kernels.len());
+    for (kernel, outputs, parts) in kernels {
+        let mut own = Vec::with_capacity(parts.len());
+        for (part, outcome) in parts {
+            owners.push(kernel);
+            functions.push(Arc::clone(&part));
+            outcomes.push(outcome);
+            own.push(part);
+        }
+        layout.push((kernel, outputs, own));
+    }
+    compile::define(module, &functions, outcomes).map_err(|(k, message)| JitError::Compile {
+        kernel: owners[k],
         message,
     })?;
     module
@@ -471,11 +510,10 @@ pub(crate) fn compile_programs(
             kernel: first,
             message: e.to_string(),
         })?;
-    let kernels = lowered
+    Ok(layout
         .into_iter()
-        .map(|(kernel, outputs, parts)| entries(&module, kernel, outputs, &parts))
-        .collect();
-    Ok((module, fused, kernels))
+        .map(|(kernel, outputs, parts)| entries(module, kernel, outputs, &parts))
+        .collect())
 }
 
 /// A kernel, its number of outputs and its lowered functions.

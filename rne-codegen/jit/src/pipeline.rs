@@ -24,7 +24,9 @@ use rne_symbolic::RobotModel;
 use crate::compile::{self, Job, Pool};
 use crate::error::JitError;
 use crate::lower::{Lowered, Lowering};
-use crate::model::{entries, host_module, lower_kernel, Compiled, Tier, Timings};
+use crate::model::{
+    define_kernels, host_module, lower_kernel, Compiled, CompiledParts, Tier, Timings,
+};
 
 /// What [`generate_and_compile`] gives: the programs, the module owning the code, whether
 /// multiply-adds are fused, each kernel's entries (in the programs' order) and the timings.
@@ -52,13 +54,15 @@ pub(crate) fn generate_and_compile(
 ) -> Result<Pipelined, JitError> {
     let start = Instant::now();
     let (mut module, isa, fused) = host_module(options.fma, tier)?;
-    let first = options.kernels().first().copied();
-    let compile_error = |kernel: Option<Kernel>, message: String| JitError::Compile {
-        kernel: kernel.unwrap_or(Kernel::InverseDynamics),
-        message,
-    };
     let mut lowering =
-        Lowering::new(&mut module, fused, 1).map_err(|message| compile_error(first, message))?;
+        Lowering::new(&mut module, fused, 1).map_err(|message| JitError::Compile {
+            kernel: options
+                .kernels()
+                .first()
+                .copied()
+                .unwrap_or(Kernel::InverseDynamics),
+            message,
+        })?;
     let (job_sender, jobs) = channel::<Job>();
     let pool = Pool::new(&*isa, jobs);
     let (program_sender, finished) = channel::<KernelProgram>();
@@ -82,33 +86,8 @@ pub(crate) fn generate_and_compile(
         (generated, lowered)
     });
     let programs = generated?;
-    let lowered = lowered?;
-    let count = lowered.iter().map(|(_, _, parts)| parts.len()).sum();
-    let mut outcomes: Vec<Option<compile::Outcome>> =
-        pool.into_outcomes(count).into_iter().map(Some).collect();
-    let in_order = in_programs_order(&programs, lowered);
-    let functions: Vec<(Kernel, Arc<Lowered>)> = in_order
-        .iter()
-        .flat_map(|(kernel, _, parts)| parts.iter().map(|(_, f)| (*kernel, Arc::clone(f))))
-        .collect();
-    let ordered: Vec<compile::Outcome> = in_order
-        .iter()
-        .flat_map(|(_, _, parts)| parts.iter().map(|&(k, _)| k))
-        .map(|k| outcomes[k].take().expect("each function has one outcome"))
-        .collect();
-    let parts: Vec<Arc<Lowered>> = functions.iter().map(|(_, f)| Arc::clone(f)).collect();
-    compile::define(&mut module, &parts, ordered)
-        .map_err(|(k, message)| compile_error(Some(functions[k].0), message))?;
-    module
-        .finalize_definitions()
-        .map_err(|e| compile_error(first, e.to_string()))?;
-    let kernels = in_order
-        .into_iter()
-        .map(|(kernel, outputs, parts)| {
-            let parts: Vec<Arc<Lowered>> = parts.into_iter().map(|(_, f)| f).collect();
-            entries(&module, kernel, outputs, &parts)
-        })
-        .collect();
+    let compiled = with_outcomes(&programs, lowered?, pool);
+    let kernels = define_kernels(&mut module, compiled)?;
     let generation = programs.generation_time;
     let timings = Timings {
         generation,
@@ -147,11 +126,13 @@ fn lower_as_finished(
     Ok(lowered)
 }
 
-/// The lowered kernels in the order of `programs` (the options' order).
-fn in_programs_order(
+/// The lowered kernels in the order of `programs` (the options' order), each function with its
+/// outcome in `pool`.
+fn with_outcomes(
     programs: &GeneratedPrograms,
     mut lowered: Vec<LoweredKernel>,
-) -> Vec<LoweredKernel> {
+    pool: Pool<'_>,
+) -> Vec<CompiledParts> {
     let place = |kernel: Kernel| {
         programs
             .kernels
@@ -160,5 +141,20 @@ fn in_programs_order(
             .unwrap_or(usize::MAX)
     };
     lowered.sort_by_key(|(kernel, _, _)| place(*kernel));
+    let count = lowered.iter().map(|(_, _, parts)| parts.len()).sum();
+    let mut outcomes: Vec<Option<compile::Outcome>> =
+        pool.into_outcomes(count).into_iter().map(Some).collect();
     lowered
+        .into_iter()
+        .map(|(kernel, outputs, parts)| {
+            let parts = parts
+                .into_iter()
+                .map(|(k, part)| {
+                    let outcome = outcomes[k].take().expect("each function has one outcome");
+                    (part, outcome)
+                })
+                .collect();
+            (kernel, outputs, parts)
+        })
+        .collect()
 }
