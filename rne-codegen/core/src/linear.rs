@@ -172,7 +172,15 @@ impl Combination {
 /// this "maximum plus one" cost (Golumbic, "Combinatorial merging", IEEE Trans. Computers
 /// 25(11), 1976). Ties keep the terms' order. Returns the sign to apply and the sum.
 fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Depths) -> (bool, Id) {
-    assert!(!terms.is_empty(), "a sum has a term");
+    // One term is the sum; two are added in the order the merging below would take them
+    // (the one ready first, the first of the two on a tie), without its heap.
+    match terms[..] {
+        [] => panic!("a sum has a term"),
+        [term] => return term,
+        [a, b] if depths.of(graph, b.1) < depths.of(graph, a.1) => return signed_sum(graph, b, a),
+        [a, b] => return signed_sum(graph, a, b),
+        _ => {}
+    }
     let mut ready: BinaryHeap<Reverse<(u32, usize)>> = BinaryHeap::new();
     let mut pending: Vec<(bool, Id)> = Vec::with_capacity(2 * terms.len());
     for term in terms {
@@ -184,14 +192,19 @@ fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Dept
         let Some(Reverse((_, second))) = ready.pop() else {
             return pending[first];
         };
-        let sum = match (pending[first], pending[second]) {
-            ((sa, a), (sb, b)) if sa == sb => (sa, graph.add(a, b)),
-            ((false, a), (true, b)) => (false, graph.sub(a, b)),
-            ((true, a), (false, b)) => (false, graph.sub(b, a)),
-            _ => unreachable!("two signs"),
-        };
+        let sum = signed_sum(graph, pending[first], pending[second]);
         ready.push(Reverse((depths.of(graph, sum.1), pending.len())));
         pending.push(sum);
+    }
+}
+
+/// `±a ± b` as a sign to apply and an addition or subtraction.
+fn signed_sum(graph: &mut ExprGraph, first: (bool, Id), second: (bool, Id)) -> (bool, Id) {
+    match (first, second) {
+        ((sa, a), (sb, b)) if sa == sb => (sa, graph.add(a, b)),
+        ((false, a), (true, b)) => (false, graph.sub(a, b)),
+        ((true, a), (false, b)) => (false, graph.sub(b, a)),
+        _ => unreachable!("two signs"),
     }
 }
 
