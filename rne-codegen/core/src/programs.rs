@@ -18,6 +18,7 @@ use crate::plan::Plan;
 use crate::program::Program;
 use crate::scene::Scene;
 use crate::schedule;
+use std::sync::Arc;
 
 /// One kernel's program and how it was made.
 #[derive(Clone, Debug)]
@@ -26,7 +27,9 @@ pub struct KernelProgram {
     pub kernel: Kernel,
     /// Its program, with multiply-adds fused when the options say `fma`
     /// ([`Program::fuse_multiply_add`]); matrices' outputs row-major, tuples concatenated.
-    pub program: Program,
+    /// Shared: a backend handed each program as it is built ([`generate_programs_each`])
+    /// keeps it without a copy.
+    pub program: Arc<Program>,
     /// Its operation count, critical path and generation time.
     pub report: KernelReport,
 }
@@ -174,7 +177,7 @@ fn kernel_program(built: BuiltKernel, kernel: Kernel, fma: bool, start: Instant)
     };
     KernelProgram {
         kernel,
-        program,
+        program: Arc::new(program),
         report,
     }
 }

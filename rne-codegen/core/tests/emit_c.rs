@@ -83,7 +83,7 @@ fn a_kernel_c_cannot_write_is_an_error_naming_it() {
     assert!(emit_c(&programs, "elbow").is_ok());
 
     let mut lanes = programs.clone();
-    let program = &mut lanes.kernels[1].program;
+    let program = std::sync::Arc::make_mut(&mut lanes.kernels[1].program);
     program.instrs.push(Instr::Mul(
         Operand::Input(Symbol::Lane(0)),
         Operand::Input(Symbol::Position(0)),
@@ -96,7 +96,9 @@ fn a_kernel_c_cannot_write_is_an_error_naming_it() {
     );
 
     let mut short = programs.clone();
-    short.kernels[0].program.outputs.pop();
+    std::sync::Arc::make_mut(&mut short.kernels[0].program)
+        .outputs
+        .pop();
     let error = message(emit_c(&short, "elbow").unwrap_err());
     assert!(error.contains("`inverse_dynamics`"), "{error}");
 }
