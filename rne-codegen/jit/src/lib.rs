@@ -31,7 +31,8 @@
 //! # Threads
 //! Each kernel is lowered and compiled as soon as the generator has built it, while it builds
 //! the costliest ones (`pipeline.rs`); the functions of all kernels are compiled together on
-//! one thread per core (`RNE_JIT_THREADS=n` sets the number) and defined in the options'
+//! one thread per core (`RNE_JIT_THREADS=n` sets the number; each thread keeps one Cranelift
+//! context for all its functions, as Cranelift advises) and defined in the options'
 //! order of the kernels: the code does not depend on the number of threads or on which
 //! kernel was built first. Programs of more than
 //! 2000 instructions (the derivative kernels of arms, most kernels of large robots) are
