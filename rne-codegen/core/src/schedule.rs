@@ -8,9 +8,10 @@
 //! the sweep inverse dynamics' chose in scalars (the same torques). Built in scalars, the
 //! graph of ∂ID is built both ways at once, by forward sweeps on this thread and by reverse
 //! sweeps on the other, which sends its cost; this thread chooses ([`Sweep::cheaper`], as one
-//! thread trying both would; its forward sweeps stop as soon as they cost more than the reverse
-//! ones, once that cost has arrived), hands over its graph if the forward sweeps won, and builds ∂FD
-//! by the chosen sweep while the other finishes ∂ID from the graph it was handed or its own.
+//! thread trying both would; its forward sweeps stop as soon as they cost more than the
+//! reverse ones, once that cost has arrived), hands over its graph if the forward sweeps won,
+//! and builds ∂FD by the chosen sweep while the other finishes ∂ID from the graph it was
+//! handed or its own.
 //! Built in lanes (`derivatives: lanes`), this thread builds ∂ID and then ∂FD: only a ∂ID too
 //! long for lanes falls back to scalars and chooses a sweep, known once it is built. Every
 //! other kernel is shared: each thread, once done with its own, takes the next, costliest

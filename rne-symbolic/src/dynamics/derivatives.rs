@@ -74,7 +74,7 @@ pub fn state_jacobians(
     outputs: &[Id],
     layout: StateLayout,
     sweep: Sweep,
-) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
+) -> (Matrix, Matrix) {
     let symbols = state_symbols(layout);
     // partials[s][i] = ∂outputs[i]/∂symbols[s].
     let partials: Vec<Vec<Id>> = match sweep {
@@ -119,7 +119,7 @@ fn jacobians_from_partials(
     partials: &[Vec<Id>],
     layout: StateLayout,
     n: usize,
-) -> (Vec<Vec<Id>>, Vec<Vec<Id>>) {
+) -> (Matrix, Matrix) {
     let (positions, velocities) = partials.split_at(layout.nq());
     let dq = tangent_jacobian(g, positions, layout, n);
     (dq, transpose(velocities, n))
