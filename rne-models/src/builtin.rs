@@ -6,6 +6,8 @@ use rne_symbolic::spec::{LoadOptions, SpecError};
 use rne_symbolic::RobotModel;
 use rne_symbolic::{read_robot, Description};
 
+use rne_codegen::{Dynamics, Kernel};
+
 use crate::generated;
 use crate::robot_file::parse_embedded;
 use crate::visit::Visitor;
@@ -49,6 +51,30 @@ impl BuiltinRobot {
             Module::Irb140 => visitor.visit(generated::irb140::Model),
         }
     }
+
+    /// Runs `visitor` on the robot's generated module for `kernel`: the default one (the
+    /// dynamics) when it has `kernel`, else, for the URDF robots, their `control` module (the
+    /// derivatives, M⁻¹, the frames' kernels and the regressor: [`generated::variants`]).
+    pub fn visit_having<V: Visitor>(&self, kernel: Kernel, visitor: V) -> V::Output {
+        use generated::variants;
+        match self.module {
+            Module::Ur5 if lacks(generated::ur5::Model, kernel) => {
+                visitor.visit(variants::ur5::control::Model)
+            }
+            Module::Panda if lacks(generated::panda::Model, kernel) => {
+                visitor.visit(variants::panda::control::Model)
+            }
+            Module::PandaArm if lacks(generated::panda_arm::Model, kernel) => {
+                visitor.visit(variants::panda_arm::control::Model)
+            }
+            _ => self.visit(visitor),
+        }
+    }
+}
+
+/// Whether the module of `model` lacks `kernel`.
+fn lacks<const N: usize, D: Dynamics<N, N>>(_model: D, kernel: Kernel) -> bool {
+    !D::KERNELS.contains(&kernel)
 }
 
 /// Every built-in robot.

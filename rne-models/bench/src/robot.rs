@@ -266,13 +266,18 @@ impl Bench<'_> {
         }
         let mut times = match settings.builtin {
             Some(robot) if settings.engines.contains(&Engine::Compiled) => {
-                let run = robot.visit(WithCompiled {
+                // The default module has the dynamics; the URDF robots' `control` module the
+                // derivatives and M⁻¹.
+                let run = robot.visit_having(
                     kernel,
-                    others: &mut subjects,
-                    states,
-                    plan: &settings.plan,
-                    error: &|engine| self.error(engine, kernel),
-                });
+                    WithCompiled {
+                        kernel,
+                        others: &mut subjects,
+                        states,
+                        plan: &settings.plan,
+                        error: &|engine| self.error(engine, kernel),
+                    },
+                );
                 let mut times = run.others;
                 if let Some((time, e)) = run.compiled {
                     engines.push(Engine::Compiled);

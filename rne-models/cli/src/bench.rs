@@ -25,7 +25,8 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub options: ModelOptions,
     /// With MODEL: the engines to time, comma-separated (`compiled` only for a built-in
-    /// robot on its own base).
+    /// robot on its own base: its dynamics, and the URDF robots' derivatives, M⁻¹, frames'
+    /// kernels and regressor).
     #[arg(
         long,
         value_delimiter = ',',

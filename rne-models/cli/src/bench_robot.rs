@@ -1,6 +1,6 @@
 //! `rne bench MODEL [--engines ..] [--kernels ..] [--pinocchio [RUN_SH]] [--json]`: one
 //! robot chosen at run time, kernel by kernel: ns per call on the JIT, the interpreter and
-//! (built-in robots) the compiled module, timed together; each engine's largest error against
+//! (built-in robots) the compiled modules, timed together; each engine's largest error against
 //! the numeric reference; the time to obtain the kernels on rne's side (generation and JIT)
 //! and, with `--pinocchio`, Pinocchio's and its CppADCodeGen code's times and the seconds
 //! CppADCodeGen takes to generate and compile.

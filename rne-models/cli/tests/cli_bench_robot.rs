@@ -50,6 +50,31 @@ fn a_builtin_robot_is_timed_on_every_engine_with_its_errors() {
     }
 }
 
+/// A built-in URDF robot's derivatives and M⁻¹ are timed on its compiled `control` module
+/// beside the JIT (the default module has the dynamics only), with the same errors.
+#[test]
+fn a_urdf_robots_derivatives_have_a_compiled_column() {
+    let kernels = [
+        "mass_matrix_inverse",
+        "inverse_dynamics_derivatives",
+        "forward_dynamics_derivatives",
+    ];
+    let report = bench_json(&[
+        "ur5",
+        "--engines",
+        "jit,compiled",
+        "--kernels",
+        &kernels.join(","),
+    ]);
+    for kernel in kernels {
+        assert_eq!(engines_of(&report, kernel), ["jit", "compiled"], "{kernel}");
+    }
+    for k in report["kernels"].as_array().unwrap() {
+        assert!(k["ns"].as_f64().unwrap() > 0.0, "{k}");
+        assert!(k["max_rel_error"].as_f64().unwrap() < 1e-12, "{k}");
+    }
+}
+
 /// A robot file on a floating base, with chosen kernels: no compiled module, only the JIT
 /// and the interpreter, and only the kernels asked for.
 #[test]
