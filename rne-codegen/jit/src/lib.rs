@@ -34,11 +34,13 @@
 //! one thread per core (`RNE_JIT_THREADS=n` sets the number; each thread keeps one Cranelift
 //! context for all its functions, as Cranelift advises) and defined in the options'
 //! order of the kernels: the code does not depend on the number of threads or on which
-//! kernel was built first. Programs of more than
-//! 2000 instructions (the derivative kernels of arms, most kernels of large robots) are
-//! compiled as parts of at most 1000, so that one long kernel does not keep one thread busy
-//! while the others wait, and the register allocator, whose time grows faster than the
-//! length of a function, sees short ones; the results are the same bits.
+//! kernel was built first. At the fast tier, programs of
+//! more than 2000 instructions (the derivative kernels of arms, most kernels of large robots)
+//! are compiled as parts of at most 1000, so that one long kernel does not keep one thread
+//! busy while the others wait, and the register allocator, whose time grows faster than the
+//! length of a function, sees short ones; the optimized tier cuts programs as the Rust
+//! emitter does (above 15 000 instructions), for the faster code. The results are the same
+//! bits.
 //! `RNE_JIT_SPLIT_ABOVE=n` and `RNE_JIT_PART_LEN=n` set the cut, `RNE_JIT_TIMINGS=1` prints
 //! each function's compile time to stderr (for measuring).
 //!

@@ -2,13 +2,12 @@
 //! than the JIT's split threshold ([`Split`]) one function per part of about equal length,
 //! called in turn, values read by a later part passing through a scratch array.
 //!
-//! The JIT splits at its own threshold, lower than the Rust emitter's
-//! ([`rne_codegen_core::SPLIT_ABOVE`]):
-//! Cranelift compiles one function on one thread, and its register allocator takes time
-//! that grows faster than linearly with a function's length, so the longest kernels (the
-//! derivatives) are cut into parts that the threads of `compile.rs` share. The parts run the
-//! program's instructions in its order; a value crossing parts is stored as the `f64` it is
-//! and loaded back, so splitting changes no bit of the results.
+//! The optimized tier splits as the Rust emitter does ([`SPLIT_ABOVE`]); the fast tier at a
+//! lower threshold of its own: Cranelift compiles one function on one thread, and its register
+//! allocator takes time that grows faster than linearly with a function's length, so there
+//! the longest kernels (the derivatives) are cut into parts that the threads of `compile.rs`
+//! share. The parts run the program's instructions in its order; a value crossing parts is
+//! stored as the `f64` it is and loaded back, so splitting changes no bit of the results.
 //!
 //! Each instruction becomes the one IEEE operation it names, in program order — `fadd`,
 //! `fsub`, `fmul`, `fdiv`, `fneg`, `sqrt`; `sign` as the runtime's (`1`, `−1`, or the value
@@ -33,11 +32,12 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
 use cranelift_module::{FuncId, Linkage, Module};
-use rne_codegen_core::{Instr, Operand, Program, ScratchSlots, PART_LEN};
+use rne_codegen_core::{Instr, Operand, Program, ScratchSlots, PART_LEN, SPLIT_ABOVE};
 use rne_symbolic::Symbol;
 use rustc_hash::FxHashMap;
 
 use crate::code::Extents;
+use crate::model::Tier;
 
 /// The name compiled code calls the runtime's sines and cosines by.
 pub(crate) const SIN_COS: &str = "rne_jit_sin_cos_array";
@@ -52,6 +52,8 @@ pub(crate) struct Lowering {
     sin_cos: FuncId,
     /// Whether multiply-adds are fused (`fma` on and the processor has FMA).
     pub fused: bool,
+    /// Where long programs are cut.
+    split: Split,
     builder: FunctionBuilderContext,
 }
 
@@ -76,17 +78,32 @@ pub(crate) struct Split {
 }
 
 impl Split {
-    /// The JIT's cut: programs of more than two parts' worth of instructions, in parts of at
-    /// most the Rust emitter's part length ([`PART_LEN`]). The derivative kernels of arms
-    /// are split, their dynamics kernels (shorter) stay one function each.
-    pub(crate) const DEFAULT: Split = Split {
+    /// The fast tier's cut: programs of more than two parts' worth of instructions, in parts
+    /// of at most the Rust emitter's part length ([`PART_LEN`]). The derivative kernels of
+    /// arms are split, their dynamics kernels (shorter) stay one function each: the compile
+    /// time is what this tier is for, and the threads of `compile.rs` share the parts.
+    pub(crate) const FAST: Split = Split {
         above: 2 * PART_LEN,
         part_len: PART_LEN,
     };
 
-    /// [`Split::DEFAULT`], or as `RNE_JIT_SPLIT_ABOVE` and `RNE_JIT_PART_LEN` say (positive
+    /// The optimized tier's cut: the Rust emitter's ([`SPLIT_ABOVE`], [`PART_LEN`]), so that
+    /// the kernels the macro emits as one function are one function here too. A value that
+    /// crosses parts is stored and loaded back, and each part's registers start empty: the
+    /// arms' derivative kernels run a fifth to a third faster whole than in the fast tier's
+    /// parts, for a somewhat longer compile (docs/performance.md, "Robots chosen at run time").
+    pub(crate) const OPTIMIZED: Split = Split {
+        above: SPLIT_ABOVE,
+        part_len: PART_LEN,
+    };
+
+    /// The cut of `tier`, or as `RNE_JIT_SPLIT_ABOVE` and `RNE_JIT_PART_LEN` say (positive
     /// numbers; for measuring the compile time and speed of other cuts).
-    pub(crate) fn from_env() -> Split {
+    pub(crate) fn for_tier(tier: Tier) -> Split {
+        let default = match tier {
+            Tier::Fast => Split::FAST,
+            Tier::Optimized => Split::OPTIMIZED,
+        };
         let read = |name: &str, default: usize| {
             std::env::var(name)
                 .ok()
@@ -95,19 +112,20 @@ impl Split {
                 .unwrap_or(default)
         };
         Split {
-            above: read("RNE_JIT_SPLIT_ABOVE", Split::DEFAULT.above),
-            part_len: read("RNE_JIT_PART_LEN", Split::DEFAULT.part_len),
+            above: read("RNE_JIT_SPLIT_ABOVE", default.above),
+            part_len: read("RNE_JIT_PART_LEN", default.part_len),
         }
     }
 }
 
 impl Lowering {
     /// Declares `sin_cos_array` in `module`; `fused` as [`Lowering::fused`]; `lanes` states
-    /// per call (1 or 2).
+    /// per call (1 or 2); long programs cut as `tier`'s [`Split`].
     pub(crate) fn new(
         module: &mut JITModule,
         fused: bool,
         lanes: usize,
+        tier: Tier,
     ) -> Result<Lowering, String> {
         if !matches!(lanes, 1 | 2) {
             return Err(format!("{lanes} lanes (1 or 2 are lowered)"));
@@ -130,6 +148,7 @@ impl Lowering {
             kernel_signature,
             sin_cos,
             fused,
+            split: Split::for_tier(tier),
             builder: FunctionBuilderContext::new(),
         })
     }
@@ -143,7 +162,7 @@ impl Lowering {
         name: &str,
         program: &Program,
     ) -> Result<Vec<Lowered>, String> {
-        let parts = parts(program, Split::from_env());
+        let parts = parts(program, self.split);
         let (slots, scratch) = crossing_slots(program, &parts);
         let outputs = temp_outputs(program)?;
         let mut functions = Vec::with_capacity(parts.len());
@@ -688,17 +707,31 @@ mod tests {
 
     #[test]
     fn programs_up_to_the_threshold_stay_one_function() {
-        let split = Split::DEFAULT;
+        let split = Split::FAST;
         let parts = parts(&chain(split.above, 3), split);
         assert_eq!(parts.len(), 1);
         assert_eq!((parts[0].start, parts[0].end), (0, split.above));
+    }
+
+    /// The optimized tier keeps whole what the Rust emitter keeps whole (an arm's derivative
+    /// kernel, a few thousand instructions), which the fast tier cuts; both cut what the
+    /// emitter cuts.
+    #[test]
+    fn the_optimized_tier_cuts_only_what_the_rust_emitter_cuts() {
+        let arm_derivative = chain(5 * PART_LEN, 3);
+        assert_eq!(parts(&arm_derivative, Split::OPTIMIZED).len(), 1);
+        assert_eq!(parts(&arm_derivative, Split::FAST).len(), 5);
+        let humanoid = chain(SPLIT_ABOVE + 1, 3);
+        let cut = (SPLIT_ABOVE + 1).div_ceil(PART_LEN);
+        assert_eq!(parts(&humanoid, Split::OPTIMIZED).len(), cut);
+        assert_eq!(parts(&humanoid, Split::FAST).len(), cut);
     }
 
     /// Longer programs: the fewest parts of at most `part_len`, in order, covering every
     /// instruction once, their lengths within one of each other.
     #[test]
     fn longer_programs_are_cut_into_consecutive_parts_of_about_equal_length() {
-        let split = Split::DEFAULT;
+        let split = Split::FAST;
         for n in [split.above + 1, 3 * split.part_len, 7 * split.part_len + 13] {
             let parts = parts(&chain(n, 3), split);
             assert_eq!(parts.len(), n.div_ceil(split.part_len), "{n} instructions");
@@ -721,7 +754,7 @@ mod tests {
     #[test]
     fn every_crossing_value_is_in_its_slot_when_read_and_slots_are_reused() {
         let program = chain(9000, 1500);
-        let parts = parts(&program, Split::DEFAULT);
+        let parts = parts(&program, Split::FAST);
         let (slots, len) = crossing_slots(&program, &parts);
         let mut scratch: Vec<Option<usize>> = vec![None; len];
         for part in &parts {

@@ -451,7 +451,7 @@ pub(crate) fn compile_programs(
         .first()
         .map_or(Kernel::InverseDynamics, |k| k.kernel);
     let mut lowering =
-        Lowering::new(&mut module, fused, lanes).map_err(|message| JitError::Compile {
+        Lowering::new(&mut module, fused, lanes, tier).map_err(|message| JitError::Compile {
             kernel: first,
             message,
         })?;

@@ -55,7 +55,7 @@ pub(crate) fn generate_and_compile(
     let start = Instant::now();
     let (mut module, isa, fused) = host_module(options.fma, tier)?;
     let mut lowering =
-        Lowering::new(&mut module, fused, 1).map_err(|message| JitError::Compile {
+        Lowering::new(&mut module, fused, 1, tier).map_err(|message| JitError::Compile {
             kernel: options
                 .kernels()
                 .first()
