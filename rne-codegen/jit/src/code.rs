@@ -172,13 +172,22 @@ pub(crate) unsafe extern "C" fn sin_cos_array(
     }
 }
 
+/// `angle`, read by itself: compiled code has just stored the angles one by one (8 bytes
+/// each), and a 16-byte load of two of them, as the pairs of `sin_cos_array` would be read,
+/// cannot take its value from those two stores and waits until they reach the cache.
+fn read_alone(angle: &f64) -> f64 {
+    // SAFETY: `angle` is a valid, aligned `f64` (a reference); a volatile read is a plain
+    // 8-byte load that the compiler may not merge with its neighbour's.
+    unsafe { std::ptr::read_volatile(angle) }
+}
+
 /// `rne_runtime::sin_cos_array::<N>` for `N = angles.len()` (1 to 16).
 fn by_count(angles: &[f64], sines: &mut [f64], cosines: &mut [f64]) {
     macro_rules! dispatch {
         ($($n:literal)*) => {
             match angles.len() {
                 $($n => {
-                    let x: [f64; $n] = angles.try_into().expect("n angles");
+                    let x: [f64; $n] = std::array::from_fn(|i| read_alone(&angles[i]));
                     let (s, c) = rne_runtime::sin_cos_array(&x);
                     sines.copy_from_slice(&s);
                     cosines.copy_from_slice(&c);
