@@ -52,9 +52,9 @@ impl BuiltinRobot {
         }
     }
 
-    /// Runs `visitor` on the robot's generated module for `kernel`: the default one (the
-    /// dynamics) when it has `kernel`, else, for the URDF robots, their `control` module (the
-    /// derivatives, M⁻¹, the frames' kernels and the regressor: [`generated::variants`]).
+    /// Runs `visitor` on the robot's generated module for `kernel`: for M⁻¹ and the
+    /// derivatives, the `Dynamics` kernels that the default module leaves out, the URDF
+    /// robots' `control` module ([`generated::variants`]); else the default one.
     pub fn visit_having<V: Visitor>(&self, kernel: Kernel, visitor: V) -> V::Output {
         use generated::variants;
         match self.module {
@@ -72,9 +72,15 @@ impl BuiltinRobot {
     }
 }
 
-/// Whether the module of `model` lacks `kernel`.
+/// Whether the module of `model` lacks `kernel`, one of the `Dynamics` kernels that the
+/// URDF robots' `control` modules have (M⁻¹, ∂ID, ∂FD).
 fn lacks<const N: usize, D: Dynamics<N, N>>(_model: D, kernel: Kernel) -> bool {
-    !D::KERNELS.contains(&kernel)
+    let in_control = [
+        Kernel::MassMatrixInverse,
+        Kernel::InverseDynamicsDerivatives,
+        Kernel::ForwardDynamicsDerivatives,
+    ];
+    in_control.contains(&kernel) && !D::KERNELS.contains(&kernel)
 }
 
 /// Every built-in robot.

@@ -90,8 +90,8 @@ impl Split {
     /// The optimized tier's cut: the Rust emitter's ([`SPLIT_ABOVE`], [`PART_LEN`]), so that
     /// the kernels the macro emits as one function are one function here too. A value that
     /// crosses parts is stored and loaded back, and each part's registers start empty: the
-    /// arms' derivative kernels run a fifth to a third faster whole than in the fast tier's
-    /// parts, for a somewhat longer compile (docs/performance.md, "Robots chosen at run time").
+    /// arms' derivative kernels run faster whole than in the fast tier's parts, for a longer
+    /// compile (docs/performance.md, "Robots chosen at run time").
     pub(crate) const OPTIMIZED: Split = Split {
         above: SPLIT_ABOVE,
         part_len: PART_LEN,

@@ -25,8 +25,7 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub options: ModelOptions,
     /// With MODEL: the engines to time, comma-separated (`compiled` only for a built-in
-    /// robot on its own base: its dynamics, and the URDF robots' derivatives, M⁻¹, frames'
-    /// kernels and regressor).
+    /// robot on its own base: its dynamics, and the URDF robots' M⁻¹ and derivatives).
     #[arg(
         long,
         value_delimiter = ',',

@@ -51,7 +51,8 @@ fn a_builtin_robot_is_timed_on_every_engine_with_its_errors() {
 }
 
 /// A built-in URDF robot's derivatives and M⁻¹ are timed on its compiled `control` module
-/// beside the JIT (the default module has the dynamics only), with the same errors.
+/// beside the JIT (the default module has the dynamics only), with the same errors; kernels
+/// with no compiled module to call are timed on the JIT alone.
 #[test]
 fn a_urdf_robots_derivatives_have_a_compiled_column() {
     let kernels = [
@@ -73,6 +74,15 @@ fn a_urdf_robots_derivatives_have_a_compiled_column() {
         assert!(k["ns"].as_f64().unwrap() > 0.0, "{k}");
         assert!(k["max_rel_error"].as_f64().unwrap() < 1e-12, "{k}");
     }
+    // The frames' kernels have no compiled module to time through: the JIT alone.
+    let report = bench_json(&[
+        "ur5",
+        "--engines",
+        "jit,compiled",
+        "--kernels",
+        "frame_jacobians",
+    ]);
+    assert_eq!(engines_of(&report, "frame_jacobians"), ["jit"]);
 }
 
 /// A robot file on a floating base, with chosen kernels: no compiled module, only the JIT
