@@ -181,6 +181,18 @@ fn read_alone(angle: &f64) -> f64 {
     unsafe { std::ptr::read_volatile(angle) }
 }
 
+/// `values` into `to`, each value read and written by itself: `sin_cos_array` has just stored
+/// its results two by two (16 bytes each), and a copy of the array as a block reads 16 bytes
+/// across two of those stores, a load that waits until they reach the cache, as in
+/// [`read_alone`].
+fn write_alone(values: &[f64], to: &mut [f64]) {
+    for (value, to) in values.iter().zip(to) {
+        // SAFETY: `to` is a valid, aligned `f64` (a mutable reference); a volatile write is a
+        // plain 8-byte store, and the value's 8-byte load is not merged with its neighbour's.
+        unsafe { std::ptr::write_volatile(to, *value) };
+    }
+}
+
 /// `rne_runtime::sin_cos_array::<N>` for `N = angles.len()` (1 to 16).
 fn by_count(angles: &[f64], sines: &mut [f64], cosines: &mut [f64]) {
     macro_rules! dispatch {
@@ -189,8 +201,8 @@ fn by_count(angles: &[f64], sines: &mut [f64], cosines: &mut [f64]) {
                 $($n => {
                     let x: [f64; $n] = std::array::from_fn(|i| read_alone(&angles[i]));
                     let (s, c) = rne_runtime::sin_cos_array(&x);
-                    sines.copy_from_slice(&s);
-                    cosines.copy_from_slice(&c);
+                    write_alone(&s, sines);
+                    write_alone(&c, cosines);
                 })*
                 _ => unreachable!("1 to 16 angles"),
             }

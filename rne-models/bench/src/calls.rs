@@ -69,7 +69,7 @@ impl<I> Pool<I> {
 
     /// Makes `calls` calls of `f` on the timing pool, each input and result passed through
     /// [`black_box`].
-    pub fn cycle<R>(&mut self, calls: u64, f: impl Fn(&I) -> R) {
+    pub fn cycle<R>(&mut self, calls: u64, mut f: impl FnMut(&I) -> R) {
         if self.inputs.is_empty() {
             return;
         }
@@ -131,7 +131,11 @@ impl<D: Dynamics<N, N>, const N: usize> Timed for Calls<D, N> {
                 m.forward_dynamics_derivatives(&s.q, &s.qd, &s.tau)
             }),
             Kernel::MassMatrixInverse => self.cycle(calls, |m, s| m.mass_matrix_inverse(&s.q)),
-            _ => self.cycle(calls, |m, s| m.potential_energy(&s.q)),
+            Kernel::PotentialEnergy => self.cycle(calls, |m, s| m.potential_energy(&s.q)),
+            Kernel::FrictionTorques => self.cycle(calls, |m, s| m.friction_torques(&s.qd)),
+            // The frames' kernels and the regressors have no method of `Dynamics`: nothing
+            // to call (`rne bench` times them on the JIT alone, `BuiltinRobot::visit_having`).
+            _ => {}
         }
     }
 }
@@ -175,7 +179,9 @@ where
                 .flatten()
                 .collect(),
             Kernel::MassMatrixInverse => matrix(m.mass_matrix_inverse(&s.q)).collect(),
-            _ => m.potential_energy(&s.q).into_iter().collect(),
+            Kernel::PotentialEnergy => m.potential_energy(&s.q).into_iter().collect(),
+            Kernel::FrictionTorques => vector(m.friction_torques(&s.qd)).collect(),
+            _ => Vec::new(),
         };
         out.extend(values.into_iter().map(OrderedReal::to_f64));
     }

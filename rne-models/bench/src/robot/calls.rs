@@ -10,23 +10,21 @@ use rne_interpreted::{Error, Interpreted, JointState, StateRef};
 use rne_jit::{JitModel, State};
 use rne_models::Visitor;
 
-use crate::calls::{Calls, Input};
+use crate::calls::{Calls, Input, Pool};
 use crate::timing::{time_interleaved, Plan, Timed, Timing};
 
 /// A kernel of the JIT at the states in turn, into one output buffer.
 struct JitCalls<'a> {
     jit: &'a JitModel,
     kernel: Kernel,
-    states: &'a [JointState],
+    states: Pool<&'a JointState>,
     out: Vec<f64>,
-    next: usize,
 }
 
 impl Timed for JitCalls<'_> {
     fn run(&mut self, calls: u64) {
-        for _ in 0..calls {
-            let s = black_box(&self.states[self.next]);
-            self.next = (self.next + 1) % self.states.len();
+        let (jit, kernel, out) = (self.jit, self.kernel, &mut self.out);
+        self.states.cycle(calls, |s| {
             let state = State {
                 q: &s.q,
                 qd: &s.qd,
@@ -34,9 +32,9 @@ impl Timed for JitCalls<'_> {
                 tau: &s.tau,
             };
             // The states are finite and of the robot's lengths: the call cannot fail.
-            let _ = self.jit.evaluate(self.kernel, state, &mut self.out);
-            black_box(&self.out);
-        }
+            let _ = jit.evaluate(kernel, state, out);
+            black_box(&*out);
+        });
     }
 }
 
@@ -45,9 +43,8 @@ pub fn jit<'a>(jit: &'a JitModel, kernel: Kernel, states: &'a [JointState]) -> B
     Box::new(JitCalls {
         jit,
         kernel,
-        states,
+        states: cycled(states),
         out: vec![0.0; jit.output_len(kernel).unwrap_or(0)],
-        next: 0,
     })
 }
 
@@ -55,17 +52,14 @@ pub fn jit<'a>(jit: &'a JitModel, kernel: Kernel, states: &'a [JointState]) -> B
 struct InterpretedCalls<'a> {
     programs: &'a Interpreted,
     kernel: Kernel,
-    states: &'a [JointState],
-    next: usize,
+    states: Pool<&'a JointState>,
 }
 
 impl Timed for InterpretedCalls<'_> {
     fn run(&mut self, calls: u64) {
-        for _ in 0..calls {
-            let s = black_box(&self.states[self.next]);
-            self.next = (self.next + 1) % self.states.len();
-            black_box(self.programs.eval::<f64>(self.kernel, s.as_ref()));
-        }
+        let (programs, kernel) = (self.programs, self.kernel);
+        self.states
+            .cycle(calls, |s| programs.eval::<f64>(kernel, s.as_ref()));
     }
 }
 
@@ -78,9 +72,14 @@ pub fn interpreted<'a>(
     Box::new(InterpretedCalls {
         programs,
         kernel,
-        states,
-        next: 0,
+        states: cycled(states),
     })
+}
+
+/// `states` cycled through in order, as the compiled module's calls cycle through theirs
+/// ([`Calls`]): every engine pays the same for its next state.
+fn cycled(states: &[JointState]) -> Pool<&JointState> {
+    Pool::new(states.iter().collect(), states.len())
 }
 
 /// Times `kernel` of a built-in robot's compiled module together with `others`, and measures
