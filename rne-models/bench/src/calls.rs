@@ -231,4 +231,58 @@ mod tests {
         missing.evaluate(2, &mut out);
         assert!(out.is_empty());
     }
+
+    /// A spring with damping: potential energy, friction torques, and the calls it counts.
+    struct Damped {
+        calls: std::cell::Cell<[u32; 2]>,
+    }
+
+    impl Dynamics<1, 1> for Damped {
+        type Scalar = f64;
+        const NAME: &'static str = "damped";
+        const JOINTS: &'static [&'static str] = &["q"];
+        const FLOATING_BASE: bool = false;
+        const KERNELS: &'static [Kernel] = &[Kernel::PotentialEnergy, Kernel::FrictionTorques];
+        fn potential_energy(&self, q: &[f64; 1]) -> Option<f64> {
+            let [pe, f] = self.calls.get();
+            self.calls.set([pe + 1, f]);
+            Some(q[0] * q[0] / 2.0)
+        }
+        fn friction_torques(&self, qd: &[f64; 1]) -> Option<[f64; 1]> {
+            let [pe, f] = self.calls.get();
+            self.calls.set([pe, f + 1]);
+            Some([-3.0 * qd[0]])
+        }
+    }
+
+    /// Each kernel is timed and evaluated by its own method: the friction torques are not
+    /// the potential energy, and a kernel `Dynamics` has no method for calls nothing.
+    #[test]
+    fn each_kernel_is_timed_and_read_by_its_own_method() {
+        let damped = || Damped {
+            calls: std::cell::Cell::new([0, 0]),
+        };
+        let inputs = vec![Input {
+            q: [2.0],
+            qd: [5.0],
+            qdd: [0.0],
+            tau: [0.0],
+        }];
+        let mut out = Vec::new();
+        let mut friction = Calls::new(damped(), Kernel::FrictionTorques, inputs.clone(), 1);
+        friction.run(4);
+        assert_eq!(friction.model.calls.get(), [0, 4]);
+        friction.evaluate(0, &mut out);
+        assert_eq!(out, vec![-15.0]);
+        let mut energy = Calls::new(damped(), Kernel::PotentialEnergy, inputs.clone(), 1);
+        energy.run(3);
+        assert_eq!(energy.model.calls.get(), [3, 0]);
+        energy.evaluate(0, &mut out);
+        assert_eq!(out, vec![2.0]);
+        let mut frames = Calls::new(damped(), Kernel::FramePlacements, inputs, 1);
+        frames.run(5);
+        assert_eq!(frames.model.calls.get(), [0, 0]);
+        frames.evaluate(0, &mut out);
+        assert!(out.is_empty());
+    }
 }
