@@ -65,6 +65,7 @@ mod params;
 mod plan;
 mod program;
 mod programs;
+mod register_order;
 mod scene;
 mod schedule;
 mod scratch_slots;

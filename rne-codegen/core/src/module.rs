@@ -14,6 +14,7 @@ use crate::error::CodegenError;
 use crate::generation_options::{ForwardDynamicsMethod, GenerationOptions};
 use crate::kernel::{Dims, Kernel};
 use crate::plan::Plan;
+use crate::programs::final_program;
 use crate::scene::Scene;
 use crate::schedule;
 
@@ -124,10 +125,7 @@ fn emit_built(
 ) -> (String, KernelReport) {
     let options = plan.options;
     drop(built.dynamics);
-    let program = match options.fma {
-        true => built.program.fuse_multiply_add(),
-        false => built.program,
-    };
+    let program = final_program(built.program, options.fma);
     let ctx = EmitContext {
         fields: &plan.fields,
         scalar: options.scalar,

@@ -162,13 +162,22 @@ pub fn generate_programs_each(
     })
 }
 
-/// A built kernel's program (multiply-adds fused when `fma`) with its report; `start` is when
-/// its building started.
-fn kernel_program(built: BuiltKernel, kernel: Kernel, fma: bool, start: Instant) -> KernelProgram {
+/// The program every backend is given for a built kernel: its multiply-adds fused when `fma`
+/// ([`Program::fuse_multiply_add`]), then its instructions put in an order that keeps few
+/// values alive at once ([`Program::in_register_order`], after the fusion, which chooses by
+/// the program's order on ties). Neither step changes a value of the unfused or fused program.
+pub(crate) fn final_program(program: Program, fma: bool) -> Program {
     let program = match fma {
-        true => built.program.fuse_multiply_add(),
-        false => built.program,
+        true => program.fuse_multiply_add(),
+        false => program,
     };
+    program.in_register_order()
+}
+
+/// A built kernel's program ([`final_program`]) with its report; `start` is when its building
+/// started.
+fn kernel_program(built: BuiltKernel, kernel: Kernel, fma: bool, start: Instant) -> KernelProgram {
+    let program = final_program(built.program, fma);
     let report = KernelReport {
         kernel,
         ops: program.op_count(),

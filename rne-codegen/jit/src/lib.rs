@@ -68,6 +68,7 @@ mod lanes;
 mod lower;
 mod model;
 mod pipeline;
+mod registers;
 
 pub use batch::Batch;
 pub use error::JitError;

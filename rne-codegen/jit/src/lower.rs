@@ -27,7 +27,7 @@
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
     types, AbiParam, Endianness, FuncRef, Function, InstBuilder, MemFlagsData, Signature,
-    StackSlotData, StackSlotKind, Type, UserFuncName, Value,
+    StackSlot, StackSlotData, StackSlotKind, Type, UserFuncName, Value,
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
@@ -38,6 +38,7 @@ use rustc_hash::FxHashMap;
 
 use crate::code::Extents;
 use crate::model::Tier;
+use crate::registers::{distinct_temps, held_limit, Registers};
 
 /// The name compiled code calls the runtime's sines and cosines by.
 pub(crate) const SIN_COS: &str = "rne_jit_sin_cos_array";
@@ -54,6 +55,10 @@ pub(crate) struct Lowering {
     pub fused: bool,
     /// Where long programs are cut.
     split: Split,
+    /// The most values held in registers ([`Registers`]): at the optimized tier only, where
+    /// the code's speed is what counts; the fast tier's compile time grows with the loads and
+    /// stores this adds.
+    held: Option<usize>,
     builder: FunctionBuilderContext,
 }
 
@@ -149,6 +154,7 @@ impl Lowering {
             sin_cos,
             fused,
             split: Split::for_tier(tier),
+            held: (tier == Tier::Optimized).then(held_limit),
             builder: FunctionBuilderContext::new(),
         })
     }
@@ -186,6 +192,9 @@ impl Lowering {
                 let mut body = Body::new(builder, self.pointer, sin_cos, self.fused, self.lanes);
                 body.temps.start = part.start;
                 body.temps.own = vec![None; part.end - part.start];
+                body.registers = self
+                    .held
+                    .map(|limit| Registers::new(program, part.start, part.end, limit));
                 body.run(program, part, &slots, &outputs, &mut extents)?;
                 body.builder.finalize(config);
             }
@@ -244,6 +253,13 @@ impl Temps {
         match t.checked_sub(self.start) {
             Some(k) if k < self.own.len() => self.own[k],
             _ => self.earlier.get(&t).copied(),
+        }
+    }
+
+    fn remove(&mut self, t: usize) -> Option<Value> {
+        match t.checked_sub(self.start) {
+            Some(k) if k < self.own.len() => self.own[k].take(),
+            _ => self.earlier.remove(&t),
         }
     }
 
@@ -318,8 +334,16 @@ struct Body<'f> {
     lanes: usize,
     ty: Type,
     arrays: [Value; 7],
-    /// Values of this function: instructions', inputs' and constants'.
+    /// Values of this function: instructions' held in registers, inputs' and constants'.
     temps: Temps,
+    /// Which instruction values are held in registers ([`Registers`]), at the optimized tier;
+    /// at the fast tier every value is Cranelift's to place.
+    registers: Option<Registers>,
+    /// Where each instruction value that is not held lives besides scratch: its spill slot
+    /// or its place in the sines' and cosines' array.
+    homes: FxHashMap<usize, (StackSlot, i32)>,
+    /// Spill slots whose values are read no more.
+    free_slots: Vec<StackSlot>,
     inputs: FxHashMap<Symbol, Value>,
     constants: FxHashMap<u64, Value>,
 }
@@ -347,6 +371,9 @@ impl<'f> Body<'f> {
             ty: if lanes == 1 { types::F64 } else { types::F64X2 },
             arrays,
             temps: Temps::default(),
+            registers: None,
+            homes: FxHashMap::default(),
+            free_slots: Vec::new(),
             inputs: FxHashMap::default(),
             constants: FxHashMap::default(),
         }
@@ -366,11 +393,20 @@ impl<'f> Body<'f> {
         self.joint_trig(program, part, extents);
         let mut next_output = outputs.partition_point(|&(t, _)| t < part.start);
         for t in part.start..part.end {
-            let value = match self.temps.get(t) {
-                Some(v) => v,
-                None => self.instruction(program.instrs[t], slots, extents)?,
+            let value = if self.homes.contains_key(&t) {
+                let crosses = slots.contains_key(&t)
+                    || outputs.get(next_output).is_some_and(|&(o, _)| o == t);
+                if !crosses {
+                    continue;
+                }
+                self.home_value(t, slots)?
+            } else if self.registers.is_some() {
+                self.held_instruction(program, t, slots, extents)?
+            } else {
+                let value = self.instruction(program.instrs[t], slots, extents)?;
+                self.temps.insert(t, value);
+                value
             };
-            self.temps.insert(t, value);
             if let Some(&slot) = slots.get(&t) {
                 self.store(Array::Scratch, slot, value);
             }
@@ -412,24 +448,39 @@ impl<'f> Body<'f> {
             .iter()
             .map(|&k| self.input(Symbol::Position(k), extents))
             .collect();
-        let (sines, cosines) = self.sin_cos(&angles);
+        let (slot, at) = self.call_sin_cos(&angles);
         for t in part.start..part.end {
-            let (k, values) = match program.instrs[t] {
-                Instr::Sin(Operand::Input(Symbol::Position(k))) => (k, &sines),
-                Instr::Cos(Operand::Input(Symbol::Position(k))) => (k, &cosines),
+            let (k, array) = match program.instrs[t] {
+                Instr::Sin(Operand::Input(Symbol::Position(k))) => (k, 1),
+                Instr::Cos(Operand::Input(Symbol::Position(k))) => (k, 2),
                 _ => continue,
             };
             let j = joints
                 .iter()
                 .position(|&j| j == k)
                 .expect("collected above");
-            self.temps.insert(t, values[j]);
+            self.homes.insert(t, (slot, at(j, array)));
         }
     }
 
-    /// `(sin xᵢ, cos xᵢ)` of `angles` through the runtime, by a stack array of the angles and
-    /// their sines and cosines (in lanes, each lane's side by side: one call for all).
+    /// `(sin xᵢ, cos xᵢ)` of `angles`, loaded from [`Body::call_sin_cos`]'s array.
     fn sin_cos(&mut self, angles: &[Value]) -> (Vec<Value>, Vec<Value>) {
+        let (slot, at) = self.call_sin_cos(angles);
+        let (pointer, ty) = (self.pointer, self.ty);
+        let mut load = |array: usize, k: usize| {
+            self.builder
+                .ins()
+                .stack_load(pointer, ty, slot, at(k, array))
+        };
+        let s = (0..angles.len()).map(|k| load(1, k)).collect();
+        let c = (0..angles.len()).map(|k| load(2, k)).collect();
+        (s, c)
+    }
+
+    /// The runtime's sines and cosines of `angles`, by one call on a stack array of the angles
+    /// and their sines and cosines (in lanes, each lane's side by side: one call for all): the
+    /// array, and where in it (`at(k, 1)` the sine of angle k, `at(k, 2)` its cosine).
+    fn call_sin_cos(&mut self, angles: &[Value]) -> (StackSlot, impl Fn(usize, usize) -> i32) {
         let n = angles.len() * self.lanes;
         let width = 8 * self.lanes as i32;
         let bytes = u32::try_from(24 * n).expect("a few joints");
@@ -453,17 +504,107 @@ impl<'f> Body<'f> {
         self.builder
             .ins()
             .call(self.sin_cos, &[start, count, sines, cosines]);
-        let (pointer, ty) = (self.pointer, self.ty);
-        let load =
-            |b: &mut FunctionBuilder, offset: i32| b.ins().stack_load(pointer, ty, slot, offset);
-        let at = |k: usize, array: usize| 8 * (array * n) as i32 + width * k as i32;
-        let s = (0..angles.len())
-            .map(|k| load(&mut self.builder, at(k, 1)))
+        (slot, move |k: usize, array: usize| {
+            8 * (array * n) as i32 + width * k as i32
+        })
+    }
+
+    /// Instruction `t`'s value, its operands brought into registers first and those it read
+    /// for the last time released after; held if it is read again ([`Registers`]).
+    fn held_instruction(
+        &mut self,
+        program: &Program,
+        t: usize,
+        slots: &Slots,
+        extents: &mut Extents,
+    ) -> Result<Value, String> {
+        let reads = distinct_temps(program, t);
+        let reads = reads.as_slice();
+        self.bring_in(reads, slots)?;
+        let value = self.instruction(program.instrs[t], slots, extents)?;
+        let registers = self.registers.as_mut().expect("held values are tracked");
+        let released: Vec<usize> = reads
+            .iter()
+            .copied()
+            .filter(|&r| registers.read(r))
             .collect();
-        let c = (0..angles.len())
-            .map(|k| load(&mut self.builder, at(k, 2)))
+        let evicted = if registers.is_read_again(t) {
+            registers.hold(t);
+            self.temps.insert(t, value);
+            registers.make_room(0, &[])
+        } else {
+            Vec::new()
+        };
+        for r in released {
+            self.release(r);
+        }
+        for e in evicted {
+            self.evict(e, slots);
+        }
+        Ok(value)
+    }
+
+    /// Loads the values instruction reads `reads` that are not held, after evicting what
+    /// must make room for them ([`Registers::make_room`]): the loads come last, next to their
+    /// reader, so that Cranelift can fold each into the operation.
+    fn bring_in(&mut self, reads: &[usize], slots: &Slots) -> Result<(), String> {
+        let missing: Vec<usize> = reads
+            .iter()
+            .copied()
+            .filter(|&t| self.temps.get(t).is_none())
             .collect();
-        (s, c)
+        let registers = self.registers.as_mut().expect("held values are tracked");
+        let evicted = registers.make_room(missing.len(), reads);
+        for &t in &missing {
+            registers.hold(t);
+        }
+        for e in evicted {
+            self.evict(e, slots);
+        }
+        for t in missing {
+            let value = self.home_value(t, slots)?;
+            self.temps.insert(t, value);
+        }
+        Ok(())
+    }
+
+    /// Value `t`, no longer held, kept in memory: stored to a spill slot unless it has a
+    /// place already (scratch, the sines' and cosines' array, an earlier spill).
+    fn evict(&mut self, t: usize, slots: &Slots) {
+        let value = self.temps.remove(t).expect("an evicted value is held");
+        if self.homes.contains_key(&t) || slots.contains_key(&t) {
+            return;
+        }
+        let slot = self.free_slots.pop().unwrap_or_else(|| {
+            let bytes = 8 * self.lanes as u32;
+            self.builder.create_sized_stack_slot(StackSlotData::new(
+                StackSlotKind::ExplicitSlot,
+                bytes,
+                if self.lanes == 1 { 3 } else { 4 },
+            ))
+        });
+        self.builder.ins().stack_store(self.pointer, value, slot, 0);
+        self.homes.insert(t, (slot, 0));
+    }
+
+    /// Value `t` is read no more in this function: its register and spill slot are free.
+    fn release(&mut self, t: usize) {
+        self.temps.remove(t);
+        // Spill slots are whole slots (offset 0); the sines and cosines sit past the angles.
+        if let Some((slot, 0)) = self.homes.remove(&t) {
+            self.free_slots.push(slot);
+        }
+    }
+
+    /// Value `t` loaded from where it is kept: its spill slot or place in the sines' and
+    /// cosines' array, else its scratch slot.
+    fn home_value(&mut self, t: usize, slots: &Slots) -> Result<Value, String> {
+        if let Some(&(slot, offset)) = self.homes.get(&t) {
+            let (pointer, ty) = (self.pointer, self.ty);
+            return Ok(self.builder.ins().stack_load(pointer, ty, slot, offset));
+        }
+        let slot = *slots.get(&t).ok_or("a value read before it is computed")?;
+        Ok(self.load(Array::Scratch, slot))
     }
 
     /// One instruction's value.
@@ -586,8 +727,7 @@ impl<'f> Body<'f> {
                 match self.temps.get(t) {
                     Some(v) => v,
                     None => {
-                        let slot = *slots.get(&t).ok_or("a value read before it is computed")?;
-                        let v = self.load(Array::Scratch, slot);
+                        let v = self.home_value(t, slots)?;
                         self.temps.insert(t, v);
                         v
                     }

@@ -58,11 +58,15 @@ pub(crate) struct Compiled {
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub enum Tier {
     /// Cranelift's backtracking register allocator: the faster code.
+    ///
+    /// Both tiers run without Cranelift's optimiser (its e-graph pass): the programs arrive
+    /// optimised and in an order that keeps few values alive (`rne_codegen_core`'s
+    /// `register_order.rs`), which the optimiser would undo by placing each value at its first
+    /// use.
     #[default]
     Optimized,
-    /// Cranelift's single-pass register allocator, without its optimiser: compiles several
-    /// times faster, code about half as fast (the optimiser moves values so that more are
-    /// live at once, which this allocator spills: without it the code is faster too).
+    /// Cranelift's single-pass register allocator: compiles several times faster, code about
+    /// half as fast.
     Fast,
 }
 
@@ -617,7 +621,7 @@ pub(crate) fn host_module(
             .map_err(|e| JitError::UnsupportedHost(format!("setting {name}: {e}")))
     };
     let (optimizer, allocator) = match tier {
-        Tier::Optimized => ("speed", "backtracking"),
+        Tier::Optimized => ("none", "backtracking"),
         Tier::Fast => ("none", "single_pass"),
     };
     set(&mut flags, "opt_level", optimizer)?;

@@ -14,8 +14,8 @@
 //! ```
 //!
 //! `test` names the passes: `lower` (always done: [`Program::lower`]), `distribute`
-//! ([`distribute_constants`] before lowering), `fma` ([`Program::fuse_multiply_add`] after it)
-//! and `split part_len=N` (the program is followed by its split plan, in parts of N
+//! ([`distribute_constants`] before lowering), `fma` ([`Program::fuse_multiply_add`] after it),
+//! `order` ([`Program::in_register_order`] after those) and `split part_len=N` (the program is followed by its split plan, in parts of N
 //! instructions — the plan of a kernel above [`SPLIT_ABOVE`](crate::SPLIT_ABOVE) instructions,
 //! in parts of [`PART_LEN`](crate::PART_LEN), scaled down to a readable size). `joints` and
 //! `parameters` name the symbols (default `joints x y z`: q[0], q[1], q[2], and their
@@ -43,6 +43,8 @@ const EXPECTED: &str = "; expected";
 struct Case {
     distribute: bool,
     fma: bool,
+    /// `order`: [`Program::in_register_order`] after the other passes.
+    order: bool,
     /// `split part_len=N`.
     split: Option<usize>,
     joints: Vec<String>,
@@ -85,6 +87,7 @@ impl Case {
             "lower" => {}
             "distribute" => self.distribute = true,
             "fma" => self.fma = true,
+            "order" => self.order = true,
             _ => match pass.strip_prefix("part_len=").map(str::parse) {
                 Some(Ok(len)) if len > 0 => self.split = Some(len),
                 _ if pass == "split" => self.split = self.split.or(Some(4)),
@@ -114,6 +117,9 @@ impl Case {
         let mut program = Program::lower(&graph, &roots);
         if self.fma {
             program = program.fuse_multiply_add();
+        }
+        if self.order {
+            program = program.in_register_order();
         }
         let mut text = program.to_string();
         if let Some(part_len) = self.split {

@@ -1,0 +1,189 @@
+//! Which of a function's values are held in registers, chosen while it is lowered, so that
+//! Cranelift's allocator is never handed more live values than the processor has registers.
+//!
+//! A straight-line program leaves its allocator one choice: which value to spill when too many
+//! are alive. Belady's rule (*A study of replacement algorithms for a virtual-storage
+//! computer*, IBM Systems Journal, 1966) is optimal for that choice in a fixed order: when a
+//! value must make room, take the one read again furthest ahead. Cranelift's allocator splits
+//! live ranges by its own costs and, on the derivative kernels, spills and reloads about twice
+//! as often (docs/performance.md, "Spilled by the lowering"). The lowering therefore keeps at
+//! most [`HELD`] of its values in registers: an evicted value is stored to the stack once
+//! (unless it already has a place in memory: a scratch slot, the sines' and cosines' array) and
+//! loaded again just before its next reader, where Cranelift folds a load read once into the
+//! operation that reads it. This decides where values live, never what is computed: the bits
+//! are the program's.
+
+use rne_codegen_core::{Operand, Program};
+use rustc_hash::FxHashMap;
+
+/// The most instruction values held in registers at once: x86-64 has 16 vector registers,
+/// AArch64 32; the inputs, constants and the operations' own temporaries take the rest. On
+/// x86-64, 14 ran the derivative kernels fastest of 8, 10, 12, 13, 14, 16 and 24
+/// (docs/performance.md, "Spilled by the lowering"); AArch64's is the same margin, unmeasured.
+pub(crate) const HELD: usize = if cfg!(target_arch = "aarch64") {
+    28
+} else {
+    14
+};
+
+/// [`HELD`], or as `RNE_JIT_HELD` says (a positive number; for measuring other limits).
+pub(crate) fn held_limit() -> usize {
+    std::env::var("RNE_JIT_HELD")
+        .ok()
+        .and_then(|n| n.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(HELD)
+}
+
+/// The values held and where each value is read next.
+pub(crate) struct Registers {
+    limit: usize,
+    /// The first instruction of the function: its own values are numbered from it.
+    start: usize,
+    /// The values of earlier functions read here, numbered after the function's own.
+    earlier: FxHashMap<usize, usize>,
+    /// For each numbered value, where its reads begin in `reads`; one more entry at the end.
+    first: Vec<u32>,
+    /// The instructions reading each value, in order, value after value.
+    reads: Vec<u32>,
+    /// For each numbered value, how many of its reads are done.
+    done: Vec<u32>,
+    /// The values held, in the order they came in.
+    held: Vec<usize>,
+}
+
+impl Registers {
+    /// The reads of instructions `start..end` of `program`, nothing held, at most `limit`
+    /// values held.
+    pub(crate) fn new(program: &Program, start: usize, end: usize, limit: usize) -> Registers {
+        let own = end - start;
+        let mut earlier: FxHashMap<usize, usize> = FxHashMap::default();
+        let mut count: Vec<u32> = vec![0; own];
+        for k in start..end {
+            for &t in distinct_temps(program, k).as_slice() {
+                let id = match t.checked_sub(start) {
+                    Some(id) => id,
+                    None => *earlier.entry(t).or_insert_with(|| {
+                        count.push(0);
+                        count.len() - 1
+                    }),
+                };
+                count[id] += 1;
+            }
+        }
+        let mut first = Vec::with_capacity(count.len() + 1);
+        let mut total = 0u32;
+        for &c in &count {
+            first.push(total);
+            total += c;
+        }
+        first.push(total);
+        let mut registers = Registers {
+            limit,
+            start,
+            earlier,
+            first,
+            reads: vec![0; total as usize],
+            done: vec![0; count.len()],
+            held: Vec::new(),
+        };
+        for k in start..end {
+            for &t in distinct_temps(program, k).as_slice() {
+                let id = registers.id(t);
+                let at = registers.first[id] + registers.done[id];
+                registers.reads[at as usize] = k as u32;
+                registers.done[id] += 1;
+            }
+        }
+        registers.done.fill(0);
+        registers
+    }
+
+    /// Value `t`'s number.
+    fn id(&self, t: usize) -> usize {
+        match t.checked_sub(self.start) {
+            Some(id) => id,
+            None => self.earlier[&t],
+        }
+    }
+
+    /// Where value `t` is read next, `u32::MAX` if nowhere.
+    fn next_read(&self, t: usize) -> u32 {
+        let id = self.id(t);
+        let at = self.first[id] + self.done[id];
+        if at < self.first[id + 1] {
+            self.reads[at as usize]
+        } else {
+            u32::MAX
+        }
+    }
+
+    /// Whether value `t` is read again in this function.
+    pub(crate) fn is_read_again(&self, t: usize) -> bool {
+        self.next_read(t) != u32::MAX
+    }
+
+    /// The values to evict so that `incoming` more fit, the ones read furthest ahead first,
+    /// never one of `keep` (the operands of the instruction about to be lowered). They are no
+    /// longer held when this returns.
+    pub(crate) fn make_room(&mut self, incoming: usize, keep: &[usize]) -> Vec<usize> {
+        let mut evicted = Vec::new();
+        while self.held.len() + incoming > self.limit {
+            let furthest = self
+                .held
+                .iter()
+                .enumerate()
+                .filter(|(_, t)| !keep.contains(t))
+                .max_by_key(|(_, &t)| self.next_read(t))
+                .map(|(k, _)| k);
+            let Some(k) = furthest else { break };
+            evicted.push(self.held.remove(k));
+        }
+        evicted
+    }
+
+    /// Value `t` is now in a register.
+    pub(crate) fn hold(&mut self, t: usize) {
+        self.held.push(t);
+    }
+
+    /// Value `t` was read by the instruction being lowered: whether that was its last read
+    /// here (then it is no longer held).
+    pub(crate) fn read(&mut self, t: usize) -> bool {
+        let id = self.id(t);
+        self.done[id] += 1;
+        let last = self.first[id] + self.done[id] == self.first[id + 1];
+        if last {
+            self.held.retain(|&h| h != t);
+        }
+        last
+    }
+}
+
+/// The distinct instruction values one instruction reads (at most three).
+pub(crate) struct Reads {
+    temps: [usize; 3],
+    len: usize,
+}
+
+impl Reads {
+    pub(crate) fn as_slice(&self) -> &[usize] {
+        &self.temps[..self.len]
+    }
+}
+
+/// The instruction values instruction `k` reads, each once.
+pub(crate) fn distinct_temps(program: &Program, k: usize) -> Reads {
+    let mut reads = Reads {
+        temps: [0; 3],
+        len: 0,
+    };
+    for t in program.instrs[k].operands().filter_map(Operand::temp) {
+        let t = t as usize;
+        if !reads.as_slice().contains(&t) {
+            reads.temps[reads.len] = t;
+            reads.len += 1;
+        }
+    }
+    reads
+}
