@@ -680,3 +680,31 @@ fn both_tiers_compute_the_same_bits() {
     .unwrap();
     check_against_programs(&fast, &States::new(&fast, 200, 0x71e), "ur5, fast tier");
 }
+
+/// The optimized tier's choice of the values held in registers (rne-jit `registers.rs`) with
+/// room for only two, and programs cut into parts of 300 instructions: nearly every value is
+/// stored and loaded again, from its spill slot, its scratch slot or the sines' and cosines'
+/// array, and spill slots are reused, on every kernel of UR5 and the Panda (a tree), scalars
+/// and lanes, bit for bit. The limits are read from the environment when a model is compiled,
+/// so the test runs itself again in a process of its own with them set.
+#[test]
+fn two_registers_and_short_parts_compute_the_same_bits() {
+    const NAME: &str = "two_registers_and_short_parts_compute_the_same_bits";
+    if std::env::var_os("RNE_JIT_HELD").is_none() {
+        let status = std::process::Command::new(std::env::current_exe().unwrap())
+            .args([NAME, "--exact", "--test-threads=1"])
+            .env("RNE_JIT_HELD", "2")
+            .env("RNE_JIT_SPLIT_ABOVE", "600")
+            .env("RNE_JIT_PART_LEN", "300")
+            .status()
+            .unwrap();
+        assert!(status.success(), "the run with two registers failed");
+        return;
+    }
+    for name in ["ur5", "panda"] {
+        let robot = rne_models::builtin::builtin(name).unwrap();
+        let jit =
+            JitModel::compile(&builtin(robot), &Scene::default(), &all_kernels(), name).unwrap();
+        check_against_programs(&jit, &States::new(&jit, 20, 0x2e9), name);
+    }
+}

@@ -545,8 +545,8 @@ impl<'f> Body<'f> {
     }
 
     /// Loads the values instruction reads `reads` that are not held, after evicting what
-    /// must make room for them ([`Registers::make_room`]): the loads come last, next to their
-    /// reader, so that Cranelift can fold each into the operation.
+    /// must make room for them ([`Registers::make_room`]): the loads come last, right before
+    /// their reader.
     fn bring_in(&mut self, reads: &[usize], slots: &Slots) -> Result<(), String> {
         let missing: Vec<usize> = reads
             .iter()

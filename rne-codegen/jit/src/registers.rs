@@ -3,15 +3,14 @@
 //!
 //! A straight-line program leaves its allocator one choice: which value to spill when too many
 //! are alive. Belady's rule (*A study of replacement algorithms for a virtual-storage
-//! computer*, IBM Systems Journal, 1966) is optimal for that choice in a fixed order: when a
+//! computer*, IBM Systems Journal, 1966) gives the fewest reloads in a fixed order: when a
 //! value must make room, take the one read again furthest ahead. Cranelift's allocator splits
 //! live ranges by its own costs and, on the derivative kernels, spills and reloads about twice
 //! as often (docs/performance.md, "Spilled by the lowering"). The lowering therefore keeps at
 //! most [`HELD`] of its values in registers: an evicted value is stored to the stack once
 //! (unless it already has a place in memory: a scratch slot, the sines' and cosines' array) and
-//! loaded again just before its next reader, where Cranelift folds a load read once into the
-//! operation that reads it. This decides where values live, never what is computed: the bits
-//! are the program's.
+//! loaded again just before its next reader. This decides where values live, never what is
+//! computed: the bits are the program's.
 
 use rne_codegen_core::{Operand, Program};
 use rustc_hash::FxHashMap;
@@ -186,4 +185,60 @@ pub(crate) fn distinct_temps(program: &Program, k: usize) -> Reads {
         }
     }
     reads
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Registers;
+    use rne_codegen_core::{Instr, Operand, Program};
+    use rne_symbolic::Symbol;
+
+    /// t0 = x + y, t1 = x·y, t2 = x − y, t3 = t0 + t1, t4 = t2·t0: t0 is read by t3 and t4,
+    /// t1 by t3, t2 by t4.
+    fn program() -> Program {
+        let (x, y) = (
+            Operand::Input(Symbol::Position(0)),
+            Operand::Input(Symbol::Position(1)),
+        );
+        let t = Operand::Temp;
+        Program {
+            instrs: vec![
+                Instr::Add(x, y),
+                Instr::Mul(x, y),
+                Instr::Sub(x, y),
+                Instr::Add(t(0), t(1)),
+                Instr::Mul(t(2), t(0)),
+            ],
+            outputs: vec![t(3), t(4)],
+        }
+    }
+
+    /// Room is made by evicting the value read furthest ahead (Belady's rule), never one the
+    /// next instruction reads.
+    #[test]
+    fn the_value_read_furthest_ahead_makes_room() {
+        let mut registers = Registers::new(&program(), 0, 5, 2);
+        for t in 0..3 {
+            registers.hold(t);
+        }
+        // t2 is read at instruction 4, t0 and t1 at 3.
+        assert_eq!(registers.make_room(0, &[]), vec![2]);
+        registers.hold(2);
+        assert_eq!(registers.make_room(0, &[2]).len(), 1);
+        assert_eq!(registers.make_room(1, &[0, 1, 2]), Vec::<usize>::new());
+    }
+
+    /// A value is released at its last read, not before.
+    #[test]
+    fn a_value_is_released_at_its_last_read() {
+        let mut registers = Registers::new(&program(), 0, 5, 4);
+        for t in 0..3 {
+            registers.hold(t);
+        }
+        assert!(!registers.read(0), "t0 is read again by t4");
+        assert!(registers.read(1));
+        assert!(registers.is_read_again(0) && !registers.is_read_again(1));
+        assert!(registers.read(2) && registers.read(0));
+        assert!(!registers.is_read_again(0));
+    }
 }
