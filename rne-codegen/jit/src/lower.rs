@@ -195,6 +195,7 @@ impl Lowering {
                 body.registers = self
                     .held
                     .map(|limit| Registers::new(program, part.start, part.end, limit));
+                body.spill_area.1 = body.registers.as_ref().map_or(0, Registers::most_alive);
                 body.run(program, part, &slots, &outputs, &mut extents)?;
                 body.builder.finalize(config);
             }
@@ -339,11 +340,15 @@ struct Body<'f> {
     /// Which instruction values are held in registers ([`Registers`]), at the optimized tier;
     /// at the fast tier every value is Cranelift's to place.
     registers: Option<Registers>,
-    /// Where each instruction value that is not held lives besides scratch: its spill slot
-    /// or its place in the sines' and cosines' array.
-    homes: FxHashMap<usize, (StackSlot, i32)>,
-    /// Spill slots whose values are read no more.
-    free_slots: Vec<StackSlot>,
+    /// Where each instruction value that is not held lives besides scratch, as an address
+    /// and an offset: its spill slot or its place in the sines' and cosines' array.
+    homes: FxHashMap<usize, (Value, i32)>,
+    /// The spill area: its address once a value is spilled, and its size in slots (the most
+    /// values alive at once: no more can be spilled at once).
+    spill_area: (Option<Value>, usize),
+    /// Spill slots whose values are read no more, and the next slot never used.
+    free_slots: Vec<i32>,
+    next_slot: usize,
     inputs: FxHashMap<Symbol, Value>,
     constants: FxHashMap<u64, Value>,
 }
@@ -373,7 +378,9 @@ impl<'f> Body<'f> {
             temps: Temps::default(),
             registers: None,
             homes: FxHashMap::default(),
+            spill_area: (None, 0),
             free_slots: Vec::new(),
+            next_slot: 0,
             inputs: FxHashMap::default(),
             constants: FxHashMap::default(),
         }
@@ -449,6 +456,7 @@ impl<'f> Body<'f> {
             .map(|&k| self.input(Symbol::Position(k), extents))
             .collect();
         let (slot, at) = self.call_sin_cos(&angles);
+        let base = self.builder.ins().stack_addr(self.pointer, slot, 0);
         for t in part.start..part.end {
             let (k, array) = match program.instrs[t] {
                 Instr::Sin(Operand::Input(Symbol::Position(k))) => (k, 1),
@@ -459,7 +467,7 @@ impl<'f> Body<'f> {
                 .iter()
                 .position(|&j| j == k)
                 .expect("collected above");
-            self.homes.insert(t, (slot, at(j, array)));
+            self.homes.insert(t, (base, at(j, array)));
         }
     }
 
@@ -575,33 +583,53 @@ impl<'f> Body<'f> {
         if self.homes.contains_key(&t) || slots.contains_key(&t) {
             return;
         }
-        let slot = self.free_slots.pop().unwrap_or_else(|| {
-            let bytes = 8 * self.lanes as u32;
-            self.builder.create_sized_stack_slot(StackSlotData::new(
-                StackSlotKind::ExplicitSlot,
-                bytes,
-                if self.lanes == 1 { 3 } else { 4 },
-            ))
-        });
-        self.builder.ins().stack_store(self.pointer, value, slot, 0);
-        self.homes.insert(t, (slot, 0));
+        let offset = match self.free_slots.pop() {
+            Some(offset) => offset,
+            None => {
+                let width = 8 * self.lanes;
+                let offset = (width * self.next_slot) as i32;
+                self.next_slot += 1;
+                offset
+            }
+        };
+        let base = self.spill_base();
+        let flags = self.flags_aligned();
+        self.builder.ins().store(flags, value, base, offset);
+        self.homes.insert(t, (base, offset));
+    }
+
+    /// The spill area's address, the area made at the first spill.
+    fn spill_base(&mut self) -> Value {
+        if let Some(base) = self.spill_area.0 {
+            return base;
+        }
+        let bytes = u32::try_from(8 * self.lanes * self.spill_area.1.max(1)).expect("a frame");
+        let slot = self.builder.create_sized_stack_slot(StackSlotData::new(
+            StackSlotKind::ExplicitSlot,
+            bytes,
+            4,
+        ));
+        let base = self.builder.ins().stack_addr(self.pointer, slot, 0);
+        self.spill_area.0 = Some(base);
+        base
     }
 
     /// Value `t` is read no more in this function: its register and spill slot are free.
     fn release(&mut self, t: usize) {
         self.temps.remove(t);
-        // Spill slots are whole slots (offset 0); the sines and cosines sit past the angles.
-        if let Some((slot, 0)) = self.homes.remove(&t) {
-            self.free_slots.push(slot);
+        if let Some((base, offset)) = self.homes.remove(&t) {
+            if Some(base) == self.spill_area.0 {
+                self.free_slots.push(offset);
+            }
         }
     }
 
     /// Value `t` loaded from where it is kept: its spill slot or place in the sines' and
     /// cosines' array, else its scratch slot.
     fn home_value(&mut self, t: usize, slots: &Slots) -> Result<Value, String> {
-        if let Some(&(slot, offset)) = self.homes.get(&t) {
-            let (pointer, ty) = (self.pointer, self.ty);
-            return Ok(self.builder.ins().stack_load(pointer, ty, slot, offset));
+        if let Some(&(base, offset)) = self.homes.get(&t) {
+            let (ty, flags) = (self.ty, self.flags_aligned());
+            return Ok(self.builder.ins().load(ty, flags, base, offset));
         }
         let slot = *slots.get(&t).ok_or("a value read before it is computed")?;
         Ok(self.load(Array::Scratch, slot))
@@ -791,6 +819,12 @@ impl<'f> Body<'f> {
         let base = self.arrays[array as usize];
         let (offset, flags) = ((8 * self.lanes * index) as i32, self.flags());
         self.builder.ins().store(flags, value, base, offset);
+    }
+
+    /// The stack's accesses: in bounds and aligned (the spill area and the sines' and cosines'
+    /// array are aligned to 16 bytes, a pair of lanes).
+    fn flags_aligned(&self) -> MemFlagsData {
+        MemFlagsData::trusted()
     }
 
     /// The arrays' accesses: in bounds (`Entry::call` checks the extents) and aligned to the

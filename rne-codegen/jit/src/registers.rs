@@ -7,9 +7,11 @@
 //! value must make room, take the one read again furthest ahead. Cranelift's allocator splits
 //! live ranges by its own costs and, on the derivative kernels, spills and reloads about twice
 //! as often (docs/performance.md, "Spilled by the lowering"). The lowering therefore keeps at
-//! most [`HELD`] of its values in registers: an evicted value is stored to the stack once
-//! (unless it already has a place in memory: a scratch slot, the sines' and cosines' array) and
-//! loaded again just before its next reader. This decides where values live, never what is
+//! most [`HELD`] of its values in registers: an evicted value is stored once to a slot of the
+//! function's spill area (unless it already has a place in memory: a scratch slot, the sines'
+//! and cosines' array) and loaded again just before its next reader, by a plain load from the
+//! area's address, which Cranelift folds into the reading operation when it is the load's only
+//! reader. This decides where values live, never what is
 //! computed: the bits are the program's.
 
 use rne_codegen_core::{Operand, Program};
@@ -49,6 +51,9 @@ pub(crate) struct Registers {
     done: Vec<u32>,
     /// The values held, in the order they came in.
     held: Vec<usize>,
+    /// The most values alive at once in the function (computed, or read from an earlier
+    /// function, and read again): a bound on the values spilled at once.
+    most_alive: usize,
 }
 
 impl Registers {
@@ -85,6 +90,7 @@ impl Registers {
             reads: vec![0; total as usize],
             done: vec![0; count.len()],
             held: Vec::new(),
+            most_alive: 0,
         };
         for k in start..end {
             for &t in distinct_temps(program, k).as_slice() {
@@ -95,7 +101,36 @@ impl Registers {
             }
         }
         registers.done.fill(0);
+        registers.most_alive = registers.count_most_alive(own);
         registers
+    }
+
+    /// The most values alive at once over the function's `own` instructions.
+    fn count_most_alive(&self, own: usize) -> usize {
+        // change[k]: values that come alive at instruction k, less those read last at k − 1.
+        let mut change = vec![0i64; own + 1];
+        for id in 0..self.done.len() {
+            let (first, end) = (self.first[id] as usize, self.first[id + 1] as usize);
+            if first == end {
+                continue;
+            }
+            let from = if id < own { id } else { 0 };
+            let last = self.reads[end - 1] as usize - self.start;
+            change[from] += 1;
+            change[last + 1] -= 1;
+        }
+        let mut alive = 0i64;
+        let mut most = 0i64;
+        for c in change {
+            alive += c;
+            most = most.max(alive);
+        }
+        most as usize
+    }
+
+    /// The most values alive at once in the function: no more can be spilled at once.
+    pub(crate) fn most_alive(&self) -> usize {
+        self.most_alive
     }
 
     /// Value `t`'s number.
@@ -226,6 +261,16 @@ mod tests {
         registers.hold(2);
         assert_eq!(registers.make_room(0, &[2]).len(), 1);
         assert_eq!(registers.make_room(1, &[0, 1, 2]), Vec::<usize>::new());
+    }
+
+    /// t0, t1 and t2 are alive together at instructions 2 and 3: at most three values can be
+    /// spilled at once, the size of the spill area.
+    #[test]
+    fn the_spill_area_has_room_for_the_most_values_alive() {
+        assert_eq!(Registers::new(&program(), 0, 5, 2).most_alive(), 3);
+        // A function of instructions 3 and 4: t0, t1 and t2 come from an earlier function,
+        // all alive at its start.
+        assert_eq!(Registers::new(&program(), 3, 5, 2).most_alive(), 3);
     }
 
     /// A value is released at its last read, not before.
