@@ -530,26 +530,27 @@ impl<'f> Body<'f> {
         let reads = reads.as_slice();
         self.bring_in(reads, slots)?;
         let value = self.instruction(program.instrs[t], slots, extents)?;
-        let registers = self.registers.as_mut().expect("held values are tracked");
-        let released: Vec<usize> = reads
-            .iter()
-            .copied()
-            .filter(|&r| registers.read(r))
-            .collect();
-        let evicted = if registers.is_read_again(t) {
-            registers.hold(t);
+        for &r in reads {
+            if self.held().read(r) {
+                self.release(r);
+            }
+        }
+        let evicted = if self.held().is_read_again(t) {
+            self.held().hold(t);
             self.temps.insert(t, value);
-            registers.make_room(0, &[])
+            self.held().make_room(0, &[])
         } else {
             Vec::new()
         };
-        for r in released {
-            self.release(r);
-        }
         for e in evicted {
             self.evict(e, slots);
         }
         Ok(value)
+    }
+
+    /// The held values' bookkeeping (the optimized tier's).
+    fn held(&mut self) -> &mut Registers {
+        self.registers.as_mut().expect("held values are tracked")
     }
 
     /// Loads the values instruction reads `reads` that are not held, after evicting what
@@ -561,10 +562,9 @@ impl<'f> Body<'f> {
             .copied()
             .filter(|&t| self.temps.get(t).is_none())
             .collect();
-        let registers = self.registers.as_mut().expect("held values are tracked");
-        let evicted = registers.make_room(missing.len(), reads);
+        let evicted = self.held().make_room(missing.len(), reads);
         for &t in &missing {
-            registers.hold(t);
+            self.held().hold(t);
         }
         for e in evicted {
             self.evict(e, slots);
