@@ -63,6 +63,7 @@
 mod batch;
 mod code;
 mod compile;
+mod constants;
 mod error;
 mod lanes;
 mod lower;

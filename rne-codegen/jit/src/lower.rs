@@ -37,6 +37,7 @@ use rne_symbolic::Symbol;
 use rustc_hash::FxHashMap;
 
 use crate::code::Extents;
+use crate::constants::ConstantTable;
 use crate::model::Tier;
 use crate::registers::{distinct_temps, held_limit, Registers};
 
@@ -186,6 +187,12 @@ impl Lowering {
                 scratch: scratch * self.lanes,
                 ..Extents::default()
             };
+            let table = match (self.held.is_some(), self.lanes) {
+                (true, 2) => {
+                    ConstantTable::define(module, &mut function, program, part.start..part.end)?
+                }
+                _ => None,
+            };
             let config = module.target_config();
             {
                 let builder = FunctionBuilder::new(&mut function, &mut self.builder);
@@ -196,6 +203,7 @@ impl Lowering {
                     .held
                     .map(|limit| Registers::new(program, part.start, part.end, limit));
                 body.spill_area.1 = body.registers.as_ref().map_or(0, Registers::most_alive);
+                body.constant_table = table.map(|table| (None, table));
                 body.run(program, part, &slots, &outputs, &mut extents)?;
                 body.builder.finalize(config);
             }
@@ -351,6 +359,9 @@ struct Body<'f> {
     next_slot: usize,
     inputs: FxHashMap<Symbol, Value>,
     constants: FxHashMap<u64, Value>,
+    /// In lanes at the optimized tier, the function's constants' table, with its address once
+    /// a constant has been read.
+    constant_table: Option<(Option<Value>, ConstantTable)>,
 }
 
 impl<'f> Body<'f> {
@@ -383,6 +394,7 @@ impl<'f> Body<'f> {
             next_slot: 0,
             inputs: FxHashMap::default(),
             constants: FxHashMap::default(),
+            constant_table: None,
         }
     }
 
@@ -764,7 +776,23 @@ impl<'f> Body<'f> {
         })
     }
 
+    /// Constant `c`'s value. At the optimized tier a new one at each use, next to its reader
+    /// ([`Body::rematerialised`]): a scalar is read from Cranelift's constant pool by the
+    /// operation itself, a pair in lanes from the function's [`ConstantTable`] (or, for a
+    /// constant the table lacks, loaded from the pool by an instruction of its own). At the
+    /// fast tier, one value per function.
     fn constant(&mut self, c: f64) -> Value {
+        if self.rematerialised() {
+            if self.lanes == 1 {
+                return self.builder.ins().f64const(c);
+            }
+            if let Some(v) = self.table_constant(c) {
+                return v;
+            }
+            let pair: Vec<u8> = [c.to_le_bytes(), c.to_le_bytes()].concat();
+            let handle = self.builder.func.dfg.constants.insert(pair.into());
+            return self.builder.ins().vconst(self.ty, handle);
+        }
         if let Some(&v) = self.constants.get(&c.to_bits()) {
             return v;
         }
@@ -776,9 +804,11 @@ impl<'f> Body<'f> {
         v
     }
 
-    /// An input's value, loaded once per function; the extents grow to cover it.
+    /// An input's value, loaded at each use at the optimized tier ([`Body::rematerialised`]:
+    /// a load with one reader is that operation's memory operand), once per function at the
+    /// fast tier; the extents grow to cover it.
     fn input(&mut self, s: Symbol, extents: &mut Extents) -> Value {
-        if let Some(&v) = self.inputs.get(&s) {
+        if let Some(&v) = self.inputs.get(&s).filter(|_| !self.rematerialised()) {
             return v;
         }
         let (array, index, extent) = match s {
@@ -795,8 +825,30 @@ impl<'f> Body<'f> {
         };
         *extent = (*extent).max(lanes * (usize::from(index) + 1));
         let v = self.load(array, usize::from(index));
-        self.inputs.insert(s, v);
+        if !self.rematerialised() {
+            self.inputs.insert(s, v);
+        }
         v
+    }
+
+    /// Constant pair `c` loaded from the function's table, if it has one with `c`: a load
+    /// with one reader, which Cranelift folds into it.
+    fn table_constant(&mut self, c: f64) -> Option<Value> {
+        let (base, table) = self.constant_table.as_mut()?;
+        let offset = table.offset(c)?;
+        let base = *base
+            .get_or_insert_with(|| self.builder.ins().symbol_value(self.pointer, table.global));
+        let flags = MemFlagsData::trusted().with_readonly();
+        Some(self.builder.ins().load(self.ty, flags, base, offset))
+    }
+
+    /// Whether constants and inputs are made anew at each use: at the optimized tier, where
+    /// the lowering chooses which values stay in registers ([`Registers`]). Kept one per
+    /// function, they would live in registers from their first use to their last, beside the
+    /// values held, and Cranelift would spill and reload them (docs/performance.md,
+    /// "Constants and inputs at each use").
+    fn rematerialised(&self) -> bool {
+        self.registers.is_some()
     }
 
     /// Value `index` of `array`: in lanes, the pair at `2·index` (the parameters, shared by
