@@ -14,7 +14,9 @@ PYTHON must import both `rne` (pip install python/) and `pinocchio`, and `mujoco
 column (left empty, saying so, without it); docs/python.md gives the command and the table it
 printed. Times are the best of R repetitions, in µs per state:
 one thread's by the process's CPU time (time.process_time: what a run costs, whatever else the
-machine runs), the threaded ones' by wall time (time.perf_counter).
+machine runs), the threaded ones' by wall time (time.perf_counter). The cells of a table row
+are timed in alternation, one run of each per repetition, so that the ratios compare the same
+minutes of a noisy machine.
 """
 import argparse
 import os
@@ -55,21 +57,19 @@ def best(f, repeats, clock=time.perf_counter, number=1):
     return min(timeit.repeat(f, timer=clock, number=number, repeat=repeats)) / number
 
 
-def cpu(f, repeats, number=1):
-    """The shortest CPU time of this process over `repeats` runs of f() on one thread, s per
-    call: what a run costs whatever else the machine runs (its wall time grows with the
-    machine's load)."""
-    return best(f, repeats, time.process_time, number)
-
-
-def cpu_alternating(fs, repeats, number=1):
-    """[`cpu`] of each of `fs`, their runs alternating (f₁, f₂, …, f₁, f₂, …), so that a slow
-    spell of the machine falls on all of them alike."""
-    times = [[] for _ in fs]
+def alternating(cases, repeats):
+    """The shortest time of each of `cases` over `repeats` rounds, s per call: a case is
+    (f, clock, number), `number` calls of f() timed by `clock` (time.process_time for one
+    thread, time.perf_counter for several), or None (its time None). Within a round the
+    cases run one after the other (f₁, f₂, …, f₁, f₂, …), so that a slow spell of the machine
+    falls on all of them alike and the ratios of a row compare runs of the same minutes."""
+    times = [[] for _ in cases]
     for _ in range(repeats):
-        for f, t in zip(fs, times):
-            t.append(cpu(f, 1, number))
-    return [min(t) for t in times]
+        for case, t in zip(cases, times):
+            if case is not None:
+                f, clock, number = case
+                t.append(best(f, 1, clock, number))
+    return [min(t) if t else None for t in times]
 
 
 def states(model, n, seed=0):
@@ -186,12 +186,14 @@ def batch_rows(name, model, scalar, peer, mj, threads, repeats):
              lambda: model.computeRNEADerivatives(q, v, a, threads=threads),
              peer.loop(pin.computeRNEADerivatives, q, v, a), None, None),
         ]
+        cpu_clock, wall = time.process_time, time.perf_counter
         for kernel, ours, ours_scalar, ours_t, loop, parallel, mj_loop in cases:
-            t1, ts = (t / n * 1e6 for t in cpu_alternating((ours, ours_scalar), r, number))
-            tl = cpu(loop, r, number) / n * 1e6
-            tt = best(ours_t, r, number=number) / n * 1e6
-            tp = best(parallel, r, number=number) / n * 1e6 if parallel else None
-            tm = cpu(mj_loop, r, number) / n * 1e6 if mj_loop else None
+            timed = alternating([
+                (ours, cpu_clock, number), (ours_scalar, cpu_clock, number),
+                (ours_t, wall, number), (loop, cpu_clock, number),
+                parallel and (parallel, wall, number), mj_loop and (mj_loop, cpu_clock, number),
+            ], r)
+            t1, ts, tt, tl, tp, tm = (t and t / n * 1e6 for t in timed)
             rows.append((name, kernel, n, ts, t1, tt, tl, tp, tm))
     return rows
 
@@ -214,9 +216,13 @@ def single_rows(name, model, scalar, peer, mj, repeats):
          lambda: scalar.computeRNEADerivatives(q, v, a),
          lambda: pin.computeRNEADerivatives(m, d, q0, v0, a0), None),
     ]:
-        call, pin_call = (cpu(f, repeats, calls) * 1e6 for f in (one, theirs))
-        own = cpu(batch, max(repeats, 3)) / 10_000 * 1e6
-        mj_call = cpu(mj_one, repeats, calls) * 1e6 if mj_one else None
+        clock = time.process_time
+        call, own, pin_call, mj_call = alternating([
+            (one, clock, calls), (batch, clock, 1), (theirs, clock, calls),
+            mj_one and (mj_one, clock, calls),
+        ], max(repeats, 3))
+        call, own, pin_call = call * 1e6, own / 10_000 * 1e6, pin_call * 1e6
+        mj_call = mj_call and mj_call * 1e6
         rows.append((name, kernel, call, own, call - own, pin_call, mj_call))
     return rows
 
