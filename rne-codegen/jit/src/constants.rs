@@ -2,8 +2,8 @@
 //! read by the operation that uses it.
 //!
 //! x86-64 reads an operation's second operand from memory, and Cranelift folds a `load` with
-//! one reader into it; a constant pair (`vconst`) it loads into a register by an instruction
-//! of its own. At the optimized tier a constant is made anew at each use (`lower.rs`): in
+//! one reader into it when that reader's own value is read once; a constant pair (`vconst`)
+//! it always loads into a register by an instruction of its own. At the optimized tier a constant is made anew at each use (`lower.rs`): in
 //! lanes, from this table, each constant twice (one per lane) at its own 16 bytes. Scalar
 //! constants need no table: Cranelift reads `f64const` from its constant pool as the operand.
 

@@ -832,7 +832,8 @@ impl<'f> Body<'f> {
     }
 
     /// Constant pair `c` loaded from the function's table, if it has one with `c`: a load
-    /// with one reader, which Cranelift folds into it.
+    /// with one reader, which Cranelift folds into that reader when the reader's own value is
+    /// read once (it never folds into an operation whose value has several readers).
     fn table_constant(&mut self, c: f64) -> Option<Value> {
         let (base, table) = self.constant_table.as_mut()?;
         let offset = table.offset(c)?;
