@@ -23,6 +23,14 @@ pub(crate) struct ConstantTable {
 /// Bytes per entry: one `f64` per lane, two lanes.
 const ENTRY: usize = 16;
 
+/// Constant `c` in both lanes of an `f64x2`, as its bytes in memory (little-endian).
+pub(crate) fn lane_pair(c: f64) -> [u8; ENTRY] {
+    let mut pair = [0; ENTRY];
+    pair[..8].copy_from_slice(&c.to_le_bytes());
+    pair[8..].copy_from_slice(&c.to_le_bytes());
+    pair
+}
+
 impl ConstantTable {
     /// Defines in `module` the table of the constants that instructions `range` of `program`
     /// read (and its outputs, when `range` reaches its end), in the order they are first
@@ -47,7 +55,7 @@ impl ConstantTable {
             if let Operand::Const(c) = o {
                 offsets.entry(c.to_bits()).or_insert_with(|| {
                     let at = bytes.len() as i32;
-                    bytes.extend_from_slice(&[c.to_le_bytes(), c.to_le_bytes()].concat());
+                    bytes.extend_from_slice(&lane_pair(c));
                     at
                 });
             }

@@ -37,7 +37,7 @@ use rne_symbolic::Symbol;
 use rustc_hash::FxHashMap;
 
 use crate::code::Extents;
-use crate::constants::ConstantTable;
+use crate::constants::{lane_pair, ConstantTable};
 use crate::model::Tier;
 use crate::registers::{distinct_temps, held_limit, Registers};
 
@@ -789,8 +789,12 @@ impl<'f> Body<'f> {
             if let Some(v) = self.table_constant(c) {
                 return v;
             }
-            let pair: Vec<u8> = [c.to_le_bytes(), c.to_le_bytes()].concat();
-            let handle = self.builder.func.dfg.constants.insert(pair.into());
+            let handle = self
+                .builder
+                .func
+                .dfg
+                .constants
+                .insert(lane_pair(c).to_vec().into());
             return self.builder.ins().vconst(self.ty, handle);
         }
         if let Some(&v) = self.constants.get(&c.to_bits()) {
@@ -805,8 +809,8 @@ impl<'f> Body<'f> {
     }
 
     /// An input's value, loaded at each use at the optimized tier ([`Body::rematerialised`]:
-    /// a load with one reader is that operation's memory operand), once per function at the
-    /// fast tier; the extents grow to cover it.
+    /// the load becomes its reader's memory operand when that reader's value is read once),
+    /// once per function at the fast tier; the extents grow to cover it.
     fn input(&mut self, s: Symbol, extents: &mut Extents) -> Value {
         if let Some(&v) = self.inputs.get(&s).filter(|_| !self.rematerialised()) {
             return v;

@@ -11,8 +11,8 @@
 //! function's spill area (unless it already has a place in memory: a scratch slot, the sines'
 //! and cosines' array) and loaded again just before its next reader, by a plain load from the
 //! area's address, which Cranelift folds into the reading operation when it is the load's only
-//! reader. This decides where values live, never what is computed: the bits are the
-//! program's.
+//! reader and the operation's own value is read once. This decides where values live, never
+//! what is computed: the bits are the program's.
 
 use rne_codegen_core::{Operand, Program};
 use rustc_hash::FxHashMap;
