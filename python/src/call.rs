@@ -2,6 +2,8 @@
 //! a batch of N states computed with the GIL released on one or more threads, and the values
 //! returned as numpy arrays (`layout`).
 
+use std::cell::RefCell;
+
 use numpy::ndarray::IxDyn;
 use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -325,7 +327,7 @@ fn single<'py>(
         qdd: inputs.values(Input::Qdd),
         tau: inputs.values(Input::Tau),
     };
-    let (kernel, per, parts) = (plan.kernel, plan.per, &plan.parts);
+    let (kernel, parts) = (plan.kernel, &plan.parts);
     if parts.len() == 1 && parts[0].shape.is_empty() {
         let mut value = [0.0];
         model
@@ -346,10 +348,37 @@ fn single<'py>(
     let arrays = unsafe { new_arrays(py, parts, None) };
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
     let mut outs = unsafe { slices(&arrays)? };
-    let values = model.evaluate_vec(kernel, state).map_err(errors::jit)?;
-    layout::gather(&values, per, parts, &mut outs, 0);
+    evaluate_gathered(model, plan, state, &mut outs)?;
     drop(outs);
     result(py, arrays, None)
+}
+
+thread_local! {
+    /// The values of the last single call on this thread, before they were gathered into
+    /// their arrays: kept, so that a call neither allocates nor zeroes a buffer of its own
+    /// (docs/python.md, the single call's overhead).
+    static VALUES: RefCell<Vec<f64>> = const { RefCell::new(Vec::new()) };
+}
+
+/// `plan`'s kernel at `state`, its values gathered into `outs` (one slice per part) through
+/// this thread's `VALUES` (a new buffer when that is in use).
+fn evaluate_gathered(
+    model: &JitModel,
+    plan: &Plan,
+    state: State<'_>,
+    outs: &mut [&mut [f64]],
+) -> PyResult<()> {
+    let mut run = |values: &mut Vec<f64>| {
+        values.resize(plan.per, 0.0);
+        model.evaluate(plan.kernel, state, values)?;
+        layout::gather(values, plan.per, &plan.parts, outs, 0);
+        Ok(())
+    };
+    let kept = VALUES.try_with(|cell| cell.try_borrow_mut().ok().map(|mut v| run(&mut v)));
+    kept.ok()
+        .flatten()
+        .unwrap_or_else(|| run(&mut Vec::new()))
+        .map_err(errors::jit)
 }
 
 /// N states (their arrays copied by `Array::read`), computed with the GIL released, on
