@@ -2,10 +2,11 @@
 //! writes it in place, on one thread or several (rne-jit's batch functions); the others
 //! (tuples of matrices, placements) are computed a chunk of states at a time into a buffer
 //! that stays in the processor's cache and gathered from it into their arrays, each thread
-//! taking a contiguous share of the states. The values are the same whatever the chunks and
+//! taking the next chunk when it has finished its last (`rne_jit::share`). The values are the same whatever the chunks and
 //! threads: every state is one call of the same kernel.
 
 use rne_codegen_core::Kernel;
+use rne_jit::share::for_each_shared;
 use rne_jit::{Batch, JitError, JitModel};
 
 use crate::layout::{self, Part};
@@ -18,6 +19,9 @@ const CHUNK: usize = 32;
 /// starting one costs as much as an arm's inverse dynamics at a hundred or so states
 /// (docs/python.md), so a batch takes at most one thread per this many states.
 const MIN_STATES_PER_THREAD: usize = 256;
+
+/// The output slices of a batch or of a chunk of it, one per part of the result.
+type Slices<'o> = Vec<&'o mut [f64]>;
 
 /// One kernel over a batch of states.
 pub(crate) struct Job<'a> {
@@ -38,7 +42,7 @@ pub(crate) struct Job<'a> {
 impl<'a> Job<'a> {
     /// Computes `n` states into `outs` (one slice per part, each `n · part.len()` long) on at
     /// most `threads` threads ([`MIN_STATES_PER_THREAD`]).
-    pub fn run(&self, n: usize, outs: Vec<&mut [f64]>, threads: usize) -> Result<(), JitError> {
+    pub fn run(&self, n: usize, outs: Slices<'_>, threads: usize) -> Result<(), JitError> {
         let (model, kernel) = (self.model, self.kernel);
         if n == 0 {
             return Ok(());
@@ -53,64 +57,31 @@ impl<'a> Job<'a> {
                 t => model.evaluate_batch_threaded(kernel, self.states, out, t),
             };
         }
-        if threads <= 1 {
-            return self.chunks(0, n, outs);
-        }
-        let share = n.div_ceil(threads);
-        let shares = self.split(n, share, outs);
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = shares
-                .into_iter()
-                .map(|(start, count, outs)| scope.spawn(move || self.chunks(start, count, outs)))
-                .collect();
-            handles
-                .into_iter()
-                .try_for_each(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+        let chunks = Chunks {
+            outs,
+            parts: self.parts,
+            start: 0,
+            n,
+        };
+        let buffer = || vec![0.0; CHUNK.min(n) * self.per];
+        for_each_shared(chunks, threads, buffer, |values, (start, k, outs)| {
+            self.chunk(start, k, outs, values)
         })
     }
 
-    /// The output slices split into shares of `share` states: (first state, states, slices).
-    fn split<'o>(
-        &self,
-        n: usize,
-        share: usize,
-        mut outs: Vec<&'o mut [f64]>,
-    ) -> Vec<(usize, usize, Vec<&'o mut [f64]>)> {
-        let mut shares = Vec::new();
-        let mut start = 0;
-        while start < n {
-            let count = share.min(n - start);
-            let (mut mine, mut rest) = (Vec::new(), Vec::new());
-            for (out, part) in outs.into_iter().zip(self.parts) {
-                let (a, b) = out.split_at_mut(count * part.len());
-                mine.push(a);
-                rest.push(b);
-            }
-            shares.push((start, count, mine));
-            outs = rest;
-            start += count;
-        }
-        shares
-    }
-
-    /// States `start..start + count` a chunk at a time, gathered into `outs` (the slices of
-    /// those states).
-    fn chunks(
+    /// States `start..start + k` (at most [`CHUNK`]; `outs` are their slices) computed into
+    /// `values` and gathered from there.
+    fn chunk(
         &self,
         start: usize,
-        count: usize,
-        mut outs: Vec<&mut [f64]>,
+        k: usize,
+        mut outs: Slices<'_>,
+        values: &mut [f64],
     ) -> Result<(), JitError> {
-        let mut values = vec![0.0; CHUNK.min(count) * self.per];
-        let mut done = 0;
-        while done < count {
-            let k = CHUNK.min(count - done);
-            let buffer = &mut values[..k * self.per];
-            let states = self.slice(start + done, k);
-            self.model.evaluate_batch(self.kernel, states, buffer)?;
-            layout::gather(buffer, self.per, self.parts, &mut outs, done);
-            done += k;
-        }
+        let buffer = &mut values[..k * self.per];
+        self.model
+            .evaluate_batch(self.kernel, self.slice(start, k), buffer)?;
+        layout::gather(buffer, self.per, self.parts, &mut outs, 0);
         Ok(())
     }
 
@@ -127,5 +98,40 @@ impl<'a> Job<'a> {
             qdd: cut(self.states.qdd, nv),
             tau: cut(self.states.tau, nv),
         }
+    }
+}
+
+/// A batch's output slices cut into chunks of [`CHUNK`] states: (first state, states, the
+/// chunk's slice of each part).
+struct Chunks<'o, 'p> {
+    /// The slices of the states not handed out yet.
+    outs: Slices<'o>,
+    /// The arrays of the result.
+    parts: &'p [Part],
+    /// The first state not handed out yet.
+    start: usize,
+    /// The number of states.
+    n: usize,
+}
+
+impl<'o> Iterator for Chunks<'o, '_> {
+    type Item = (usize, usize, Slices<'o>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let k = CHUNK.min(self.n - self.start);
+        if k == 0 {
+            return None;
+        }
+        let outs = std::mem::take(&mut self.outs);
+        let (mut chunk, mut rest) = (Slices::new(), Slices::new());
+        for (out, part) in outs.into_iter().zip(self.parts) {
+            let (a, b) = out.split_at_mut(k * part.len());
+            chunk.push(a);
+            rest.push(b);
+        }
+        self.outs = rest;
+        let start = self.start;
+        self.start += k;
+        Some((start, k, chunk))
     }
 }

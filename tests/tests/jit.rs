@@ -513,6 +513,36 @@ fn batches_and_threads_give_the_single_calls() {
     }
 }
 
+/// A batch with bad states fails on the first of them on any number of threads, as one thread
+/// does, though the threads take the states in chunks as they become free.
+#[test]
+fn threads_report_the_first_bad_state() {
+    let robot = rne_models::builtin::builtin("panda-arm").unwrap();
+    let options = GenerationOptions {
+        outputs: vec![Kernel::InverseDynamics],
+        ..GenerationOptions::default()
+    };
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let states = States::new(&jit, 333, 0x71e);
+    let mut arrays = states.end_to_end();
+    let nq = jit.nq();
+    // Two bad states, each with its own entry and value, in different chunks of a thread.
+    arrays.0[0][250 * nq + 1] = f64::NAN;
+    arrays.0[0][300 * nq + 4] = f64::INFINITY;
+    let kernel = Kernel::InverseDynamics;
+    let mut out = vec![0.0; jit.output_len(kernel).unwrap() * states.len()];
+    let one = jit
+        .evaluate_batch(kernel, arrays.batch(), &mut out)
+        .unwrap_err();
+    assert!(one.to_string().contains("`q[1]` is NaN"), "{one}");
+    for threads in [2, 3, 7] {
+        let many = jit
+            .evaluate_batch_threaded(kernel, arrays.batch(), &mut out, threads)
+            .unwrap_err();
+        assert_eq!(many.to_string(), one.to_string(), "{threads} threads");
+    }
+}
+
 /// A model is `Send` and `Sync`: one compiled model serves threads at once.
 #[test]
 fn a_model_is_shared_between_threads() {

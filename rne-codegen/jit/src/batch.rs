@@ -6,6 +6,8 @@ use rne_codegen_core::{Input, Kernel};
 use crate::error::JitError;
 use crate::lanes::{Pair, LANES};
 use crate::model::{JitModel, State};
+#[cfg(feature = "threads")]
+use crate::share::for_each_shared;
 
 /// The arrays of N states, each laid end to end (state i's q is `q[i·NQ..(i+1)·NQ]`); the
 /// arrays a kernel does not take may be empty.
@@ -20,6 +22,11 @@ pub struct Batch<'a> {
     /// N generalised forces.
     pub tau: &'a [f64],
 }
+
+/// States a thread of a shared batch takes at a time: a whole number of pairs of lanes, and
+/// enough work (tens of microseconds for an arm's ID) that taking them costs nothing.
+#[cfg(feature = "threads")]
+pub(crate) const SHARED_CHUNK: usize = 64;
 
 impl JitModel {
     /// `kernel` at every state of `batch`, results laid end to end in `out`: the number of
@@ -86,8 +93,9 @@ impl JitModel {
     }
 
     /// [`JitModel::evaluate_batch`] on `threads` threads (scoped: they end before it returns),
-    /// each taking a contiguous share of the states. The results are those of one thread, bit
-    /// for bit.
+    /// each taking the next [`SHARED_CHUNK`] states when it has finished its last
+    /// ([`for_each_shared`]). The results are those of one thread, bit for bit, and so is the
+    /// error of a bad state (the first one's).
     #[cfg(feature = "threads")]
     pub fn evaluate_batch_threaded(
         &self,
@@ -98,25 +106,20 @@ impl JitModel {
     ) -> Result<(), JitError> {
         let states = self.batch_states(kernel, &batch, out.len())?;
         let per = self.compiled_kernel(kernel)?.outputs().max(1);
-        let threads = threads.clamp(1, states.max(1));
-        // Even shares, so that no pair of lanes straddles two threads; the lanes compiled
-        // before the threads start.
-        let share = states.div_ceil(threads).next_multiple_of(LANES);
+        let threads = threads.clamp(1, states.div_ceil(SHARED_CHUNK).max(1));
+        // The lanes compiled before the threads start.
         if states >= LANES {
             self.lane_kernel(kernel)?;
         }
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = out
-                .chunks_mut(share * per)
-                .enumerate()
-                .map(|(t, out)| {
-                    scope.spawn(move || self.evaluate_share(kernel, &batch, t * share, out))
-                })
-                .collect();
-            handles
-                .into_iter()
-                .try_for_each(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
-        })
+        let chunks = out[..states * per]
+            .chunks_mut(SHARED_CHUNK * per)
+            .enumerate();
+        for_each_shared(
+            chunks,
+            threads,
+            || (),
+            |(), (k, out)| self.evaluate_share(kernel, &batch, k * SHARED_CHUNK, out),
+        )
     }
 
     /// State `i` of `batch`.

@@ -50,6 +50,9 @@
 //! kept until the model is dropped. Each lane performs the scalar kernel's operations, so a
 //! batch gives the single calls' bits. `RNE_JIT_LANES=1`, set when a model is compiled, makes
 //! its batches one state a call (for measuring what the lanes gain).
+//! [`JitModel::evaluate_batch_threaded`] shares a batch between threads that each take the
+//! next 64 states when they are done with the last (`share.rs`), so that a core the machine
+//! slows down holds the batch up by a chunk, not by its share.
 //!
 //! # Limits
 //! - `f64` only; the derivative kernels are built in scalars (the Rust emitter's lanes of
@@ -70,6 +73,8 @@ mod lower;
 mod model;
 mod pipeline;
 mod registers;
+#[cfg(feature = "threads")]
+pub mod share;
 
 pub use batch::Batch;
 pub use error::JitError;
