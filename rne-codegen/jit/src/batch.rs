@@ -93,7 +93,7 @@ impl JitModel {
     }
 
     /// [`JitModel::evaluate_batch`] on `threads` threads (scoped: they end before it returns),
-    /// each taking the next [`SHARED_CHUNK`] states when it has finished its last
+    /// each taking the next 64 states (`SHARED_CHUNK`) when it has finished its last
     /// ([`for_each_shared`]). The results are those of one thread, bit for bit, and so is the
     /// error of a bad state (the first one's).
     #[cfg(feature = "threads")]
