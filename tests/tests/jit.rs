@@ -526,8 +526,9 @@ fn threads_report_the_first_bad_state() {
     let states = States::new(&jit, 333, 0x71e);
     let mut arrays = states.end_to_end();
     let nq = jit.nq();
-    // Two bad states, each with its own entry and value, in different chunks of a thread.
-    arrays.0[0][250 * nq + 1] = f64::NAN;
+    // Two bad states, each with its own entry and value, in different chunks of a thread; the
+    // first is the second state of a pair of lanes.
+    arrays.0[0][251 * nq + 1] = f64::NAN;
     arrays.0[0][300 * nq + 4] = f64::INFINITY;
     let kernel = Kernel::InverseDynamics;
     let mut out = vec![0.0; jit.output_len(kernel).unwrap() * states.len()];

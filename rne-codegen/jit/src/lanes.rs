@@ -73,7 +73,9 @@ impl Pair {
 
 impl JitModel {
     /// The two-lane kernel `lane` at two states, checked, each one's results into its slice of
-    /// `out` (the kernel's outputs twice, state 0's first).
+    /// `out` (the kernel's outputs twice, state 0's first). The values are checked for
+    /// finiteness as they are interleaved; only when one is not are the two states checked one
+    /// by one, for the error a single call would give.
     pub(crate) fn run_pair(
         &self,
         lane: &Compiled,
@@ -83,13 +85,18 @@ impl JitModel {
     ) -> Result<(), JitError> {
         let kernel = lane.kernel();
         for state in &states {
-            self.check_state(kernel, state)?;
+            self.check_lengths(kernel, state)?;
         }
         let [a, b] = states;
-        interleave(a.q, b.q, &mut pair.q);
-        interleave(a.qd, b.qd, &mut pair.qd);
-        interleave(a.qdd, b.qdd, &mut pair.qdd);
-        interleave(a.tau, b.tau, &mut pair.tau);
+        let finite = interleave(a.q, b.q, &mut pair.q)
+            & interleave(a.qd, b.qd, &mut pair.qd)
+            & interleave(a.qdd, b.qdd, &mut pair.qdd)
+            & interleave(a.tau, b.tau, &mut pair.tau);
+        if !finite {
+            for state in &states {
+                self.check_state(kernel, state)?;
+            }
+        }
         let Pair {
             q,
             qd,
@@ -110,10 +117,16 @@ impl JitModel {
 }
 
 /// `a` and `b` side by side into `into`: `a[0], b[0], a[1], b[1], …` (arrays of equal length,
-/// both empty for an input the kernel does not take).
-fn interleave(a: &[f64], b: &[f64], into: &mut Vec<f64>) {
-    into.clear();
-    into.extend(a.iter().zip(b).flat_map(|(&x, &y)| [x, y]));
+/// both empty for an input the kernel does not take); whether every value is finite.
+fn interleave(a: &[f64], b: &[f64], into: &mut Vec<f64>) -> bool {
+    into.resize(2 * a.len().min(b.len()), 0.0);
+    let mut finite = true;
+    for ((into, &x), &y) in into.chunks_exact_mut(LANES).zip(a).zip(b) {
+        into[0] = x;
+        into[1] = y;
+        finite &= x.is_finite() & y.is_finite();
+    }
+    finite
 }
 
 #[cfg(test)]
@@ -121,11 +134,13 @@ mod tests {
     use super::interleave;
 
     #[test]
-    fn interleave_puts_the_two_states_side_by_side() {
+    fn interleave_puts_the_two_states_side_by_side_and_tells_whether_they_are_finite() {
         let mut into = vec![9.0];
-        interleave(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0], &mut into);
+        assert!(interleave(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0], &mut into));
         assert_eq!(into, [1.0, 4.0, 2.0, 5.0, 3.0, 6.0]);
-        interleave(&[], &[], &mut into);
+        assert!(!interleave(&[1.0, 2.0], &[f64::INFINITY, 5.0], &mut into));
+        assert!(!interleave(&[1.0, f64::NAN], &[4.0, 5.0], &mut into));
+        assert!(interleave(&[], &[], &mut into));
         assert!(into.is_empty());
     }
 }

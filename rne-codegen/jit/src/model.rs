@@ -36,6 +36,19 @@ pub struct State<'a> {
     pub tau: &'a [f64],
 }
 
+impl<'a> State<'a> {
+    /// The array of `input` (empty for the standard parameters, which are not a state's).
+    pub(crate) fn input(&self, input: Input) -> &'a [f64] {
+        match input {
+            Input::Q => self.q,
+            Input::Qd => self.qd,
+            Input::Qdd => self.qdd,
+            Input::Tau => self.tau,
+            Input::Standard => &[],
+        }
+    }
+}
+
 thread_local! {
     /// The scratch array of this thread's single calls of split kernels, as long as the
     /// longest it has needed: a call allocates nothing. Every part stores a value to its slot
@@ -394,25 +407,30 @@ impl JitModel {
 
     /// The lengths and finiteness of the arrays `kernel` takes.
     pub(crate) fn check_state(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
+        self.check_lengths(kernel, state)?;
         for &input in kernel.inputs() {
-            let (values, expected) = match input {
-                Input::Q => (state.q, self.nq),
-                Input::Qd => (state.qd, self.nv),
-                Input::Qdd => (state.qdd, self.nv),
-                Input::Tau => (state.tau, self.nv),
-                Input::Standard => {
-                    return Err(JitError::MissingKernel { kernel });
-                }
+            check_finite(kernel, input, state.input(input))?;
+        }
+        Ok(())
+    }
+
+    /// The lengths of the arrays `kernel` takes.
+    pub(crate) fn check_lengths(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
+        for &input in kernel.inputs() {
+            let expected = match input {
+                Input::Q => self.nq,
+                Input::Qd | Input::Qdd | Input::Tau => self.nv,
+                Input::Standard => return Err(JitError::MissingKernel { kernel }),
             };
-            if values.len() != expected {
+            let got = state.input(input).len();
+            if got != expected {
                 return Err(JitError::InputLength {
                     kernel,
                     input,
-                    got: values.len(),
+                    got,
                     expected,
                 });
             }
-            check_finite(kernel, input, values)?;
         }
         Ok(())
     }
