@@ -2,8 +2,8 @@
 //! writes it in place, on one thread or several (rne-jit's batch functions); the others
 //! (tuples of matrices, placements) are computed a chunk of states at a time into a buffer
 //! that stays in the processor's cache and gathered from it into their arrays, each thread
-//! taking the next chunk when it has finished its last (`rne_jit::share`). The values are the same whatever the chunks and
-//! threads: every state is one call of the same kernel.
+//! taking the next chunk when it has finished its last (`rne_jit::share`). The values are the
+//! same whatever the chunks and threads: every state is one call of the same kernel.
 
 use rne_codegen_core::Kernel;
 use rne_jit::share::for_each_shared;
