@@ -2,8 +2,8 @@
 //!
 //! A batch of two or more states compiles its kernel in two lanes at its first call (once per
 //! model and kernel, kept until the model is dropped) and then computes the states two at a
-//! time: their inputs interleaved into one array each, one call, the two results
-//! de-interleaved. Each lane performs the scalar kernel's operations on its own state, so the
+//! time: their inputs interleaved into one array each, one call that stores each state's
+//! results in its own half of the output (`lower.rs`). Each lane performs the scalar kernel's operations on its own state, so the
 //! results are the single calls' bits; an odd last state takes the scalar kernel.
 
 use rne_codegen_core::KernelProgram;
@@ -49,14 +49,13 @@ impl LaneKernel {
     }
 }
 
-/// The interleaved arrays of two states and of their results, reused from pair to pair.
+/// The interleaved inputs of two states and their scratch array, reused from pair to pair.
 #[derive(Default)]
 pub(crate) struct Pair {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
     tau: Vec<f64>,
-    out: Vec<f64>,
     scratch: Vec<f64>,
 }
 
@@ -64,7 +63,6 @@ impl Pair {
     /// The arrays for `lane`'s calls.
     pub(crate) fn new(lane: &Compiled) -> Pair {
         Pair {
-            out: vec![0.0; LANES * lane.outputs()],
             scratch: lane.scratch(),
             ..Pair::default()
         }
@@ -102,16 +100,11 @@ impl JitModel {
             qd,
             qdd,
             tau,
-            out: both,
             scratch,
         } = pair;
         let state = State { q, qd, qdd, tau };
-        self.run_in(lane, state, self.parameters(), both, scratch);
-        let (first, second) = out.split_at_mut(out.len() / 2);
-        for (k, pair) in both.chunks_exact(LANES).enumerate() {
-            first[k] = pair[0];
-            second[k] = pair[1];
-        }
+        // The kernel stores each state's outputs in its own half of `out` (`lower.rs`).
+        self.run_in(lane, state, self.parameters(), out, scratch);
         Ok(())
     }
 }

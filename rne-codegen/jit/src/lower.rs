@@ -20,9 +20,11 @@
 //!
 //! A program is lowered in scalars (`f64`, one state per call) or in two lanes (`f64x2`, two
 //! states per call, for batches): the same instructions on vectors, each lane one state's IEEE
-//! operation, so each lane gets the scalar function's bits. In two lanes every array but the
-//! parameters holds its values interleaved, state 0's and state 1's side by side (`q[2k + l]`
-//! is state l's q_k); the parameters, shared by the states, are loaded once and splat.
+//! operation, so each lane gets the scalar function's bits. In two lanes the inputs and the
+//! scratch array hold their values interleaved, state 0's and state 1's side by side
+//! (`q[2k + l]` is state l's q_k); the outputs are each state's in turn (`out[l·M + k]` is
+//! state l's output k of M), each lane stored by itself, so that a batch's results need no
+//! de-interleaving; the parameters, shared by the states, are loaded once and splat.
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
@@ -197,6 +199,7 @@ impl Lowering {
             {
                 let builder = FunctionBuilder::new(&mut function, &mut self.builder);
                 let mut body = Body::new(builder, self.pointer, sin_cos, self.fused, self.lanes);
+                body.outputs = program.outputs.len();
                 body.temps.start = part.start;
                 body.temps.own = vec![None; part.end - part.start];
                 body.registers = self
@@ -343,6 +346,8 @@ struct Body<'f> {
     lanes: usize,
     ty: Type,
     arrays: [Value; 7],
+    /// The program's number of outputs (where the second lane's outputs start).
+    outputs: usize,
     /// Values of this function: instructions' held in registers, inputs' and constants'.
     temps: Temps,
     /// Which instruction values are held in registers ([`Registers`]), at the optimized tier;
@@ -386,6 +391,7 @@ impl<'f> Body<'f> {
             lanes,
             ty: if lanes == 1 { types::F64 } else { types::F64X2 },
             arrays,
+            outputs: 0,
             temps: Temps::default(),
             registers: None,
             homes: FxHashMap::default(),
@@ -874,7 +880,17 @@ impl<'f> Body<'f> {
 
     fn store(&mut self, array: Array, index: usize, value: Value) {
         let base = self.arrays[array as usize];
-        let (offset, flags) = ((8 * self.lanes * index) as i32, self.flags());
+        let flags = self.flags();
+        if matches!(array, Array::Out) && self.lanes > 1 {
+            // Each lane into its own state's outputs (module docs).
+            for lane in 0..self.lanes {
+                let x = self.builder.ins().extractlane(value, lane as u8);
+                let offset = (8 * (lane * self.outputs + index)) as i32;
+                self.builder.ins().store(flags, x, base, offset);
+            }
+            return;
+        }
+        let offset = (8 * self.lanes * index) as i32;
         self.builder.ins().store(flags, value, base, offset);
     }
 
