@@ -3,8 +3,9 @@
 //! A batch of two or more states compiles its kernel in two lanes at its first call (once per
 //! model and kernel, kept until the model is dropped) and then computes the states two at a
 //! time: their inputs interleaved into one array each, one call that stores each state's
-//! results in its own half of the output (`lower.rs`). Each lane performs the scalar kernel's operations on its own state, so the
-//! results are the single calls' bits; an odd last state takes the scalar kernel.
+//! results in its own half of the output (`lower.rs`). Each lane performs the scalar kernel's
+//! operations on its own state, so the results are the single calls' bits; an odd last state
+//! takes the scalar kernel.
 
 use rne_codegen_core::KernelProgram;
 
