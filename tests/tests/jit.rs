@@ -713,10 +713,11 @@ fn both_tiers_compute_the_same_bits() {
 }
 
 /// The optimized tier's choice of the values held in registers (rne-jit `registers.rs`) with
-/// room for only two, and programs cut into parts of 300 instructions: nearly every value is
-/// stored and loaded again, from its spill slot, its scratch slot or the sines' and cosines'
-/// array, and spill slots are reused, on every kernel of UR5 and the Panda (a tree), scalars
-/// and lanes, bit for bit. The limits are read from the environment when a model is compiled,
+/// room for only two, one window for short addresses (rne-jit `windows.rs`), and programs cut
+/// into parts of 300 instructions: nearly every value is stored and loaded again, from its
+/// spill slot, its scratch slot or the sines' and cosines' array, through a window remade at
+/// almost every access, and spill slots are reused, on every kernel of UR5 and the Panda (a
+/// tree), scalars and lanes, bit for bit. The limits are read from the environment when a model is compiled,
 /// so the test runs itself again in a process of its own with them set.
 #[test]
 fn two_registers_and_short_parts_compute_the_same_bits() {
@@ -725,6 +726,7 @@ fn two_registers_and_short_parts_compute_the_same_bits() {
         let status = std::process::Command::new(std::env::current_exe().unwrap())
             .args([NAME, "--exact", "--test-threads=1"])
             .env("RNE_JIT_HELD", "2")
+            .env("RNE_JIT_WINDOWS", "1")
             .env("RNE_JIT_SPLIT_ABOVE", "600")
             .env("RNE_JIT_PART_LEN", "300")
             .status()

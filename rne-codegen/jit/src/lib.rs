@@ -75,6 +75,7 @@ mod pipeline;
 mod registers;
 #[cfg(feature = "threads")]
 pub mod share;
+mod windows;
 
 pub use batch::Batch;
 pub use error::JitError;

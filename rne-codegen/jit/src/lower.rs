@@ -42,6 +42,7 @@ use crate::code::Extents;
 use crate::constants::{lane_pair, ConstantTable};
 use crate::model::Tier;
 use crate::registers::{distinct_temps, held_limit, Registers};
+use crate::windows::{window_of, windows_limit, Windows};
 
 /// The name compiled code calls the runtime's sines and cosines by.
 pub(crate) const SIN_COS: &str = "rne_jit_sin_cos_array";
@@ -206,6 +207,9 @@ impl Lowering {
                     .held
                     .map(|limit| Registers::new(program, part.start, part.end, limit));
                 body.spill_area.1 = body.registers.as_ref().map_or(0, Registers::most_alive);
+                if body.registers.is_some() {
+                    body.windows = Windows::new(windows_limit());
+                }
                 body.constant_table = table.map(|table| (None, table));
                 body.run(program, part, &slots, &outputs, &mut extents)?;
                 body.builder.finalize(config);
@@ -367,6 +371,9 @@ struct Body<'f> {
     /// In lanes at the optimized tier, the function's constants' table, with its address once
     /// a constant has been read.
     constant_table: Option<(Option<Value>, ConstantTable)>,
+    /// The registers through which the stack, the constants' table and the inputs are
+    /// reached by one-byte displacements, at the optimized tier on x86-64.
+    windows: Windows,
 }
 
 impl<'f> Body<'f> {
@@ -401,6 +408,7 @@ impl<'f> Body<'f> {
             inputs: FxHashMap::default(),
             constants: FxHashMap::default(),
             constant_table: None,
+            windows: Windows::new(0),
         }
     }
 
@@ -601,7 +609,8 @@ impl<'f> Body<'f> {
         if self.homes.contains_key(&t) || slots.contains_key(&t) {
             return;
         }
-        let offset = match self.free_slots.pop() {
+        let base = self.spill_base();
+        let offset = match self.free_slot(base) {
             Some(offset) => offset,
             None => {
                 let width = 8 * self.lanes;
@@ -610,10 +619,39 @@ impl<'f> Body<'f> {
                 offset
             }
         };
-        let base = self.spill_base();
         let flags = self.flags_aligned();
-        self.builder.ins().store(flags, value, base, offset);
+        let (window, at) = self.reach(base, offset, true);
+        self.builder.ins().store(flags, value, window, at);
         self.homes.insert(t, (base, offset));
+    }
+
+    /// A free spill slot, one in a held window ([`Windows`]) if there is one, the most
+    /// recently used window's first.
+    fn free_slot(&mut self, base: Value) -> Option<i32> {
+        for number in self.windows.held_of(base) {
+            let found = self
+                .free_slots
+                .iter()
+                .rposition(|&offset| window_of(offset).0 == number);
+            if let Some(k) = found {
+                return Some(self.free_slots.swap_remove(k));
+            }
+        }
+        self.free_slots.pop()
+    }
+
+    /// The place `offset` bytes from `area` as an address and a displacement: through a
+    /// window ([`Windows`]) when windows are in use and `area` is on the stack (whose
+    /// displacement from `rsp` is the slot's own plus `offset`) or `offset` needs four bytes.
+    fn reach(&mut self, area: Value, offset: i32, stack: bool) -> (Value, i32) {
+        if !self.windows.enabled() || (!stack && (-128..=127).contains(&offset)) {
+            return (area, offset);
+        }
+        let builder = &mut self.builder;
+        self.windows.reach(area, offset, |middle| {
+            let address = builder.ins().iadd_imm_s(area, i64::from(middle));
+            builder.ins().band_imm_s(address, -1)
+        })
     }
 
     /// The spill area's address, the area made at the first spill.
@@ -647,7 +685,8 @@ impl<'f> Body<'f> {
     fn home_value(&mut self, t: usize, slots: &Slots) -> Result<Value, String> {
         if let Some(&(base, offset)) = self.homes.get(&t) {
             let (ty, flags) = (self.ty, self.flags_aligned());
-            return Ok(self.builder.ins().load(ty, flags, base, offset));
+            let (window, at) = self.reach(base, offset, true);
+            return Ok(self.builder.ins().load(ty, flags, window, at));
         }
         let slot = *slots.get(&t).ok_or("a value read before it is computed")?;
         Ok(self.load(Array::Scratch, slot))
@@ -850,7 +889,8 @@ impl<'f> Body<'f> {
         let base = *base
             .get_or_insert_with(|| self.builder.ins().symbol_value(self.pointer, table.global));
         let flags = MemFlagsData::trusted().with_readonly();
-        Some(self.builder.ins().load(self.ty, flags, base, offset))
+        let (window, at) = self.reach(base, offset, false);
+        Some(self.builder.ins().load(self.ty, flags, window, at))
     }
 
     /// Whether constants and inputs are made anew at each use: at the optimized tier, where
@@ -868,14 +908,13 @@ impl<'f> Body<'f> {
         let base = self.arrays[array as usize];
         if self.lanes > 1 && matches!(array, Array::Parameters) {
             let flags = MemFlagsData::trusted();
-            let scalar = self
-                .builder
-                .ins()
-                .load(types::F64, flags, base, (8 * index) as i32);
+            let (window, at) = self.reach(base, (8 * index) as i32, false);
+            let scalar = self.builder.ins().load(types::F64, flags, window, at);
             return self.builder.ins().splat(self.ty, scalar);
         }
         let (offset, flags, ty) = ((8 * self.lanes * index) as i32, self.flags(), self.ty);
-        self.builder.ins().load(ty, flags, base, offset)
+        let (window, at) = self.reach(base, offset, false);
+        self.builder.ins().load(ty, flags, window, at)
     }
 
     fn store(&mut self, array: Array, index: usize, value: Value) {
@@ -891,7 +930,13 @@ impl<'f> Body<'f> {
             return;
         }
         let offset = (8 * self.lanes * index) as i32;
-        self.builder.ins().store(flags, value, base, offset);
+        let (window, at) = match array {
+            // Each output is stored once, in the order computed: a window would rarely serve
+            // a second output before it made room for another.
+            Array::Out => (base, offset),
+            _ => self.reach(base, offset, false),
+        };
+        self.builder.ins().store(flags, value, window, at);
     }
 
     /// The stack's accesses: in bounds and aligned (the spill area and the sines' and cosines'
