@@ -535,13 +535,34 @@ fn threads_report_the_first_bad_state() {
     let one = jit
         .evaluate_batch(kernel, arrays.batch(), &mut out)
         .unwrap_err();
-    assert!(one.to_string().contains("`q[1]` is NaN"), "{one}");
+    assert!(
+        one.to_string()
+            .starts_with("state 251 of the batch: `inverse_dynamics`: `q[1]` is NaN"),
+        "{one}"
+    );
     for threads in [2, 3, 7] {
         let many = jit
             .evaluate_batch_threaded(kernel, arrays.batch(), &mut out, threads)
             .unwrap_err();
         assert_eq!(many.to_string(), one.to_string(), "{threads} threads");
     }
+    // An odd last state, called alone, is named by its number too.
+    let (q, qd, qdd) = (&arrays.0[0], &arrays.0[1], &arrays.0[2]);
+    let nv = jit.nv();
+    let three = Batch {
+        q: &q[249 * nq..252 * nq],
+        qd: &qd[249 * nv..252 * nv],
+        qdd: &qdd[249 * nv..252 * nv],
+        tau: &[],
+    };
+    let per = jit.output_len(kernel).unwrap();
+    let error = jit
+        .evaluate_batch(kernel, three, &mut out[..3 * per])
+        .unwrap_err();
+    assert!(
+        error.to_string().starts_with("state 2 of the batch: "),
+        "{error}"
+    );
 }
 
 /// A model is `Send` and `Sync`: one compiled model serves threads at once.

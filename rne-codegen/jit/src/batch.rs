@@ -23,6 +23,19 @@ pub struct Batch<'a> {
     pub tau: &'a [f64],
 }
 
+impl<'a> Batch<'a> {
+    /// The array of `input` (empty for the standard parameters, which are not a state's).
+    fn input(&self, input: Input) -> &'a [f64] {
+        match input {
+            Input::Q => self.q,
+            Input::Qd => self.qd,
+            Input::Qdd => self.qdd,
+            Input::Tau => self.tau,
+            Input::Standard => &[],
+        }
+    }
+}
+
 /// States a thread of a shared batch takes at a time: a whole number of pairs of lanes, and
 /// enough work (tens of microseconds for an arm's ID) that taking them costs nothing.
 #[cfg(feature = "threads")]
@@ -68,7 +81,7 @@ impl JitModel {
         for (k, out) in paired.chunks_exact_mut(LANES * per).enumerate() {
             let at = first + LANES * k;
             let states = [self.state(batch, at), self.state(batch, at + 1)];
-            self.run_pair(lane, states, out, &mut pair)?;
+            self.run_pair(lane, (states, at), out, &mut pair)?;
         }
         self.evaluate_singles(kernel, batch, first + done, rest)
     }
@@ -86,7 +99,8 @@ impl JitModel {
         let parameters = self.parameters();
         for (k, out) in out.chunks_mut(compiled.outputs().max(1)).enumerate() {
             let state = self.state(batch, first + k);
-            self.check_state(kernel, &state)?;
+            self.check_state(kernel, &state)
+                .map_err(|e| e.in_batch(first + k))?;
             self.run_in(compiled, state, parameters, out, &mut scratch);
         }
         Ok(())
@@ -151,13 +165,7 @@ impl JitModel {
         }
         let states = out_len / per;
         for &input in kernel.inputs() {
-            let (values, n) = match input {
-                Input::Q => (batch.q, self.nq()),
-                Input::Qd => (batch.qd, self.nv()),
-                Input::Qdd => (batch.qdd, self.nv()),
-                Input::Tau => (batch.tau, self.nv()),
-                Input::Standard => return Err(JitError::MissingKernel { kernel }),
-            };
+            let (values, n) = (batch.input(input), self.width(kernel, input)?);
             if values.len() != states * n {
                 return Err(JitError::BatchLength {
                     kernel,

@@ -59,6 +59,15 @@ pub enum JitError {
         /// Its value.
         value: f64,
     },
+    /// A state of a batch failed its check ([`JitError::NonFinite`]): which state, counted
+    /// from 0, and why.
+    #[error("state {state} of the batch: {error}")]
+    InBatch {
+        /// The state's number in the batch.
+        state: usize,
+        /// Its error, as a single call with it would give.
+        error: Box<JitError>,
+    },
     /// The parameters given have the wrong length.
     #[error("the model reads {expected} parameters; {got} were given")]
     ParameterLength {
@@ -81,4 +90,14 @@ pub enum JitError {
         /// States in the batch (from the output array).
         states: usize,
     },
+}
+
+impl JitError {
+    /// This error as state `state`'s of a batch.
+    pub(crate) fn in_batch(self, state: usize) -> JitError {
+        JitError::InBatch {
+            state,
+            error: Box::new(self),
+        }
+    }
 }

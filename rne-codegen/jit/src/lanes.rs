@@ -74,11 +74,12 @@ impl JitModel {
     /// The two-lane kernel `lane` at two states, checked, each one's results into its slice of
     /// `out` (the kernel's outputs twice, state 0's first). The values are checked for
     /// finiteness as they are interleaved; only when one is not are the two states checked one
-    /// by one, for the error a single call would give.
+    /// by one, for the error a single call would give, as the error of the batch's state
+    /// `first` or `first + 1`.
     pub(crate) fn run_pair(
         &self,
         lane: &Compiled,
-        states: [State<'_>; LANES],
+        (states, first): ([State<'_>; LANES], usize),
         out: &mut [f64],
         pair: &mut Pair,
     ) -> Result<(), JitError> {
@@ -92,8 +93,9 @@ impl JitModel {
             & interleave(a.qdd, b.qdd, &mut pair.qdd)
             & interleave(a.tau, b.tau, &mut pair.tau);
         if !finite {
-            for state in &states {
-                self.check_state(kernel, state)?;
+            for (k, state) in states.iter().enumerate() {
+                self.check_state(kernel, state)
+                    .map_err(|e| e.in_batch(first + k))?;
             }
         }
         let Pair {

@@ -417,11 +417,7 @@ impl JitModel {
     /// The lengths of the arrays `kernel` takes.
     pub(crate) fn check_lengths(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
         for &input in kernel.inputs() {
-            let expected = match input {
-                Input::Q => self.nq,
-                Input::Qd | Input::Qdd | Input::Tau => self.nv,
-                Input::Standard => return Err(JitError::MissingKernel { kernel }),
-            };
+            let expected = self.width(kernel, input)?;
             let got = state.input(input).len();
             if got != expected {
                 return Err(JitError::InputLength {
@@ -433,6 +429,17 @@ impl JitModel {
             }
         }
         Ok(())
+    }
+
+    /// Values per state of `kernel`'s `input`: NQ for q, NV for q̇, q̈ and τ. The standard
+    /// parameters are no state's: a kernel taking them is called through
+    /// [`JitModel::base_parameters`], not with states.
+    pub(crate) fn width(&self, kernel: Kernel, input: Input) -> Result<usize, JitError> {
+        match input {
+            Input::Q => Ok(self.nq),
+            Input::Qd | Input::Qdd | Input::Tau => Ok(self.nv),
+            Input::Standard => Err(JitError::MissingKernel { kernel }),
+        }
     }
 
     /// The compiled kernel, for the batch functions.
