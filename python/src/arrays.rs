@@ -12,6 +12,8 @@ use numpy::{
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
+use crate::pool;
+
 /// An argument read as float64 values, state after state.
 pub(crate) struct Array<'py> {
     /// The array (kept alive while its values are read in place).
@@ -72,6 +74,15 @@ impl<'py> Array<'py> {
     }
 }
 
+impl Drop for Array<'_> {
+    /// A batch's copy is kept for the next batch (`pool`).
+    fn drop(&mut self) {
+        if let Some(copy) = self.copy.take() {
+            pool::give_back(copy);
+        }
+    }
+}
+
 /// The number of states of an array of `shape`: `None` for one state (1-D of `width`),
 /// `Some(N)` for a 2-D (N, `width`) array.
 fn states(shape: &[usize], name: &str, width: usize) -> PyResult<Option<usize>> {
@@ -90,16 +101,22 @@ fn states(shape: &[usize], name: &str, width: usize) -> PyResult<Option<usize>> 
     }
 }
 
-/// The values of `array` in row order: one copy of its memory when it is C-contiguous
-/// (`contiguous`), else element by element in logical order.
+/// The values of `array` in row order, in a buffer from the pool: one copy of its memory when
+/// it is C-contiguous (`contiguous`), else element by element in logical order.
 fn copy(array: &Bound<'_, PyArrayDyn<f64>>, name: &str, contiguous: bool) -> PyResult<Vec<f64>> {
     let read = array
         .try_readonly()
         .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?;
-    Ok(match read.as_slice() {
-        Ok(values) if contiguous => values.to_vec(),
-        _ => read.as_array().iter().copied().collect(),
-    })
+    let mut values = pool::take(read.len());
+    match read.as_slice() {
+        Ok(from) if contiguous => values.copy_from_slice(from),
+        _ => {
+            for (to, &from) in values.iter_mut().zip(read.as_array().iter()) {
+                *to = from;
+            }
+        }
+    }
+    Ok(values)
 }
 
 /// `object` as a float64 array: itself when it is an aligned float64 array in this machine's

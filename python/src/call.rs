@@ -16,6 +16,7 @@ use crate::arrays::Array;
 use crate::batch::Job;
 use crate::errors;
 use crate::layout::{self, Part, Sizes};
+use crate::pool;
 
 /// The most a base quaternion's norm may differ from 1 (as `rne eval` checks it).
 const QUATERNION_TOLERANCE: f64 = 1e-9;
@@ -229,46 +230,25 @@ fn thread_count(threads: Option<isize>) -> PyResult<usize> {
     }
 }
 
-/// A new C-contiguous array of `shape`, with `lead` (the batch size) first when given; its
-/// values are not initialised.
+/// A new C-contiguous array of `shape` (one state's result); its values are not initialised.
 ///
 /// # Safety
 /// Every value must be written before the array is handed to Python.
-unsafe fn new_array<'py>(
-    py: Python<'py>,
-    shape: &[usize],
-    lead: Option<usize>,
-) -> Bound<'py, PyArrayDyn<f64>> {
-    // Kernels' results have at most three axes and a batch adds one: `IxDyn` keeps up to
-    // four without allocating.
-    let mut dims = [0; 4];
-    let axes = lead.into_iter().chain(shape.iter().copied());
-    if shape.len() + usize::from(lead.is_some()) > dims.len() {
-        // SAFETY: as the function's contract says.
-        return unsafe { PyArrayDyn::<f64>::new(py, IxDyn(&axes.collect::<Vec<_>>()), false) };
-    }
-    let mut n = 0;
-    for (slot, d) in dims.iter_mut().zip(axes) {
-        *slot = d;
-        n += 1;
-    }
-    // SAFETY: as the function's contract says.
-    unsafe { PyArrayDyn::<f64>::new(py, IxDyn(&dims[..n]), false) }
+unsafe fn new_array<'py>(py: Python<'py>, shape: &[usize]) -> Bound<'py, PyArrayDyn<f64>> {
+    // SAFETY: as the function's contract says. (`IxDyn` keeps a kernel's at most three axes
+    // without allocating.)
+    unsafe { PyArrayDyn::<f64>::new(py, IxDyn(shape), false) }
 }
 
-/// New C-contiguous arrays, one per part, each with `lead` (the batch size) first when given.
+/// New C-contiguous arrays, one per part (one state's result).
 ///
 /// # Safety
 /// As `new_array`'s: `layout::gather` writes every value of every part (tested in `layout`).
-unsafe fn new_arrays<'py>(
-    py: Python<'py>,
-    parts: &[Part],
-    lead: Option<usize>,
-) -> Vec<Bound<'py, PyArrayDyn<f64>>> {
+unsafe fn new_arrays<'py>(py: Python<'py>, parts: &[Part]) -> Vec<Bound<'py, PyArrayDyn<f64>>> {
     parts
         .iter()
         // SAFETY: as the function's contract says.
-        .map(|p| unsafe { new_array(py, &p.shape, lead) })
+        .map(|p| unsafe { new_array(py, &p.shape) })
         .collect()
 }
 
@@ -338,14 +318,14 @@ fn single<'py>(
     if plan.whole {
         // SAFETY: the kernel writes every value (its output is the whole array) before the
         // array is returned; on an error it is dropped unseen.
-        let array = unsafe { new_array(py, &parts[0].shape, None) };
+        let array = unsafe { new_array(py, &parts[0].shape) };
         // SAFETY: the array was just created and is returned after the slice's last use.
         let out = unsafe { slice(&array)? };
         model.evaluate(kernel, state, out).map_err(errors::jit)?;
         return Ok(array.into_any());
     }
     // SAFETY: `gather` writes every value before the arrays are returned.
-    let arrays = unsafe { new_arrays(py, parts, None) };
+    let arrays = unsafe { new_arrays(py, parts) };
     // SAFETY: the arrays were just created and are returned only after the slices' last use.
     let mut outs = unsafe { slices(&arrays)? };
     evaluate_gathered(model, plan, state, &mut outs)?;
@@ -397,11 +377,10 @@ fn batch<'py>(
         qdd: inputs.values(Input::Qdd),
         tau: inputs.values(Input::Tau),
     };
-    // SAFETY: the kernel (a whole part) or `gather` writes every value before the arrays are
-    // returned; on an error they are dropped unseen.
-    let arrays = unsafe { new_arrays(py, &plan.parts, Some(n)) };
-    // SAFETY: the arrays were just created and are returned only after the slices' last use.
-    let outs = unsafe { slices(&arrays)? };
+    // The values computed into buffers kept between batches (`pool`), which then become the
+    // arrays' own: the kernel (a whole part) or `gather` writes every value.
+    let mut buffers: Vec<Vec<f64>> = plan.parts.iter().map(|p| pool::take(n * p.len())).collect();
+    let outs: Vec<&mut [f64]> = buffers.iter_mut().map(Vec::as_mut_slice).collect();
     let job = Job {
         model,
         kernel: plan.kernel,
@@ -410,7 +389,19 @@ fn batch<'py>(
         parts: &plan.parts,
         whole: plan.whole,
     };
-    py.detach(|| job.run(n, outs, threads))
-        .map_err(errors::jit)?;
+    if let Err(e) = py.detach(|| job.run(n, outs, threads)) {
+        buffers.into_iter().for_each(pool::give_back);
+        return Err(errors::jit(e));
+    }
+    let arrays = buffers
+        .into_iter()
+        .zip(&plan.parts)
+        .map(|(values, part)| {
+            let shape: Vec<usize> = std::iter::once(n)
+                .chain(part.shape.iter().copied())
+                .collect();
+            pool::into_array(py, values, &shape)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
     result(py, arrays, None)
 }

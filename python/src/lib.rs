@@ -20,6 +20,7 @@ mod identify;
 mod layout;
 mod load;
 mod model;
+mod pool;
 
 use pyo3::prelude::*;
 

@@ -61,12 +61,27 @@ def test_batches_equal_loops_and_threads_equal_one_thread(robot, request):
             assert all(t.flags.c_contiguous for t in threaded), name
 
 
-def test_results_are_fresh_contiguous_float64_arrays(ur5):
+def test_results_are_fresh_contiguous_writeable_float64_arrays(ur5):
+    # A batch's arrays own their memory through a base object of rne's (which hands it to the
+    # next batch once the array is freed): each its own, sharing memory with nothing given.
     q, v, a, _ = random_states(ur5, 4, seed=1)
-    for result in (ur5.rnea(q[0], v[0], a[0]), ur5.crba(q), *ur5.computeRNEADerivatives(q, v, a)):
-        assert result.dtype == np.float64 and result.flags.c_contiguous and result.flags.owndata
+    results = (ur5.rnea(q[0], v[0], a[0]), ur5.crba(q), *ur5.computeRNEADerivatives(q, v, a))
+    for k, result in enumerate(results):
+        assert result.dtype == np.float64 and result.flags.c_contiguous and result.flags.writeable
+        assert result.flags.owndata or type(result.base).__name__ == "_BatchValues"
+        for other in (q, v, a, *results[k + 1:]):
+            assert not np.shares_memory(result, other)
+    big = 3000  # above the size from which batches' memory is kept
+    q, v, a, _ = random_states(ur5, big, seed=3)
+    first = ur5.rnea(q, v, a)
+    kept = first.copy()
+    second = ur5.rnea(q[::-1], v[::-1], a[::-1])
+    assert not np.shares_memory(first, second)
+    assert bits(first) == bits(kept), "a live result is never reused"
+    del first
+    assert bits(ur5.rnea(q, v, a)) == bits(kept), "memory given back gives the same values"
     assert isinstance(ur5.computeKineticEnergy(q[0], v[0]), float)
-    assert ur5.computeKineticEnergy(q, v).shape == (4,)
+    assert ur5.computeKineticEnergy(q, v).shape == (big,)
 
 
 def test_an_empty_batch_gives_empty_results(ur5):
