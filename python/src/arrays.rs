@@ -112,7 +112,7 @@ fn copy(array: &Bound<'_, PyArrayDyn<f64>>, name: &str, contiguous: bool) -> PyR
     let read = array
         .try_readonly()
         .map_err(|e| PyValueError::new_err(format!("`{name}` cannot be read: {e}")))?;
-    let mut values = pool::take(read.len());
+    let mut values = pool::take(read.len())?;
     match read.as_slice() {
         Ok(from) if contiguous => values.copy_from_slice(from),
         _ => {

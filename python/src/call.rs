@@ -379,7 +379,11 @@ fn batch<'py>(
     };
     // The values computed into buffers kept between batches (`pool`), which then become the
     // arrays' own: the kernel (a whole part) or `gather` writes every value.
-    let mut buffers: Vec<Vec<f64>> = plan.parts.iter().map(|p| pool::take(n * p.len())).collect();
+    let mut buffers = plan
+        .parts
+        .iter()
+        .map(|p| pool::take(n.saturating_mul(p.len())))
+        .collect::<PyResult<Vec<Vec<f64>>>>()?;
     let outs: Vec<&mut [f64]> = buffers.iter_mut().map(Vec::as_mut_slice).collect();
     let job = Job {
         model,

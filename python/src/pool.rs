@@ -8,14 +8,15 @@
 //! went to page faults (docs/python.md, "Memory kept between batches"). Buffers of
 //! [`MIN_BYTES`] or more are therefore kept here when their arrays are freed, at most
 //! [`MAX_KEPT`] of them and [`MAX_BYTES`] in all, and the next batch takes the smallest that
-//! fits (at most twice the size asked for). A result array owns its buffer through a small Python object ([`Values`]) that
-//! returns it here when the array is freed.
+//! fits (at most twice the size asked for). A result array owns its buffer through a small
+//! Python object ([`Values`]) that returns it here when the array is freed. A buffer that
+//! cannot be allocated is a Python `MemoryError`, never an abort.
 
 use std::sync::{Mutex, MutexGuard};
 
 use numpy::ndarray::{ArrayViewD, IxDyn};
 use numpy::PyArrayDyn;
-use pyo3::exceptions::PyRuntimeError;
+use pyo3::exceptions::{PyMemoryError, PyRuntimeError};
 use pyo3::prelude::*;
 
 /// Buffers smaller than this are left to the allocator, which reuses small blocks itself
@@ -38,21 +39,26 @@ fn kept() -> MutexGuard<'static, Vec<Vec<f64>>> {
 }
 
 /// A buffer of `len` values: the smallest kept one that holds them and is not more than twice
-/// as large, else a new one. Its values are those a previous batch left, or zeros: the caller
-/// writes every one.
-pub(crate) fn take(len: usize) -> Vec<f64> {
-    let reused = if len * 8 >= MIN_BYTES {
+/// as large, else a new one; a `MemoryError` when it cannot be allocated. Its values are those
+/// a previous batch left, or zeros: the caller writes every one.
+pub(crate) fn take(len: usize) -> PyResult<Vec<f64>> {
+    let reused = if len.saturating_mul(8) >= MIN_BYTES {
         let mut kept = kept();
         let fit = (0..kept.len())
-            .filter(|&k| (len..=2 * len).contains(&kept[k].capacity()))
+            .filter(|&k| (len..=len.saturating_mul(2)).contains(&kept[k].capacity()))
             .min_by_key(|&k| kept[k].capacity());
-        fit.map(|k| kept.swap_remove(k))
+        fit.map(|k| kept.remove(k))
     } else {
         None
     };
     let mut buffer = reused.unwrap_or_default();
+    if let Some(more) = len.checked_sub(buffer.len()) {
+        buffer.try_reserve_exact(more).map_err(|e| {
+            PyMemoryError::new_err(format!("cannot allocate {len} float64 values: {e}"))
+        })?;
+    }
     buffer.resize(len, 0.0);
-    buffer
+    Ok(buffer)
 }
 
 /// Keeps `buffer` for a later batch when it is large enough, the one kept longest making room.
@@ -112,21 +118,21 @@ mod tests {
     #[test]
     fn large_buffers_are_reused_and_small_ones_are_not_kept() {
         let len = MIN_BYTES / 8 * 4;
-        let buffer = take(len);
+        let buffer = take(len).unwrap();
         assert_eq!(buffer.len(), len);
         let address = buffer.as_ptr();
         give_back(buffer);
-        let again = take(len / 2 + MIN_BYTES / 8);
+        let again = take(len / 2 + MIN_BYTES / 8).unwrap();
         assert_eq!(again.as_ptr(), address, "the kept buffer is reused");
         assert_eq!(again.len(), len / 2 + MIN_BYTES / 8);
         give_back(again);
-        let smaller = take(MIN_BYTES / 8);
+        let smaller = take(MIN_BYTES / 8).unwrap();
         assert_ne!(
             smaller.as_ptr(),
             address,
             "a buffer over twice the size is left kept"
         );
-        let small = take(16);
+        let small = take(16).unwrap();
         let small_address = small.as_ptr();
         give_back(small);
         assert!(kept().iter().all(|b| b.as_ptr() != small_address));
@@ -134,5 +140,9 @@ mod tests {
             give_back(vec![0.0; len]);
         }
         assert_eq!(kept().len(), MAX_KEPT, "the ones kept longest made room");
+        assert!(
+            take(usize::MAX / 4).is_err(),
+            "more than memory can hold is an error"
+        );
     }
 }

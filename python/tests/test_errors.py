@@ -34,6 +34,15 @@ def test_mixed_or_uneven_batches_raise(ur5, states):
         ur5.rnea(q, v, a[:3])
 
 
+def test_a_batch_too_large_for_memory_raises_memory_error(ur5, states):
+    # A broadcast view holds 10**17 states in no memory; rne's copy of them (4.8e18 bytes,
+    # beyond any address space) cannot be allocated: a MemoryError, not an abort.
+    q, v, a, _ = states
+    huge = np.broadcast_to(q[0], (10**17, ur5.nq))
+    with pytest.raises(MemoryError, match=r"cannot allocate 600000000000000000 float64 values"):
+        ur5.rnea(huge, huge, huge)
+
+
 def test_non_finite_values_raise_naming_the_entry(ur5, states):
     q, v, a, _ = states
     bad = q.copy()
