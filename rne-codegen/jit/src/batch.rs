@@ -24,15 +24,10 @@ pub struct Batch<'a> {
 }
 
 impl<'a> Batch<'a> {
-    /// The array of `input` (empty for the standard parameters, which are not a state's).
+    /// The array of `input`, every state's end to end (as [`State::input`] for one state).
     fn input(&self, input: Input) -> &'a [f64] {
-        match input {
-            Input::Q => self.q,
-            Input::Qd => self.qd,
-            Input::Qdd => self.qdd,
-            Input::Tau => self.tau,
-            Input::Standard => &[],
-        }
+        let Batch { q, qd, qdd, tau } = *self;
+        State { q, qd, qdd, tau }.input(input)
     }
 }
 
