@@ -1,9 +1,10 @@
 //! A batch's states computed with the GIL released. A kernel whose result is its whole output
-//! writes it in place, on one thread or several (rne-jit's batch functions); the others
-//! (tuples of matrices, placements) are computed a chunk of states at a time into a buffer
-//! that stays in the processor's cache and gathered from it into their arrays, each thread
-//! taking the next chunk when it has finished its last (`rne_jit::share`). The values are the
-//! same whatever the chunks and threads: every state is one call of the same kernel.
+//! writes it in place, on one thread or several (rne-jit's batch functions), and so does one
+//! whose result is a tuple of its matrices (∂ID, ∂FD: each matrix into its array); the others
+//! (placements) are computed a chunk of states at a time into a buffer that stays in the
+//! processor's cache and gathered from it into their arrays, each thread taking the next
+//! chunk when it has finished its last (`rne_jit::share`). The values are the same whatever
+//! the chunks and threads: every state is one call of the same kernel.
 
 use rne_codegen_core::Kernel;
 use rne_jit::share::for_each_shared;
@@ -37,6 +38,9 @@ pub(crate) struct Job<'a> {
     pub parts: &'a [Part],
     /// Whether the one part is the whole output in order (written in place).
     pub whole: bool,
+    /// Whether the parts are the kernel's matrices, each written in place into its array
+    /// (`rne_jit`'s `evaluate_batch_matrices`).
+    pub matrices: bool,
 }
 
 impl<'a> Job<'a> {
@@ -55,6 +59,13 @@ impl<'a> Job<'a> {
             return match threads {
                 1 => model.evaluate_batch(kernel, self.states, out),
                 t => model.evaluate_batch_threaded(kernel, self.states, out, t),
+            };
+        }
+        if self.matrices {
+            let mut outs = outs;
+            return match threads {
+                1 => model.evaluate_batch_matrices(kernel, self.states, &mut outs),
+                t => model.evaluate_batch_matrices_threaded(kernel, self.states, &mut outs, t),
             };
         }
         let chunks = Chunks {

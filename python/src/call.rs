@@ -9,7 +9,7 @@ use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyTuple};
-use rne_codegen_core::{Input, Kernel};
+use rne_codegen_core::{Input, Kernel, Shape};
 use rne_jit::{Batch, JitModel, State};
 
 use crate::arrays::Array;
@@ -43,6 +43,8 @@ pub(crate) struct Plan {
     parts: Vec<Part>,
     /// Whether the one part is the whole output in order (written in place).
     whole: bool,
+    /// Whether the parts are the kernel's matrices (each written in place into its array).
+    matrices: bool,
     /// Operations per state (the program's), for the threads a batch is worth.
     ops: usize,
 }
@@ -61,6 +63,7 @@ impl Plan {
                     kernel: k.kernel,
                     per,
                     whole: layout::is_whole(&parts, per),
+                    matrices: matches!(k.kernel.shape(), Shape::Matrices(_)),
                     parts,
                     ops: k.report.ops.total(),
                 })
@@ -392,6 +395,7 @@ fn batch<'py>(
         per: plan.per,
         parts: &plan.parts,
         whole: plan.whole,
+        matrices: plan.matrices,
     };
     if let Err(e) = py.detach(|| job.run(n, outs, threads)) {
         buffers.into_iter().for_each(pool::give_back);

@@ -8,7 +8,7 @@
 use std::path::PathBuf;
 
 use rne_codegen::{Dynamics, Kernel};
-use rne_codegen_core::{read_robot, GenerationOptions, ParameterMode, Program, Scene};
+use rne_codegen_core::{read_robot, GenerationOptions, ParameterMode, Program, Scene, Shape};
 use rne_interpreted::StateRef;
 use rne_jit::{Batch, JitError, JitModel, State};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
@@ -140,6 +140,35 @@ fn check_batch(jit: &JitModel, kernel: Kernel, states: &States, expected: &[f64]
         first, None,
         "{what}: `{kernel}` in a batch differs at a state"
     );
+    check_matrices(jit, kernel, &arrays, expected, what);
+}
+
+/// A kernel returning several matrices, batched into one array per matrix
+/// (`evaluate_batch_matrices`, on one thread and on three), gives each state's matrices of
+/// `expected` (the states' results end to end), bit for bit.
+fn check_matrices(jit: &JitModel, kernel: Kernel, arrays: &EndToEnd, expected: &[f64], what: &str) {
+    let Shape::Matrices(count) = kernel.shape() else {
+        return;
+    };
+    let len = jit.nv() * jit.nv();
+    let states = expected.len() / (count * len);
+    for threads in [1, 3] {
+        let mut values = vec![vec![f64::NAN; states * len]; count];
+        let mut outs: Vec<&mut [f64]> = values.iter_mut().map(Vec::as_mut_slice).collect();
+        match threads {
+            1 => jit.evaluate_batch_matrices(kernel, arrays.batch(), &mut outs),
+            t => jit.evaluate_batch_matrices_threaded(kernel, arrays.batch(), &mut outs, t),
+        }
+        .unwrap();
+        for (k, state) in expected.chunks_exact(count * len).enumerate() {
+            for (m, matrix) in state.chunks_exact(len).enumerate() {
+                assert!(
+                    same_bits(&values[m][k * len..(k + 1) * len], matrix),
+                    "{what}: `{kernel}` matrix {m} of state {k} in its own array, {threads} threads"
+                );
+            }
+        }
+    }
 }
 
 fn all_kernels() -> GenerationOptions {
@@ -561,6 +590,58 @@ fn threads_report_the_first_bad_state() {
         .unwrap_err();
     assert!(
         error.to_string().starts_with("state 2 of the batch: "),
+        "{error}"
+    );
+}
+
+/// A batch into one array per matrix refuses another number of arrays, a kernel that does not
+/// return several matrices and arrays of the wrong length, and names its first bad state.
+#[test]
+fn matrix_batches_refuse_wrong_arrays_and_name_a_bad_state() {
+    let robot = rne_models::builtin::builtin("ur5").unwrap();
+    let options = GenerationOptions {
+        outputs: vec![Kernel::InverseDynamics, Kernel::InverseDynamicsDerivatives],
+        ..GenerationOptions::default()
+    };
+    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let states = States::new(&jit, 5, 0x3a7);
+    let mut arrays = states.end_to_end();
+    let len = jit.nv() * jit.nv();
+    let kernel = Kernel::InverseDynamicsDerivatives;
+    let (mut a, mut b, mut c) = (vec![0.0; 5 * len], vec![0.0; 5 * len], vec![0.0; 5 * len]);
+    let error = jit
+        .evaluate_batch_matrices(kernel, arrays.batch(), &mut [&mut a, &mut b, &mut c])
+        .unwrap_err();
+    assert!(
+        matches!(
+            error,
+            JitError::MatrixArrays {
+                got: 3,
+                expected: 2,
+                ..
+            }
+        ),
+        "{error}"
+    );
+    let error = jit
+        .evaluate_batch_matrices(Kernel::InverseDynamics, arrays.batch(), &mut [&mut a])
+        .unwrap_err();
+    assert!(
+        matches!(error, JitError::MatrixArrays { expected: 0, .. }),
+        "{error}"
+    );
+    let error = jit
+        .evaluate_batch_matrices(kernel, arrays.batch(), &mut [&mut a, &mut b[..len]])
+        .unwrap_err();
+    assert!(matches!(error, JitError::OutputLength { .. }), "{error}");
+    arrays.0[1][3 * jit.nv() + 2] = f64::NAN;
+    let error = jit
+        .evaluate_batch_matrices(kernel, arrays.batch(), &mut [&mut a, &mut b])
+        .unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .starts_with("state 3 of the batch: `inverse_dynamics_derivatives`: `qd[2]` is NaN"),
         "{error}"
     );
 }

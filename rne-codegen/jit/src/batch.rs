@@ -3,6 +3,7 @@
 
 use rne_codegen_core::{Input, Kernel};
 
+use crate::code::Out;
 use crate::error::JitError;
 use crate::lanes::{Pair, LANES};
 use crate::model::{JitModel, State};
@@ -76,7 +77,7 @@ impl JitModel {
         for (k, out) in paired.chunks_exact_mut(LANES * per).enumerate() {
             let at = first + LANES * k;
             let states = [self.state(batch, at), self.state(batch, at + 1)];
-            self.run_pair(lane, (states, at), out, &mut pair)?;
+            self.run_pair(lane, (states, at), Out::Whole(out), &mut pair)?;
         }
         self.evaluate_singles(kernel, batch, first + done, rest)
     }
@@ -96,7 +97,7 @@ impl JitModel {
             let state = self.state(batch, first + k);
             self.check_state(kernel, &state)
                 .map_err(|e| e.in_batch(first + k))?;
-            self.run_in(compiled, state, parameters, out, &mut scratch);
+            self.run_in(compiled, state, parameters, Out::Whole(out), &mut scratch);
         }
         Ok(())
     }
@@ -132,7 +133,7 @@ impl JitModel {
     }
 
     /// State `i` of `batch`.
-    fn state<'a>(&self, batch: &Batch<'a>, i: usize) -> State<'a> {
+    pub(crate) fn state<'a>(&self, batch: &Batch<'a>, i: usize) -> State<'a> {
         let slice = |values: &'a [f64], n: usize| values.get(i * n..(i + 1) * n).unwrap_or(&[]);
         State {
             q: slice(batch.q, self.nq()),
@@ -144,7 +145,7 @@ impl JitModel {
 
     /// The number of states of a batch whose results fill `out_len` values, once every array
     /// the kernel takes is known to hold that many.
-    fn batch_states(
+    pub(crate) fn batch_states(
         &self,
         kernel: Kernel,
         batch: &Batch<'_>,

@@ -9,10 +9,13 @@
 //! parameters, the outputs and a scratch array. `lower.rs` generates code that reads
 //! `input[k]` only for the inputs `Symbol`s of its program name, writes `out[k]` only for its
 //! outputs and `scratch[k]` only for the slots it planned, and calls nothing but
-//! [`sin_cos_array`] with pointers into its own stack frame and counts it wrote itself. Those
-//! extents are recorded in [`Extents`] when the program is lowered; [`Entry::call`] takes
-//! slices and refuses any shorter than them, so every access of the compiled code is inside a
-//! live Rust slice. Scalars are `f64`; no pointer escapes the call. The code memory is
+//! [`sin_cos_array`] with pointers into its own stack frame and counts it wrote itself. A
+//! function lowered with output blocks ([`Extents::blocks`] of them) takes as `out` the
+//! address of a table of that many addresses, reads the table's entries and writes
+//! `block[k]` only below its extent. Those extents are recorded in [`Extents`] when the
+//! program is lowered; [`Entry::call`] takes slices (for blocks, a slice per block, from
+//! which it builds the table on its own stack) and refuses any shorter than them, so every
+//! access of the compiled code is inside a live Rust slice. Scalars are `f64`; no pointer escapes the call. The code memory is
 //! written once (`finalize_definitions`) and then only executed, so calls from several
 //! threads at once share nothing mutable: `Code` is `Send` and `Sync`. An `Entry` is only
 //! reachable through the model that owns its `Code` (crate-private, `Copy` but never stored
@@ -49,8 +52,35 @@ pub(crate) struct Extents {
     pub qdd: usize,
     pub tau: usize,
     pub parameters: usize,
+    /// Of `out`, or of each output block when there are blocks.
     pub out: usize,
     pub scratch: usize,
+    /// The number of output blocks: 0 when `out` is the outputs' array itself.
+    pub blocks: usize,
+}
+
+/// The most output blocks a function may be lowered with.
+pub(crate) const MAX_BLOCKS: usize = 4;
+
+/// Where a compiled function writes its outputs.
+pub(crate) enum Out<'a, 'b> {
+    /// One array.
+    Whole(&'a mut [f64]),
+    /// One array per output block, written from value `at` of each on.
+    Blocks {
+        blocks: &'a mut [&'b mut [f64]],
+        at: usize,
+    },
+}
+
+impl<'b> Out<'_, 'b> {
+    /// The same outputs, borrowed again (for the functions of a kernel in turn).
+    pub(crate) fn reborrow(&mut self) -> Out<'_, 'b> {
+        match self {
+            Out::Whole(out) => Out::Whole(out),
+            Out::Blocks { blocks, at } => Out::Blocks { blocks, at: *at },
+        }
+    }
 }
 
 /// One compiled function.
@@ -72,11 +102,12 @@ impl Entry {
         Entry { function, extents }
     }
 
-    /// Runs the function, or `None` when an array is shorter than what it reaches.
+    /// Runs the function, or `None` when an array is shorter than what it reaches or `out`
+    /// is not the kind of outputs it was lowered for.
     pub(crate) fn call(
         &self,
         arrays: Arrays<'_>,
-        out: &mut [f64],
+        out: Out<'_, '_>,
         scratch: &mut [f64],
     ) -> Option<()> {
         let e = self.extents;
@@ -85,13 +116,26 @@ impl Entry {
             && arrays.qdd.len() >= e.qdd
             && arrays.tau.len() >= e.tau
             && arrays.parameters.len() >= e.parameters
-            && out.len() >= e.out
             && scratch.len() >= e.scratch;
-        if !fits {
-            return None;
-        }
-        // SAFETY: every array is at least as long as the code reaches into it (module docs);
-        // the code is alive while `self` is reachable.
+        let mut table = [std::ptr::null_mut::<f64>(); MAX_BLOCKS];
+        let out = match out {
+            Out::Whole(out) if fits && e.blocks == 0 && out.len() >= e.out => out.as_mut_ptr(),
+            Out::Blocks { blocks, at }
+                if fits && e.blocks > 0 && e.blocks == blocks.len() && e.blocks <= MAX_BLOCKS =>
+            {
+                for (entry, block) in table.iter_mut().zip(blocks.iter_mut()) {
+                    if block.len() < at.checked_add(e.out)? {
+                        return None;
+                    }
+                    *entry = block[at..].as_mut_ptr();
+                }
+                table.as_mut_ptr().cast::<f64>()
+            }
+            _ => return None,
+        };
+        // SAFETY: every array is at least as long as the code reaches into it, and for blocks
+        // `out` is a table of the blocks' addresses, each at least its extent long (module
+        // docs); the code is alive while `self` is reachable.
         unsafe {
             (self.function)(
                 arrays.q.as_ptr(),
@@ -99,7 +143,7 @@ impl Entry {
                 arrays.qdd.as_ptr(),
                 arrays.tau.as_ptr(),
                 arrays.parameters.as_ptr(),
-                out.as_mut_ptr(),
+                out,
                 scratch.as_mut_ptr(),
             );
         }
@@ -209,4 +253,93 @@ fn by_count(angles: &[f64], sines: &mut [f64], cosines: &mut [f64]) {
         };
     }
     dispatch!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// The first block address the stand-in function below was given, as an integer.
+    static SEEN: AtomicUsize = AtomicUsize::new(0);
+
+    /// A stand-in for compiled code lowered with blocks: records the table's first entry.
+    unsafe extern "C" fn record(
+        _: *const f64,
+        _: *const f64,
+        _: *const f64,
+        _: *const f64,
+        _: *const f64,
+        out: *mut f64,
+        _: *mut f64,
+    ) {
+        // SAFETY: `Entry::call` passes a table of at least one address for a function with
+        // blocks (the only kind these tests let it call).
+        let first = unsafe { *out.cast::<*mut f64>() };
+        SEEN.store(first as usize, Ordering::SeqCst);
+    }
+
+    fn entry(blocks: usize) -> Entry {
+        let extents = Extents {
+            out: 4,
+            blocks,
+            ..Extents::default()
+        };
+        // SAFETY: `record` has the kernels' signature and lives for the whole program; it
+        // reads the table only, which `call` builds for an entry with blocks.
+        unsafe { Entry::new(record as *const u8, extents) }
+    }
+
+    /// A call with blocks reaches the code only with as many blocks as it was lowered for,
+    /// each long enough from `at` on, and hands it their addresses from `at`; outputs of the
+    /// other kind are refused.
+    #[test]
+    fn blocks_are_checked_before_the_code_is_called() {
+        let arrays = Arrays {
+            q: &[],
+            qd: &[],
+            qdd: &[],
+            tau: &[],
+            parameters: &[],
+        };
+        let (mut a, mut b) = (vec![0.0; 10], vec![0.0; 10]);
+        let two = entry(2);
+        assert!(two.call(arrays, Out::Whole(&mut a), &mut []).is_none());
+        let mut one: Vec<&mut [f64]> = vec![&mut a];
+        let blocks = Out::Blocks {
+            blocks: &mut one,
+            at: 0,
+        };
+        assert!(
+            two.call(arrays, blocks, &mut []).is_none(),
+            "one block of two"
+        );
+        let mut short: Vec<&mut [f64]> = vec![&mut a, &mut b[..5]];
+        let blocks = Out::Blocks {
+            blocks: &mut short,
+            at: 2,
+        };
+        assert!(
+            two.call(arrays, blocks, &mut []).is_none(),
+            "5 values from 2: short of 4"
+        );
+        let mut none: Vec<&mut [f64]> = Vec::new();
+        let blocks = Out::Blocks {
+            blocks: &mut none,
+            at: 0,
+        };
+        assert!(
+            entry(0).call(arrays, blocks, &mut []).is_none(),
+            "no blocks: no table"
+        );
+        SEEN.store(0, Ordering::SeqCst);
+        let expected = a[6..].as_ptr() as usize;
+        let mut fit: Vec<&mut [f64]> = vec![&mut a, &mut b];
+        let blocks = Out::Blocks {
+            blocks: &mut fit,
+            at: 6,
+        };
+        assert!(two.call(arrays, blocks, &mut []).is_some());
+        assert_eq!(SEEN.load(Ordering::SeqCst), expected);
+    }
 }

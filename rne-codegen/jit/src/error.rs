@@ -68,6 +68,17 @@ pub enum JitError {
         /// Its error, as a single call with it would give.
         error: Box<JitError>,
     },
+    /// A batch of a kernel returning several matrices was given arrays for another number
+    /// of them (`JitModel::evaluate_batch_matrices`).
+    #[error("`{kernel}` returns {expected} matrices (0: it is not one that returns several); {got} arrays were given")]
+    MatrixArrays {
+        /// The kernel called.
+        kernel: Kernel,
+        /// The arrays given.
+        got: usize,
+        /// The kernel's matrices.
+        expected: usize,
+    },
     /// The parameters given have the wrong length.
     #[error("the model reads {expected} parameters; {got} were given")]
     ParameterLength {

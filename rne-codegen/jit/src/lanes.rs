@@ -9,7 +9,7 @@
 
 use rne_codegen_core::KernelProgram;
 
-use crate::code::Code;
+use crate::code::{Code, Out};
 use crate::error::JitError;
 use crate::model::{compile_programs, Compiled, JitModel, State, Tier};
 
@@ -33,11 +33,17 @@ pub(crate) struct LaneKernel {
 }
 
 impl LaneKernel {
-    /// `program` in two lanes, with the model's `fma` and tier; Cranelift's message if it
-    /// fails (a bug: the scalar kernel compiled).
-    pub(crate) fn compile(program: &KernelProgram, fma: bool, tier: Tier) -> Result<Self, String> {
+    /// `program` in two lanes with `blocks` output blocks (0: none; `lower.rs`), with the
+    /// model's `fma` and tier; Cranelift's message if it fails (a bug: the scalar kernel
+    /// compiled).
+    pub(crate) fn compile(
+        program: &KernelProgram,
+        fma: bool,
+        tier: Tier,
+        blocks: usize,
+    ) -> Result<Self, String> {
         let (module, _, mut kernels) =
-            compile_programs(&[program], fma, tier, LANES).map_err(|e| e.to_string())?;
+            compile_programs(&[program], fma, tier, (LANES, blocks)).map_err(|e| e.to_string())?;
         let compiled = kernels.pop().ok_or("no kernel was compiled")?;
         Ok(LaneKernel {
             compiled,
@@ -71,16 +77,17 @@ impl Pair {
 }
 
 impl JitModel {
-    /// The two-lane kernel `lane` at two states, checked, each one's results into its slice of
-    /// `out` (the kernel's outputs twice, state 0's first). The values are checked for
-    /// finiteness as they are interleaved; only when one is not are the two states checked one
-    /// by one, for the error a single call would give, as the error of the batch's state
-    /// `first` or `first + 1`.
+    /// The two-lane kernel `lane` at two states, checked, each one's results into `out`: its
+    /// slice of the outputs' array (the kernel's outputs twice, state 0's first) or, for a
+    /// kernel in output blocks, the blocks' arrays (each block's values twice, from the pair's
+    /// place on). The values are checked for finiteness as they are interleaved; only when
+    /// one is not are the two states checked one by one, for the error a single call would
+    /// give, as the error of the batch's state `first` or `first + 1`.
     pub(crate) fn run_pair(
         &self,
         lane: &Compiled,
         (states, first): ([State<'_>; LANES], usize),
-        out: &mut [f64],
+        out: Out<'_, '_>,
         pair: &mut Pair,
     ) -> Result<(), JitError> {
         let kernel = lane.kernel();

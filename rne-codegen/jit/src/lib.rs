@@ -53,6 +53,9 @@
 //! [`JitModel::evaluate_batch_threaded`] shares a batch between threads that each take the
 //! next 64 states when they are done with the last (`share.rs`), so that a core the machine
 //! slows down holds the batch up by a chunk, not by its share.
+//! [`JitModel::evaluate_batch_matrices`] (and `_threaded`) batches a kernel that returns
+//! several matrices (∂ID, ∂FD) into one array per matrix, each lane storing straight into its
+//! matrix's array (`matrices.rs`).
 //!
 //! # Limits
 //! - `f64` only; the derivative kernels are built in scalars (the Rust emitter's lanes of
@@ -70,6 +73,7 @@ mod constants;
 mod error;
 mod lanes;
 mod lower;
+mod matrices;
 mod model;
 mod pipeline;
 mod registers;

@@ -38,7 +38,7 @@ use rne_codegen_core::{Instr, Operand, Program, ScratchSlots, PART_LEN, SPLIT_AB
 use rne_symbolic::Symbol;
 use rustc_hash::FxHashMap;
 
-use crate::code::Extents;
+use crate::code::{Extents, MAX_BLOCKS};
 use crate::constants::{lane_pair, ConstantTable};
 use crate::model::Tier;
 use crate::registers::{distinct_temps, held_limit, Registers};
@@ -63,6 +63,10 @@ pub(crate) struct Lowering {
     /// the code's speed is what counts; the fast tier's compile time grows with the loads and
     /// stores this adds.
     held: Option<usize>,
+    /// The output blocks (0: none): with B blocks, the outputs are cut into B blocks of
+    /// equal length, and `out` is the address of a table of B addresses, one per block, each
+    /// block holding its outputs of each lane in turn (`code.rs`, `Out::Blocks`).
+    pub blocks: usize,
     builder: FunctionBuilderContext,
 }
 
@@ -159,6 +163,7 @@ impl Lowering {
             fused,
             split: Split::for_tier(tier),
             held: (tier == Tier::Optimized).then(held_limit),
+            blocks: 0,
             builder: FunctionBuilderContext::new(),
         })
     }
@@ -172,6 +177,13 @@ impl Lowering {
         name: &str,
         program: &Program,
     ) -> Result<Vec<Lowered>, String> {
+        let blocks = self.blocks;
+        if blocks > MAX_BLOCKS || (blocks > 0 && !program.outputs.len().is_multiple_of(blocks)) {
+            return Err(format!(
+                "{} outputs cannot be cut into {blocks} output blocks",
+                program.outputs.len()
+            ));
+        }
         let parts = parts(program, self.split);
         let (slots, scratch) = crossing_slots(program, &parts);
         let outputs = temp_outputs(program)?;
@@ -201,6 +213,7 @@ impl Lowering {
                 let builder = FunctionBuilder::new(&mut function, &mut self.builder);
                 let mut body = Body::new(builder, self.pointer, sin_cos, self.fused, self.lanes);
                 body.outputs = program.outputs.len();
+                body.blocks = blocks;
                 body.temps.start = part.start;
                 body.temps.own = vec![None; part.end - part.start];
                 body.registers = self
@@ -352,6 +365,8 @@ struct Body<'f> {
     arrays: [Value; 7],
     /// The program's number of outputs (where the second lane's outputs start).
     outputs: usize,
+    /// The output blocks ([`Lowering::blocks`]).
+    blocks: usize,
     /// Values of this function: instructions' held in registers, inputs' and constants'.
     temps: Temps,
     /// Which instruction values are held in registers ([`Registers`]), at the optimized tier;
@@ -399,6 +414,7 @@ impl<'f> Body<'f> {
             ty: if lanes == 1 { types::F64 } else { types::F64X2 },
             arrays,
             outputs: 0,
+            blocks: 0,
             temps: Temps::default(),
             registers: None,
             homes: FxHashMap::default(),
@@ -456,7 +472,8 @@ impl<'f> Body<'f> {
                 }
             }
         }
-        extents.out = program.outputs.len() * self.lanes;
+        extents.out = self.lanes * program.outputs.len() / self.blocks.max(1);
+        extents.blocks = self.blocks;
         self.builder.ins().return_(&[]);
         Ok(())
     }
@@ -920,11 +937,15 @@ impl<'f> Body<'f> {
     fn store(&mut self, array: Array, index: usize, value: Value) {
         let base = self.arrays[array as usize];
         let flags = self.flags();
-        if matches!(array, Array::Out) && self.lanes > 1 {
+        if matches!(array, Array::Out) && (self.lanes > 1 || self.blocks > 0) {
             // Each lane into its own state's outputs (module docs).
+            let (base, per_lane, index) = self.output_place(index);
             for lane in 0..self.lanes {
-                let x = self.builder.ins().extractlane(value, lane as u8);
-                let offset = (8 * (lane * self.outputs + index)) as i32;
+                let x = match self.lanes {
+                    1 => value,
+                    _ => self.builder.ins().extractlane(value, lane as u8),
+                };
+                let offset = (8 * (lane * per_lane + index)) as i32;
                 self.builder.ins().store(flags, x, base, offset);
             }
             return;
@@ -937,6 +958,22 @@ impl<'f> Body<'f> {
             _ => self.reach(base, offset, false),
         };
         self.builder.ins().store(flags, value, window, at);
+    }
+
+    /// Where output `index` goes: the address its lanes are stored from, the values between
+    /// one lane's and the next, and its index there. Without blocks, the outputs' array, all
+    /// outputs, `index`; with blocks, its block's address (read from the table `out` points
+    /// to), the block's length, its index in the block.
+    fn output_place(&mut self, index: usize) -> (Value, usize, usize) {
+        let out = self.arrays[Array::Out as usize];
+        if self.blocks == 0 {
+            return (out, self.outputs, index);
+        }
+        let len = self.outputs / self.blocks;
+        let flags = MemFlagsData::trusted().with_readonly();
+        let block = (index / len) as i32;
+        let address = self.builder.ins().load(self.pointer, flags, out, 8 * block);
+        (address, len, index % len)
     }
 
     /// The stack's accesses: in bounds and aligned (the spill area and the sines' and cosines'

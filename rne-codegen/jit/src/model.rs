@@ -14,7 +14,7 @@ use rne_codegen_core::{
 };
 use rne_symbolic::RobotModel;
 
-use crate::code::{self, Arrays, Code, Entry};
+use crate::code::{self, Arrays, Code, Entry, Out};
 use crate::compile;
 use crate::error::JitError;
 use crate::lanes::{self, LaneKernel};
@@ -118,6 +118,9 @@ pub struct JitModel {
     kernels: Vec<Compiled>,
     /// Each kernel of `kernels` in two lanes, compiled at its first batch (`lanes.rs`).
     lanes: Vec<OnceLock<Result<LaneKernel, String>>>,
+    /// Each kernel returning several matrices in two lanes with an output block per matrix,
+    /// compiled at its first batch into separate arrays (`matrices.rs`).
+    matrix_lanes: Vec<OnceLock<Result<LaneKernel, String>>>,
     /// States a batch computes per call: 2, or 1 as `RNE_JIT_LANES` says.
     batch_lanes: usize,
     programs: GeneratedPrograms,
@@ -165,6 +168,7 @@ impl JitModel {
             timings,
         } = generate_and_compile(model, scene, options, source, tier)?;
         let lanes = kernels.iter().map(|_| OnceLock::new()).collect();
+        let matrix_lanes = kernels.iter().map(|_| OnceLock::new()).collect();
         Ok(JitModel {
             robot: programs.robot.clone(),
             joints: programs.joints.clone(),
@@ -181,6 +185,7 @@ impl JitModel {
             timings,
             kernels,
             lanes,
+            matrix_lanes,
             batch_lanes: lanes::from_env(),
             programs,
             _code: Code::new(module),
@@ -282,17 +287,37 @@ impl JitModel {
     /// `kernel` in two lanes (two states a call), compiled at the first call (`lanes.rs`);
     /// `None` where batches run one state a call ([`lanes::from_env`]).
     pub(crate) fn lane_kernel(&self, kernel: Kernel) -> Result<Option<&Compiled>, JitError> {
+        self.compiled_lanes(&self.lanes, kernel, 0)
+    }
+
+    /// `kernel` in two lanes with an output block per matrix (`matrices.rs`), compiled at the
+    /// first call; `None` where batches run one state a call.
+    pub(crate) fn matrix_lane_kernel(
+        &self,
+        kernel: Kernel,
+        matrices: usize,
+    ) -> Result<Option<&Compiled>, JitError> {
+        self.compiled_lanes(&self.matrix_lanes, kernel, matrices)
+    }
+
+    /// `kernel` in two lanes with `blocks` output blocks, from `cache` (one entry per
+    /// kernel), compiled there at the first call.
+    fn compiled_lanes<'s>(
+        &'s self,
+        cache: &'s [OnceLock<Result<LaneKernel, String>>],
+        kernel: Kernel,
+        blocks: usize,
+    ) -> Result<Option<&'s Compiled>, JitError> {
         if self.batch_lanes == 1 {
             return Ok(None);
         }
-        let missing = JitError::MissingKernel { kernel };
         let index = self.kernels.iter().position(|k| k.kernel == kernel);
         let program = self.programs.kernels.iter().find(|k| k.kernel == kernel);
         let (Some(index), Some(program)) = (index, program) else {
-            return Err(missing);
+            return Err(JitError::MissingKernel { kernel });
         };
-        self.lanes[index]
-            .get_or_init(|| LaneKernel::compile(program, self.fma, self.tier))
+        cache[index]
+            .get_or_init(|| LaneKernel::compile(program, self.fma, self.tier, blocks))
             .as_ref()
             .map(|lane| Some(lane.compiled()))
             .map_err(|message| JitError::Compile {
@@ -365,7 +390,7 @@ impl JitModel {
         out: &mut [f64],
     ) {
         if compiled.scratch == 0 {
-            return self.run_in(compiled, state, parameters, out, &mut []);
+            return self.run_in(compiled, state, parameters, Out::Whole(out), &mut []);
         }
         let reused = SCRATCH.try_with(|cell| {
             let Ok(mut scratch) = cell.try_borrow_mut() else {
@@ -374,11 +399,12 @@ impl JitModel {
             if scratch.len() < compiled.scratch {
                 scratch.resize(compiled.scratch, 0.0);
             }
-            self.run_in(compiled, state, parameters, out, &mut scratch);
+            self.run_in(compiled, state, parameters, Out::Whole(out), &mut scratch);
             true
         });
         if !matches!(reused, Ok(true)) {
-            self.run_in(compiled, state, parameters, out, &mut compiled.scratch());
+            let scratch = &mut compiled.scratch();
+            self.run_in(compiled, state, parameters, Out::Whole(out), scratch);
         }
     }
 
@@ -389,7 +415,7 @@ impl JitModel {
         compiled: &Compiled,
         state: State<'_>,
         parameters: &[f64],
-        out: &mut [f64],
+        mut out: Out<'_, '_>,
         scratch: &mut [f64],
     ) {
         let arrays = Arrays {
@@ -400,7 +426,7 @@ impl JitModel {
             parameters,
         };
         for part in &compiled.parts {
-            part.call(arrays, out, scratch)
+            part.call(arrays, out.reborrow(), scratch)
                 .expect("the arrays were checked against the kernel's inputs");
         }
     }
@@ -466,14 +492,15 @@ impl Compiled {
     }
 }
 
-/// Lowers the kernels' programs to Cranelift IR in `lanes` lanes, compiles all their functions
-/// in one pool (longest first) and finalises the code: the module that owns it, whether
-/// multiply-adds are fused, and each kernel's entry points.
+/// Lowers the kernels' programs to Cranelift IR in `lanes` lanes with `blocks` output blocks
+/// (0: none; [`Lowering::blocks`]), compiles all their functions in one pool (longest first)
+/// and finalises the code: the module that owns it, whether multiply-adds are fused, and each
+/// kernel's entry points.
 pub(crate) fn compile_programs(
     kernels: &[&KernelProgram],
     fma: bool,
     tier: Tier,
-    lanes: usize,
+    (lanes, blocks): (usize, usize),
 ) -> Result<(JITModule, bool, Vec<Compiled>), JitError> {
     let (mut module, isa, fused) = host_module(fma, tier)?;
     let first = kernels
@@ -484,6 +511,7 @@ pub(crate) fn compile_programs(
             kernel: first,
             message,
         })?;
+    lowering.blocks = blocks;
     let lowered = lower_all(&mut module, &mut lowering, kernels)?;
     let functions: Vec<Arc<Lowered>> = lowered
         .iter()
