@@ -24,7 +24,10 @@
 //! scratch array hold their values interleaved, state 0's and state 1's side by side
 //! (`q[2k + l]` is state l's q_k); the outputs are each state's in turn (`out[l·M + k]` is
 //! state l's output k of M), each lane stored by itself, so that a batch's results need no
-//! de-interleaving; the parameters, shared by the states, are loaded once and splat.
+//! de-interleaving; the parameters, shared by the states, are loaded once and splat. A
+//! function lowered with output blocks (a kernel returning several matrices, batched into
+//! one array per matrix: `matrices.rs`) takes as `out` a table of the blocks' addresses, and
+//! each lane stores output k of block b at `block_b[l·L + k]`, L the block's length.
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
