@@ -213,6 +213,30 @@ fn every_kernel_of_every_builtin_robot_is_its_program_bit_for_bit() {
     }
 }
 
+/// Joint angles outside the fast path of the runtime's `sin_cos` (|q| ≥ 2²⁰·π/2, up to the
+/// largest `f64`), in some states and not their neighbours: the compiled code computes the
+/// fast path itself and sends such angles to the runtime's `sin_cos_array` (rne-jit
+/// `lower/trig.rs`); every kernel of every built-in robot at both tiers still gives its
+/// program's bits, in single calls and in batches where one lane of a pair is out of range.
+#[test]
+fn angles_beyond_the_fast_path_give_the_runtime_bits() {
+    let huge = [3.0e6, -1.0e300, 1.7e7, -2.5e6, f64::MAX];
+    for robot in BUILTIN_ROBOTS {
+        for tier in [rne_jit::Tier::Fast, rne_jit::Tier::Optimized] {
+            let model = builtin(robot);
+            let scene = Scene::default();
+            let jit =
+                JitModel::compile_at(&model, &scene, &all_kernels(), robot.name, tier).unwrap();
+            let mut states = States::new(&jit, 24, 0x71a);
+            for k in (0..states.len()).filter(|k| k % 3 != 1) {
+                let joint = k % jit.nq();
+                states.q[k][joint] = huge[k % huge.len()];
+            }
+            check_against_programs(&jit, &states, &format!("{} {tier:?}", robot.name));
+        }
+    }
+}
+
 /// The eight dynamics kernels of every built-in robot against its compiled module (the
 /// macro's `Model`, through `rne_interpreted::evaluate`), bit for bit.
 #[test]

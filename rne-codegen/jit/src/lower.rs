@@ -13,9 +13,11 @@
 //! `fsub`, `fmul`, `fdiv`, `fneg`, `sqrt`; `sign` as the runtime's (`1`, `−1`, or the value
 //! itself for ±0 and NaN) by two comparisons and selects; a multiply-add one `fma` where the
 //! processor fuses (else a product and a sum, as the runtime's `mul_add` without FMA). The
-//! sines and cosines of the joint angles a part needs are computed at its start by one call
-//! of the runtime's `sin_cos_array` ([`crate::code::sin_cos_array`]), as the emitted Rust
-//! computes them at the top of the function. Cranelift neither reassociates nor contracts
+//! sines and cosines of the joint angles a part needs are computed at its start, as the
+//! emitted Rust computes them at the top of the function: at the optimized tier by the
+//! runtime's fast path written out in IR (`lower/trig.rs`: the same operations, so the same
+//! bits), the runtime's `sin_cos_array` ([`crate::code::sin_cos_array`]) called only for
+//! angles outside its range; at the fast tier by one call of `sin_cos_array`. Cranelift neither reassociates nor contracts
 //! floating-point operations, so the compiled code computes the program's values bit for bit.
 //!
 //! A program is lowered in scalars (`f64`, one state per call) or in two lanes (`f64x2`, two
@@ -32,7 +34,7 @@
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
     types, AbiParam, Endianness, FuncRef, Function, InstBuilder, MemFlagsData, Signature,
-    StackSlot, StackSlotData, StackSlotKind, Type, UserFuncName, Value,
+    StackSlotData, StackSlotKind, Type, UserFuncName, Value,
 };
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
 use cranelift_jit::JITModule;
@@ -46,6 +48,8 @@ use crate::constants::{lane_pair, ConstantTable};
 use crate::model::Tier;
 use crate::registers::{distinct_temps, held_limit, Registers};
 use crate::windows::{window_of, windows_limit, Windows};
+
+mod trig;
 
 /// The name compiled code calls the runtime's sines and cosines by.
 pub(crate) const SIN_COS: &str = "rne_jit_sin_cos_array";
@@ -225,6 +229,7 @@ impl Lowering {
                 body.spill_area.1 = body.registers.as_ref().map_or(0, Registers::most_alive);
                 if body.registers.is_some() {
                     body.windows = Windows::new(windows_limit());
+                    body.inline_trig = true;
                 }
                 body.constant_table = table.map(|table| (None, table));
                 body.run(program, part, &slots, &outputs, &mut extents)?;
@@ -361,6 +366,9 @@ struct Body<'f> {
     builder: FunctionBuilder<'f>,
     pointer: Type,
     sin_cos: FuncRef,
+    /// Whether the runtime's sines and cosines are computed inline (`lower/trig.rs`): at the
+    /// optimized tier.
+    inline_trig: bool,
     fused: bool,
     /// States per call (1 or 2) and the type of a value: `f64` or `f64x2`.
     lanes: usize,
@@ -412,6 +420,7 @@ impl<'f> Body<'f> {
             builder,
             pointer,
             sin_cos,
+            inline_trig: false,
             fused,
             lanes,
             ty: if lanes == 1 { types::F64 } else { types::F64X2 },
@@ -501,10 +510,10 @@ impl<'f> Body<'f> {
             .iter()
             .map(|&k| self.input(Symbol::Position(k), extents))
             .collect();
-        let (slot, at) = self.call_sin_cos(&angles);
-        let base = self.builder.ins().stack_addr(self.pointer, slot, 0);
+        let array = self.sin_cos_array(&angles);
+        let base = self.builder.ins().stack_addr(self.pointer, array.slot, 0);
         for t in part.start..part.end {
-            let (k, array) = match program.instrs[t] {
+            let (k, kind) = match program.instrs[t] {
                 Instr::Sin(Operand::Input(Symbol::Position(k))) => (k, 1),
                 Instr::Cos(Operand::Input(Symbol::Position(k))) => (k, 2),
                 _ => continue,
@@ -513,54 +522,22 @@ impl<'f> Body<'f> {
                 .iter()
                 .position(|&j| j == k)
                 .expect("collected above");
-            self.homes.insert(t, (base, at(j, array)));
+            self.homes.insert(t, (base, array.at(j, kind)));
         }
     }
 
-    /// `(sin xᵢ, cos xᵢ)` of `angles`, loaded from [`Body::call_sin_cos`]'s array.
+    /// `(sin xᵢ, cos xᵢ)` of `angles`, loaded from [`Body::sin_cos_array`]'s array.
     fn sin_cos(&mut self, angles: &[Value]) -> (Vec<Value>, Vec<Value>) {
-        let (slot, at) = self.call_sin_cos(angles);
+        let array = self.sin_cos_array(angles);
         let (pointer, ty) = (self.pointer, self.ty);
-        let mut load = |array: usize, k: usize| {
+        let mut load = |kind: usize, k: usize| {
             self.builder
                 .ins()
-                .stack_load(pointer, ty, slot, at(k, array))
+                .stack_load(pointer, ty, array.slot, array.at(k, kind))
         };
         let s = (0..angles.len()).map(|k| load(1, k)).collect();
         let c = (0..angles.len()).map(|k| load(2, k)).collect();
         (s, c)
-    }
-
-    /// The runtime's sines and cosines of `angles`, by one call on a stack array of the angles
-    /// and their sines and cosines (in lanes, each lane's side by side: one call for all): the
-    /// array, and where in it (`at(k, 1)` the sine of angle k, `at(k, 2)` its cosine).
-    fn call_sin_cos(&mut self, angles: &[Value]) -> (StackSlot, impl Fn(usize, usize) -> i32) {
-        let n = angles.len() * self.lanes;
-        let width = 8 * self.lanes as i32;
-        let bytes = u32::try_from(24 * n).expect("a few joints");
-        let slot = self.builder.create_sized_stack_slot(StackSlotData::new(
-            StackSlotKind::ExplicitSlot,
-            bytes,
-            4,
-        ));
-        let address = |b: &mut FunctionBuilder, offset: usize| {
-            b.ins().stack_addr(self.pointer, slot, (8 * offset) as i32)
-        };
-        for (k, &angle) in angles.iter().enumerate() {
-            self.builder
-                .ins()
-                .stack_store(self.pointer, angle, slot, width * k as i32);
-        }
-        let start = address(&mut self.builder, 0);
-        let sines = address(&mut self.builder, n);
-        let cosines = address(&mut self.builder, 2 * n);
-        let count = self.builder.ins().iconst(self.pointer, n as i64);
-        self.builder
-            .ins()
-            .call(self.sin_cos, &[start, count, sines, cosines]);
-        (slot, move |k: usize, array: usize| {
-            8 * (array * n) as i32 + width * k as i32
-        })
     }
 
     /// Instruction `t`'s value, its operands brought into registers first and those it read

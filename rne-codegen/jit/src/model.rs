@@ -415,7 +415,7 @@ impl JitModel {
         compiled: &Compiled,
         state: State<'_>,
         parameters: &[f64],
-        mut out: Out<'_, '_>,
+        out: Out<'_, '_>,
         scratch: &mut [f64],
     ) {
         let arrays = Arrays {
@@ -425,10 +425,9 @@ impl JitModel {
             tau: state.tau,
             parameters,
         };
-        for part in &compiled.parts {
-            part.call(arrays, out.reborrow(), scratch)
-                .expect("the arrays were checked against the kernel's inputs");
-        }
+        compiled
+            .run(arrays, out, scratch)
+            .expect("the arrays were checked against the kernel's inputs");
     }
 
     /// The lengths and finiteness of the arrays `kernel` takes.
@@ -489,6 +488,20 @@ impl Compiled {
     /// A scratch array for one call at a time (empty for a kernel of one part).
     pub(crate) fn scratch(&self) -> Vec<f64> {
         vec![0.0; self.scratch]
+    }
+
+    /// Runs the kernel's functions in turn, or `None` when an array is shorter than a
+    /// function reaches ([`Entry::call`]).
+    pub(crate) fn run(
+        &self,
+        arrays: Arrays<'_>,
+        mut out: Out<'_, '_>,
+        scratch: &mut [f64],
+    ) -> Option<()> {
+        for part in &self.parts {
+            part.call(arrays, out.reborrow(), scratch)?;
+        }
+        Some(())
     }
 }
 

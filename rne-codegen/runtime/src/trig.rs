@@ -90,17 +90,27 @@ mod pair;
 #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
 mod quad;
 
+/// Whether the fast path's multiply–adds are fused in this build (x86-64 with the `fma`
+/// target feature; [`Arithmetic`]). With the constants below, what a code generator needs
+/// to compute [`sin_cos`]'s bits itself (the JIT inlines the fast path).
+pub const FUSED: bool = cfg!(all(target_arch = "x86_64", target_feature = "fma"));
+
 /// π/2 split into parts of 33 significant bits (the last with its tail), as in fdlibm's
 /// `__ieee754_rem_pio2`.
-pub(crate) const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
-pub(crate) const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
-pub(crate) const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
-pub(crate) const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
+pub const PIO2_1: f64 = 1.570_796_326_734_125_614_17;
+/// The second part of π/2.
+pub const PIO2_2: f64 = 6.077_100_506_303_965_976_60e-11;
+/// The tail of π/2 beyond its first two parts.
+pub const PIO2_2T: f64 = 2.022_266_248_795_950_631_54e-21;
+/// 2/π, by which the argument is multiplied to find its quadrant.
+pub const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
+/// 2²⁰: the fast path applies to arguments whose quadrant number k has |k| below it.
+pub const QUADRANTS: f64 = 1_048_576.0;
 /// 1.5 · 2⁵²: adding and subtracting it rounds to the nearest integer.
-pub(crate) const ROUND: f64 = 6_755_399_441_055_744.0;
+pub const ROUND: f64 = 6_755_399_441_055_744.0;
 
 /// Taylor-like minimax coefficients of sin on [−π/4, π/4] (fdlibm `__kernel_sin`).
-pub(crate) const S: [f64; 6] = [
+pub const S: [f64; 6] = [
     -1.666_666_666_666_663_243_48e-01,
     8.333_333_333_322_489_461_24e-03,
     -1.984_126_982_985_794_931_34e-04,
@@ -110,7 +120,7 @@ pub(crate) const S: [f64; 6] = [
 ];
 
 /// Minimax coefficients of cos on [−π/4, π/4] (fdlibm `__kernel_cos`).
-pub(crate) const C: [f64; 6] = [
+pub const C: [f64; 6] = [
     4.166_666_666_666_660_190_37e-02,
     -1.388_888_888_887_410_957_49e-03,
     2.480_158_728_947_672_941_78e-05,
@@ -197,7 +207,7 @@ pub(crate) fn fast_path<T: Arithmetic>(x: T) -> (T, T, T, T) {
 #[inline(always)]
 fn reduced(x: f64) -> (f64, f64, bool) {
     let (shifted, k, sin, cos) = fast_path(x);
-    let in_range = k.abs() < 1_048_576.0;
+    let in_range = k.abs() < QUADRANTS;
     // Quadrant k mod 4, from the low bits of the shifted value's mantissa.
     let quadrant = shifted.to_bits() & 3;
     // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
@@ -361,7 +371,7 @@ pub(crate) mod tests {
     pub(crate) fn check_multiply_adds<T: Arithmetic, const L: usize>(
         lanes: impl Fn(T) -> [f64; L],
     ) {
-        let fused = cfg!(all(target_arch = "x86_64", target_feature = "fma"));
+        let fused = super::FUSED;
         let tiny = 1.0 / (1u64 << 30) as f64;
         let (a, b) = (T::splat(1.0 + tiny), T::splat(1.0 - tiny));
         let (sum, difference) = if fused {

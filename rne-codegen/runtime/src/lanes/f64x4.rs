@@ -79,7 +79,7 @@ impl F64x4 {
     fn reduced(self) -> (F64x4, F64x4, bool) {
         let splat = f64x4::splat;
         let (shifted, k, sin, cos) = fast_path(self.0);
-        let in_range = k.abs().cmp_lt(splat(1_048_576.0)).all();
+        let in_range = k.abs().cmp_lt(splat(crate::trig::QUADRANTS)).all();
         let quadrant = cast::<f64x4, u64x4>(shifted) & u64x4::splat(3);
         // Odd quadrants swap sine and cosine; quadrants 2 and 3 negate the sine, 1 and 2 the
         // cosine (the scalar's bit operations).

@@ -55,7 +55,7 @@ pub(super) fn reduced(a: f64, b: f64) -> ((f64, f64), (f64, f64), bool) {
     let (shifted, k, sin, cos) = fast_path(x);
     let in_range = unsafe {
         let magnitude = _mm_and_pd(k.0, _mm_castsi128_pd(_mm_set1_epi64x(i64::MAX)));
-        _mm_movemask_pd(_mm_cmplt_pd(magnitude, _mm_set1_pd(1_048_576.0))) == 3
+        _mm_movemask_pd(_mm_cmplt_pd(magnitude, _mm_set1_pd(super::QUADRANTS))) == 3
     };
     let (sin, cos) = unsafe {
         let quadrant = _mm_and_si128(shifted.bits(), _mm_set1_epi64x(3));

@@ -61,7 +61,7 @@ pub(super) fn reduced(x: [f64; 4]) -> ([f64; 4], [f64; 4], bool) {
         let magnitude = _mm256_and_pd(k.0, _mm256_castsi256_pd(_mm256_set1_epi64x(i64::MAX)));
         _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OS>(
             magnitude,
-            _mm256_set1_pd(1_048_576.0),
+            _mm256_set1_pd(super::QUADRANTS),
         )) == 15
     };
     let (sin, cos) = unsafe {
