@@ -290,6 +290,18 @@ mod tests {
         unsafe { Entry::new(record as *const u8, extents) }
     }
 
+    /// `entry` called with output blocks `blocks`, written from value `at` on.
+    fn call_blocks(entry: &Entry, blocks: &mut [&mut [f64]], at: usize) -> Option<()> {
+        let arrays = Arrays {
+            q: &[],
+            qd: &[],
+            qdd: &[],
+            tau: &[],
+            parameters: &[],
+        };
+        entry.call(arrays, Out::Blocks { blocks, at }, &mut [])
+    }
+
     /// A call with blocks reaches the code only with as many blocks as it was lowered for,
     /// each long enough from `at` on, and hands it their addresses from `at`; outputs of the
     /// other kind are refused.
@@ -305,41 +317,21 @@ mod tests {
         let (mut a, mut b) = (vec![0.0; 10], vec![0.0; 10]);
         let two = entry(2);
         assert!(two.call(arrays, Out::Whole(&mut a), &mut []).is_none());
-        let mut one: Vec<&mut [f64]> = vec![&mut a];
-        let blocks = Out::Blocks {
-            blocks: &mut one,
-            at: 0,
-        };
         assert!(
-            two.call(arrays, blocks, &mut []).is_none(),
+            call_blocks(&two, &mut [&mut a], 0).is_none(),
             "one block of two"
         );
-        let mut short: Vec<&mut [f64]> = vec![&mut a, &mut b[..5]];
-        let blocks = Out::Blocks {
-            blocks: &mut short,
-            at: 2,
-        };
         assert!(
-            two.call(arrays, blocks, &mut []).is_none(),
+            call_blocks(&two, &mut [&mut a, &mut b[..5]], 2).is_none(),
             "5 values from 2: short of 4"
         );
-        let mut none: Vec<&mut [f64]> = Vec::new();
-        let blocks = Out::Blocks {
-            blocks: &mut none,
-            at: 0,
-        };
         assert!(
-            entry(0).call(arrays, blocks, &mut []).is_none(),
+            call_blocks(&entry(0), &mut [], 0).is_none(),
             "no blocks: no table"
         );
         SEEN.store(0, Ordering::SeqCst);
         let expected = a[6..].as_ptr() as usize;
-        let mut fit: Vec<&mut [f64]> = vec![&mut a, &mut b];
-        let blocks = Out::Blocks {
-            blocks: &mut fit,
-            at: 6,
-        };
-        assert!(two.call(arrays, blocks, &mut []).is_some());
+        assert!(call_blocks(&two, &mut [&mut a, &mut b], 6).is_some());
         assert_eq!(SEEN.load(Ordering::SeqCst), expected);
     }
 }
