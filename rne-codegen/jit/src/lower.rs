@@ -17,8 +17,9 @@
 //! emitted Rust computes them at the top of the function: at the optimized tier by the
 //! runtime's fast path written out in IR (`lower/trig.rs`: the same operations, so the same
 //! bits), the runtime's `sin_cos_array` ([`crate::code::sin_cos_array`]) called only for
-//! angles outside its range; at the fast tier by one call of `sin_cos_array`. Cranelift neither reassociates nor contracts
-//! floating-point operations, so the compiled code computes the program's values bit for bit.
+//! angles outside its range; at the fast tier by one call of `sin_cos_array`. Cranelift
+//! neither reassociates nor contracts floating-point operations, so the compiled code
+//! computes the program's values bit for bit.
 //!
 //! A program is lowered in scalars (`f64`, one state per call) or in two lanes (`f64x2`, two
 //! states per call, for batches): the same instructions on vectors, each lane one state's IEEE

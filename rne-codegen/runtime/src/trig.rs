@@ -91,7 +91,7 @@ mod pair;
 mod quad;
 
 /// Whether the fast path's multiply–adds are fused in this build (x86-64 with the `fma`
-/// target feature; [`Arithmetic`]). With the constants below, what a code generator needs
+/// target feature). With the constants below, what a code generator needs
 /// to compute [`sin_cos`]'s bits itself (the JIT inlines the fast path).
 pub const FUSED: bool = cfg!(all(target_arch = "x86_64", target_feature = "fma"));
 
