@@ -44,6 +44,18 @@ pub(crate) struct Arrays<'a> {
     pub parameters: &'a [f64],
 }
 
+#[cfg(test)]
+impl Arrays<'static> {
+    /// No inputs at all (tests' stand-ins and kernels of joint angles only).
+    pub(crate) const NONE: Arrays<'static> = Arrays {
+        q: &[],
+        qd: &[],
+        qdd: &[],
+        tau: &[],
+        parameters: &[],
+    };
+}
+
 /// How far into each array a compiled function reaches: one past the largest index.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Extents {
@@ -292,14 +304,7 @@ mod tests {
 
     /// `entry` called with output blocks `blocks`, written from value `at` on.
     fn call_blocks(entry: &Entry, blocks: &mut [&mut [f64]], at: usize) -> Option<()> {
-        let arrays = Arrays {
-            q: &[],
-            qd: &[],
-            qdd: &[],
-            tau: &[],
-            parameters: &[],
-        };
-        entry.call(arrays, Out::Blocks { blocks, at }, &mut [])
+        entry.call(Arrays::NONE, Out::Blocks { blocks, at }, &mut [])
     }
 
     /// A call with blocks reaches the code only with as many blocks as it was lowered for,
@@ -307,13 +312,7 @@ mod tests {
     /// other kind are refused.
     #[test]
     fn blocks_are_checked_before_the_code_is_called() {
-        let arrays = Arrays {
-            q: &[],
-            qd: &[],
-            qdd: &[],
-            tau: &[],
-            parameters: &[],
-        };
+        let arrays = Arrays::NONE;
         let (mut a, mut b) = (vec![0.0; 10], vec![0.0; 10]);
         let two = entry(2);
         assert!(two.call(arrays, Out::Whole(&mut a), &mut []).is_none());

@@ -832,13 +832,7 @@ impl<'f> Body<'f> {
             if let Some(v) = self.table_constant(c) {
                 return v;
             }
-            let handle = self
-                .builder
-                .func
-                .dfg
-                .constants
-                .insert(lane_pair(c).to_vec().into());
-            return self.builder.ins().vconst(self.ty, handle);
+            return self.pool_pair(c);
         }
         if let Some(&v) = self.constants.get(&c.to_bits()) {
             return v;
@@ -849,6 +843,14 @@ impl<'f> Body<'f> {
         }
         self.constants.insert(c.to_bits(), v);
         v
+    }
+
+    /// Constant `c` in both lanes of an `f64x2`, loaded from Cranelift's constant pool by an
+    /// instruction of its own.
+    fn pool_pair(&mut self, c: f64) -> Value {
+        let constants = &mut self.builder.func.dfg.constants;
+        let handle = constants.insert(lane_pair(c).to_vec().into());
+        self.builder.ins().vconst(types::F64X2, handle)
     }
 
     /// An input's value, loaded at each use at the optimized tier ([`Body::rematerialised`]:

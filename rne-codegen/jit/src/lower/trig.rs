@@ -21,7 +21,6 @@ use cranelift_codegen::ir::{
 use rne_runtime::trig::{C, FRAC_2_PI, FUSED, PIO2_1, PIO2_2, PIO2_2T, QUADRANTS, ROUND, S};
 
 use super::Body;
-use crate::constants::lane_pair;
 
 /// Where the sines and cosines of a call's angles are: the stack array of the angles, their
 /// sines and their cosines, each of `stride` values, and the bytes between two angles' values.
@@ -234,16 +233,10 @@ impl Body<'_> {
 
     /// `c` in both lanes of an `f64x2`.
     fn splat(&mut self, c: f64) -> Value {
-        if self.lanes == 2 {
-            return self.constant(c);
+        match self.lanes {
+            2 => self.constant(c),
+            _ => self.pool_pair(c),
         }
-        let handle = self
-            .builder
-            .func
-            .dfg
-            .constants
-            .insert(lane_pair(c).to_vec().into());
-        self.builder.ins().vconst(types::F64X2, handle)
     }
 
     /// `n` in both lanes of an `i64x2`.
@@ -319,13 +312,7 @@ mod tests {
                     let per_call = usize::from(n) * lanes;
                     for q in angles.chunks_exact(per_call) {
                         let mut out = vec![f64::NAN; 2 * per_call];
-                        let arrays = Arrays {
-                            q,
-                            qd: &[],
-                            qdd: &[],
-                            tau: &[],
-                            parameters: &[],
-                        };
+                        let arrays = Arrays { q, ..Arrays::NONE };
                         kernel
                             .run(arrays, Out::Whole(&mut out), &mut kernel.scratch())
                             .unwrap();
