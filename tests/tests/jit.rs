@@ -843,8 +843,8 @@ fn both_tiers_compute_the_same_bits() {
 /// into parts of 300 instructions: nearly every value is stored and loaded again, from its
 /// spill slot, its scratch slot or the sines' and cosines' array, through a window remade at
 /// almost every access, and spill slots are reused, on every kernel of UR5 and the Panda (a
-/// tree), scalars and lanes, bit for bit. The limits are read from the environment when a model is compiled,
-/// so the test runs itself again in a process of its own with them set.
+/// tree), scalars and lanes, bit for bit. The limits are read from the environment when a
+/// model is compiled, so the test runs itself again in a process of its own with them set.
 #[test]
 fn two_registers_and_short_parts_compute_the_same_bits() {
     const NAME: &str = "two_registers_and_short_parts_compute_the_same_bits";
