@@ -7,12 +7,12 @@
 //!
 //! A call for every part's angles, as before, cost the kernels its latency and registers:
 //! the angles went to memory, the call clobbered every vector register, and the kernel's
-//! first link waited for the results (docs/performance.md, "Latency"). The multiply–adds
-//! here are fused exactly where the runtime's are (`rne_runtime::trig::FUSED`, a property
-//! of the build, not of the model's `fma`). Angles are evaluated two at a time in `f64x2`
-//! (in scalars, pairs of angles as the runtime's SSE2 pairs; in lanes, one angle of the
-//! two states); the results go to the sines' and cosines' array, where the kernel's
-//! instructions find them.
+//! first link waited for the results (docs/performance.md, "The sines and cosines inline").
+//! The multiply–adds here are fused exactly where the runtime's are
+//! (`rne_runtime::trig::FUSED`, a property of the build, not of the model's `fma`). Angles
+//! are evaluated two at a time in `f64x2` (in scalars, pairs of angles as the runtime's SSE2
+//! pairs; in lanes, one angle of the two states); the results go to the sines' and cosines'
+//! array, where the kernel's instructions find them.
 
 use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
@@ -42,8 +42,8 @@ impl Body<'_> {
     /// The sines and cosines of `angles` in a new stack array: at the optimized tier the fast
     /// path inline, and the runtime's `sin_cos_array` in a cold block when an angle is
     /// outside its range; at the fast tier, whose compile time counts more than its code's,
-    /// a call of `sin_cos_array` (the fast path is ~40 more instructions per pair of angles
-    /// in every function).
+    /// a call of `sin_cos_array` (the fast path is about 80 more machine instructions per
+    /// pair of angles in every function to compile).
     pub(super) fn sin_cos_array(&mut self, angles: &[Value]) -> TrigArray {
         // In scalars, pairs of angles (the last repeated when their number is odd) in a
         // stride rounded up to pairs, so that each pair's results are one aligned store.
