@@ -184,6 +184,16 @@ fn builtin(robot: &'static rne_models::BuiltinRobot) -> RobotModel {
         .unwrap()
 }
 
+/// Built-in robot `name` compiled with only `kernels`.
+fn builtin_with(name: &str, kernels: &[Kernel]) -> JitModel {
+    let robot = rne_models::builtin::builtin(name).unwrap();
+    let options = GenerationOptions {
+        outputs: kernels.to_vec(),
+        ..GenerationOptions::default()
+    };
+    JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap()
+}
+
 /// How many seeded states the built-in robots are checked at: `RNE_JIT_STATES`, or 300 (CI's
 /// debug build; docs/jit.md gives the run at 10 000).
 fn builtin_states() -> usize {
@@ -463,12 +473,7 @@ fn runtime_parameters_are_read_at_every_call() {
 /// array and the entry; nothing reaches the compiled code.
 #[test]
 fn bad_calls_are_errors() {
-    let robot = rne_models::builtin::builtin("ur5").unwrap();
-    let options = GenerationOptions {
-        outputs: vec![Kernel::InverseDynamics, Kernel::MassMatrix],
-        ..GenerationOptions::default()
-    };
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let jit = builtin_with("ur5", &[Kernel::InverseDynamics, Kernel::MassMatrix]);
     let (q, v) = (vec![0.1; 6], vec![0.2; 6]);
     let state = State {
         q: &q,
@@ -540,12 +545,10 @@ fn bad_calls_are_errors() {
 /// A batch gives each state's single call bit for bit, on one thread and on several.
 #[test]
 fn batches_and_threads_give_the_single_calls() {
-    let robot = rne_models::builtin::builtin("panda-arm").unwrap();
-    let options = GenerationOptions {
-        outputs: vec![Kernel::ForwardDynamics, Kernel::InverseDynamicsDerivatives],
-        ..GenerationOptions::default()
-    };
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let jit = builtin_with(
+        "panda-arm",
+        &[Kernel::ForwardDynamics, Kernel::InverseDynamicsDerivatives],
+    );
     let states = States::new(&jit, 333, 0x71c);
     let arrays = states.end_to_end();
     let batch = arrays.batch();
@@ -570,12 +573,7 @@ fn batches_and_threads_give_the_single_calls() {
 /// does, though the threads take the states in chunks as they become free.
 #[test]
 fn threads_report_the_first_bad_state() {
-    let robot = rne_models::builtin::builtin("panda-arm").unwrap();
-    let options = GenerationOptions {
-        outputs: vec![Kernel::InverseDynamics],
-        ..GenerationOptions::default()
-    };
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let jit = builtin_with("panda-arm", &[Kernel::InverseDynamics]);
     let states = States::new(&jit, 333, 0x71e);
     let mut arrays = states.end_to_end();
     let nq = jit.nq();
@@ -622,12 +620,10 @@ fn threads_report_the_first_bad_state() {
 /// return several matrices and arrays of the wrong length, and names its first bad state.
 #[test]
 fn matrix_batches_refuse_wrong_arrays_and_name_a_bad_state() {
-    let robot = rne_models::builtin::builtin("ur5").unwrap();
-    let options = GenerationOptions {
-        outputs: vec![Kernel::InverseDynamics, Kernel::InverseDynamicsDerivatives],
-        ..GenerationOptions::default()
-    };
-    let jit = JitModel::compile(&builtin(robot), &Scene::default(), &options, robot.name).unwrap();
+    let jit = builtin_with(
+        "ur5",
+        &[Kernel::InverseDynamics, Kernel::InverseDynamicsDerivatives],
+    );
     let states = States::new(&jit, 5, 0x3a7);
     let mut arrays = states.end_to_end();
     let len = jit.nv() * jit.nv();
