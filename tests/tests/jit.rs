@@ -8,7 +8,9 @@
 use std::path::PathBuf;
 
 use rne_codegen::{Dynamics, Kernel};
-use rne_codegen_core::{read_robot, GenerationOptions, ParameterMode, Program, Scene, Shape};
+use rne_codegen_core::{
+    read_robot, GenerationOptions, Input, ParameterMode, Program, Scene, Shape,
+};
 use rne_interpreted::StateRef;
 use rne_jit::{Batch, JitError, JitModel, State};
 use rne_models::builtin::{RobotSource, BUILTIN_ROBOTS};
@@ -540,6 +542,50 @@ fn bad_calls_are_errors() {
         .evaluate_batch(Kernel::InverseDynamics, batch, &mut out)
         .unwrap_err();
     assert!(matches!(error, JitError::BatchLength { .. }), "{error}");
+}
+
+/// A single call runs exactly when every array its kernel takes has the robot's length and
+/// finite values, whatever the arrays it does not take hold: each kernel of UR5, each array
+/// one value short, one too long, empty, or with a NaN or an infinity at each entry.
+#[test]
+fn a_call_is_refused_exactly_when_an_array_it_takes_is_bad() {
+    let kernels: Vec<Kernel> = Kernel::ALL
+        .into_iter()
+        .filter(|&k| k != Kernel::BaseParameters)
+        .collect();
+    let jit = builtin_with("ur5", &kernels);
+    let good = vec![0.3; 6];
+    let mut variants: Vec<Vec<f64>> = vec![vec![0.3; 5], vec![0.3; 7], Vec::new()];
+    for at in 0..6 {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut values = good.clone();
+            values[at] = bad;
+            variants.push(values);
+        }
+    }
+    let inputs = [Input::Q, Input::Qd, Input::Qdd, Input::Tau];
+    for &kernel in &kernels {
+        let mut out = vec![0.0; jit.output_len(kernel).unwrap()];
+        for (slot, input) in inputs.iter().enumerate() {
+            for values in &variants {
+                let mut arrays = [good.as_slice(); 4];
+                arrays[slot] = values;
+                let state = State {
+                    q: arrays[0],
+                    qd: arrays[1],
+                    qdd: arrays[2],
+                    tau: arrays[3],
+                };
+                let taken = kernel.inputs().contains(input);
+                let result = jit.evaluate(kernel, state, &mut out);
+                assert_eq!(
+                    result.is_err(),
+                    taken,
+                    "{kernel:?}, {input:?} = {values:?}: {result:?}"
+                );
+            }
+        }
+    }
 }
 
 /// A batch gives each state's single call bit for bit, on one thread and on several.

@@ -66,6 +66,7 @@
 //! [`Program`]: rne_codegen_core::Program
 #![deny(missing_docs)]
 
+mod admit;
 mod batch;
 mod code;
 mod compile;

@@ -14,6 +14,7 @@ use rne_codegen_core::{
 };
 use rne_symbolic::RobotModel;
 
+use crate::admit;
 use crate::code::{self, Arrays, Code, Entry, Out};
 use crate::compile;
 use crate::error::JitError;
@@ -334,16 +335,12 @@ impl JitModel {
         state: State<'_>,
         out: &mut [f64],
     ) -> Result<(), JitError> {
-        let compiled = self
-            .compiled(kernel)
-            .ok_or(JitError::MissingKernel { kernel })?;
-        self.check_state(kernel, &state)?;
-        if out.len() != compiled.outputs {
-            return Err(JitError::OutputLength {
-                kernel,
-                got: out.len(),
-                expected: compiled.outputs,
-            });
+        // Not `ok_or`, whose error is built and dropped at every call (it shows in profiles).
+        let Some(compiled) = self.compiled(kernel) else {
+            return Err(JitError::MissingKernel { kernel });
+        };
+        if !(self.admits(kernel, &state) && out.len() == compiled.outputs) {
+            return Err(self.refusal(kernel, &state, out.len(), compiled.outputs));
         }
         self.run(compiled, state, &self.parameters, out);
         Ok(())
@@ -375,7 +372,7 @@ impl JitModel {
                 expected,
             });
         }
-        check_finite(kernel, Input::Standard, standard)?;
+        admit::check_finite(kernel, Input::Standard, standard)?;
         let mut out = vec![0.0; compiled.outputs];
         self.run(compiled, State::default(), standard, &mut out);
         Ok(out)
@@ -428,43 +425,6 @@ impl JitModel {
         compiled
             .run(arrays, out, scratch)
             .expect("the arrays were checked against the kernel's inputs");
-    }
-
-    /// The lengths and finiteness of the arrays `kernel` takes.
-    pub(crate) fn check_state(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
-        self.check_lengths(kernel, state)?;
-        for &input in kernel.inputs() {
-            check_finite(kernel, input, state.input(input))?;
-        }
-        Ok(())
-    }
-
-    /// The lengths of the arrays `kernel` takes.
-    pub(crate) fn check_lengths(&self, kernel: Kernel, state: &State<'_>) -> Result<(), JitError> {
-        for &input in kernel.inputs() {
-            let expected = self.width(kernel, input)?;
-            let got = state.input(input).len();
-            if got != expected {
-                return Err(JitError::InputLength {
-                    kernel,
-                    input,
-                    got,
-                    expected,
-                });
-            }
-        }
-        Ok(())
-    }
-
-    /// Values per state of `kernel`'s `input`: NQ for q, NV for q̇, q̈ and τ. The standard
-    /// parameters are no state's: a kernel taking them is called through
-    /// [`JitModel::base_parameters`], not with states.
-    pub(crate) fn width(&self, kernel: Kernel, input: Input) -> Result<usize, JitError> {
-        match input {
-            Input::Q => Ok(self.nq),
-            Input::Qd | Input::Qdd | Input::Tau => Ok(self.nv),
-            Input::Standard => Err(JitError::MissingKernel { kernel }),
-        }
     }
 
     /// The compiled kernel, for the batch functions.
@@ -643,24 +603,6 @@ pub(crate) fn entries(
         parts,
         outputs,
         scratch,
-    }
-}
-
-/// An error naming the first non-finite entry of `values`.
-fn check_finite(kernel: Kernel, input: Input, values: &[f64]) -> Result<(), JitError> {
-    // Every value tested without a branch per value (a call checks every state it takes);
-    // only a state that fails is searched for its first non-finite entry.
-    if values.iter().fold(true, |finite, x| finite & x.is_finite()) {
-        return Ok(());
-    }
-    match values.iter().position(|x| !x.is_finite()) {
-        None => Ok(()),
-        Some(index) => Err(JitError::NonFinite {
-            kernel,
-            input,
-            index,
-            value: values[index],
-        }),
     }
 }
 
