@@ -116,6 +116,7 @@ impl Entry {
 
     /// Runs the function, or `None` when an array is shorter than what it reaches or `out`
     /// is not the kind of outputs it was lowered for.
+    #[inline]
     pub(crate) fn call(
         &self,
         arrays: Arrays<'_>,

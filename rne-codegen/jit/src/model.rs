@@ -379,6 +379,7 @@ impl JitModel {
     }
 
     /// Runs every part of `compiled`; the arrays are checked.
+    #[inline]
     pub(crate) fn run(
         &self,
         compiled: &Compiled,
@@ -452,6 +453,7 @@ impl Compiled {
 
     /// Runs the kernel's functions in turn, or `None` when an array is shorter than a
     /// function reaches ([`Entry::call`]).
+    #[inline]
     pub(crate) fn run(
         &self,
         arrays: Arrays<'_>,
