@@ -12,7 +12,7 @@
 use rne_codegen_core::{Input, Kernel};
 
 use crate::error::JitError;
-use crate::model::{JitModel, State};
+use crate::model::{Compiled, JitModel, State};
 
 /// The arrays a kernel takes, one bit each.
 const Q: u8 = 1;
@@ -21,34 +21,9 @@ const QDD: u8 = 4;
 const TAU: u8 = 8;
 const STANDARD: u8 = 16;
 
-/// The arrays `kernel` takes ([`Kernel::inputs`]) as bits: a table lookup, where a fold over
-/// the list is a loop per call.
-fn taken(kernel: Kernel) -> u8 {
-    match kernel {
-        Kernel::InverseDynamics
-        | Kernel::InverseDynamicsDerivatives
-        | Kernel::Regressor
-        | Kernel::BaseRegressor => Q | QD | QDD,
-        Kernel::CoriolisMatrix
-        | Kernel::BiasTorques
-        | Kernel::KineticEnergy
-        | Kernel::FrameJacobianDotQd => Q | QD,
-        Kernel::ForwardDynamics | Kernel::ForwardDynamicsDerivatives => Q | QD | TAU,
-        Kernel::FrictionTorques => QD,
-        Kernel::MassMatrix
-        | Kernel::GravityTorques
-        | Kernel::PotentialEnergy
-        | Kernel::MassMatrixInverse
-        | Kernel::FramePlacements
-        | Kernel::FrameJacobians => Q,
-        Kernel::BaseParameters => STANDARD,
-        // A kernel added later, until it is listed here.
-        kernel => from_list(kernel),
-    }
-}
-
-/// The arrays `kernel` takes as bits, from its list.
-fn from_list(kernel: Kernel) -> u8 {
+/// The arrays `kernel` takes ([`Kernel::inputs`]) as bits: computed once, when the kernel is
+/// compiled ([`Compiled::taken`]), where going through the list at every call was a loop.
+pub(crate) fn taken(kernel: Kernel) -> u8 {
     kernel.inputs().iter().fold(0, |bits, input| {
         bits | match input {
             Input::Q => Q,
@@ -67,12 +42,12 @@ fn all_finite(values: &[f64]) -> bool {
 }
 
 impl JitModel {
-    /// Whether `state` passes every check of [`JitModel::check_state`]: the arrays `kernel`
+    /// Whether `state` passes every check of [`JitModel::check_state`]: the arrays `compiled`
     /// takes have the robot's lengths and finite values. A kernel of the standard parameters
     /// is never admitted with a state (it is called through [`JitModel::base_parameters`]).
     #[inline]
-    pub(crate) fn admits(&self, kernel: Kernel, state: &State<'_>) -> bool {
-        let bits = taken(kernel);
+    pub(crate) fn admits(&self, compiled: &Compiled, state: &State<'_>) -> bool {
+        let bits = compiled.taken();
         let fits = |bit: u8, values: &[f64], n: usize| {
             bits & bit == 0 || (values.len() == n && all_finite(values))
         };

@@ -95,7 +95,7 @@ impl JitModel {
         let parameters = self.parameters();
         for (k, out) in out.chunks_mut(compiled.outputs().max(1)).enumerate() {
             let state = self.state(batch, first + k);
-            if !self.admits(kernel, &state) {
+            if !self.admits(compiled, &state) {
                 self.check_state(kernel, &state)
                     .map_err(|e| e.in_batch(first + k))?;
             }

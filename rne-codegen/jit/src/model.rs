@@ -61,6 +61,8 @@ thread_local! {
 /// One kernel's compiled parts, called in turn.
 pub(crate) struct Compiled {
     kernel: Kernel,
+    /// The arrays the kernel takes, as bits (`admit.rs`).
+    taken: u8,
     parts: Vec<Entry>,
     outputs: usize,
     scratch: usize,
@@ -339,7 +341,7 @@ impl JitModel {
         let Some(compiled) = self.compiled(kernel) else {
             return Err(JitError::MissingKernel { kernel });
         };
-        if !(self.admits(kernel, &state) && out.len() == compiled.outputs) {
+        if !(self.admits(compiled, &state) && out.len() == compiled.outputs) {
             return Err(self.refusal(kernel, &state, out.len(), compiled.outputs));
         }
         self.run(compiled, state, &self.parameters, out);
@@ -439,6 +441,11 @@ impl Compiled {
     /// The kernel.
     pub(crate) fn kernel(&self) -> Kernel {
         self.kernel
+    }
+
+    /// The arrays the kernel takes, as bits (`admit.rs`).
+    pub(crate) fn taken(&self) -> u8 {
+        self.taken
     }
 
     /// Values per call.
@@ -602,6 +609,7 @@ pub(crate) fn entries(
         .collect();
     Compiled {
         kernel,
+        taken: admit::taken(kernel),
         parts,
         outputs,
         scratch,
