@@ -50,13 +50,14 @@ pub fn distribute_constants(graph: &mut ExprGraph, roots: &[Id]) -> Vec<Id> {
 
     let mut rebuilt: Vec<Option<Id>> = vec![None; size];
     let mut depths = Depths::default();
+    let mut combination = Combination::default();
     for &id in &nodes {
         if opened[id.index()] {
             continue;
         }
         let node = graph.node(id);
         let new = if is_linear(graph, node) {
-            let combination = Combination::collect(graph, id, &opened);
+            combination.collect(graph, id, &opened);
             combination.build(graph, &rebuilt, &mut depths)
         } else {
             let r = |c: Id| rebuilt[c.index()].expect("children are rebuilt first");
@@ -88,29 +89,41 @@ fn is_linear(graph: &ExprGraph, node: Node) -> bool {
     }
 }
 
-/// `Σ cᵢ tᵢ + constant`, terms in order of first appearance.
+/// `Σ cᵢ tᵢ + constant`, terms in order of first appearance, with the buffers that build it:
+/// one is kept for every combination of a rewrite, so that a combination allocates nothing
+/// once the buffers have grown to the longest sum.
+#[derive(Default)]
 struct Combination {
     terms: Vec<(f64, Id)>,
     constant: f64,
+    /// The walk's stack: a node and the factor it is scaled by.
+    stack: Vec<(Id, f64)>,
+    /// The coefficients' magnitudes, one per group, in order of first appearance.
+    magnitudes: Vec<f64>,
+    /// Each merged term's group (an index into `magnitudes`).
+    group_of: Vec<usize>,
+    /// One group's signed terms, then the signed products of the groups.
+    members: Vec<(bool, Id)>,
+    products: Vec<(bool, Id)>,
+    sum: SumBuffers,
 }
 
 impl Combination {
     /// Opens `root` and every opened linear node below it.
-    fn collect(graph: &ExprGraph, root: Id, opened: &[bool]) -> Combination {
-        let mut combination = Combination {
-            terms: Vec::new(),
-            constant: 0.0,
-        };
-        let mut stack = vec![(root, 1.0)];
-        while let Some((id, scale)) = stack.pop() {
+    fn collect(&mut self, graph: &ExprGraph, root: Id, opened: &[bool]) {
+        self.terms.clear();
+        self.constant = 0.0;
+        self.stack.clear();
+        self.stack.push((root, 1.0));
+        while let Some((id, scale)) = self.stack.pop() {
             let open = id == root || opened[id.index()];
             match graph.node(id) {
-                Node::Const(c) => combination.constant += scale * c.value(),
+                Node::Const(c) => self.constant += scale * c.value(),
                 Node::Add(a, b) if open => {
-                    stack.push((b, scale));
-                    stack.push((a, scale));
+                    self.stack.push((b, scale));
+                    self.stack.push((a, scale));
                 }
-                Node::Neg(a) if open => stack.push((a, -scale)),
+                Node::Neg(a) if open => self.stack.push((a, -scale)),
                 Node::Mul(a, b) if open => {
                     let (k, x) = match graph.as_const(a) {
                         Some(k) => (k, b),
@@ -119,49 +132,86 @@ impl Combination {
                             a,
                         ),
                     };
-                    stack.push((x, scale * k));
+                    self.stack.push((x, scale * k));
                 }
-                _ => combination.terms.push((scale, id)),
+                _ => self.terms.push((scale, id)),
             }
         }
-        combination
     }
 
     /// Builds the combination from the rebuilt terms: equal terms merged, terms grouped by
     /// the magnitude of their coefficient, one multiplication per group.
-    fn build(self, graph: &mut ExprGraph, rebuilt: &[Option<Id>], depths: &mut Depths) -> Id {
-        let mut merged: Vec<(f64, Id)> = Vec::new();
-        for (c, t) in self.terms {
-            let t = rebuilt[t.index()].expect("terms are rebuilt first");
-            match merged.iter_mut().find(|(_, u)| *u == t) {
-                Some((existing, _)) => *existing += c,
-                None => merged.push((c, t)),
-            }
-        }
-        let mut groups: Vec<(f64, Vec<(bool, Id)>)> = Vec::new();
-        for (c, t) in merged.into_iter().filter(|(c, _)| *c != 0.0) {
-            let negative = c < 0.0;
-            match groups.iter_mut().find(|(m, _)| *m == c.abs()) {
-                Some((_, members)) => members.push((negative, t)),
-                None => groups.push((c.abs(), vec![(negative, t)])),
-            }
-        }
-        let mut terms: Vec<(bool, Id)> = Vec::with_capacity(groups.len() + 1);
-        for (magnitude, members) in groups {
-            let (negative, sum) = balanced_sum(graph, members, depths);
+    fn build(&mut self, graph: &mut ExprGraph, rebuilt: &[Option<Id>], depths: &mut Depths) -> Id {
+        self.merge(rebuilt);
+        self.group();
+        self.products.clear();
+        for (group, &magnitude) in self.magnitudes.iter().enumerate() {
+            self.members.clear();
+            let terms = self.terms.iter().zip(&self.group_of);
+            self.members.extend(
+                terms
+                    .filter(|&(_, &g)| g == group)
+                    .map(|(&(c, t), _)| (c < 0.0, t)),
+            );
+            let (negative, sum) = balanced_sum(graph, &self.members, depths, &mut self.sum);
             let k = graph.constant(magnitude);
-            terms.push((negative, graph.mul(k, sum)));
+            self.products.push((negative, graph.mul(k, sum)));
         }
-        if self.constant != 0.0 || terms.is_empty() {
-            terms.push((self.constant < 0.0, graph.constant(self.constant.abs())));
+        if self.constant != 0.0 || self.products.is_empty() {
+            let constant = graph.constant(self.constant.abs());
+            self.products.push((self.constant < 0.0, constant));
         }
-        let (negative, total) = balanced_sum(graph, terms, depths);
+        let (negative, total) = balanced_sum(graph, &self.products, depths, &mut self.sum);
         if negative {
             graph.neg(total)
         } else {
             total
         }
     }
+
+    /// Each term's group: the terms whose coefficients have the same magnitude, groups in
+    /// order of first appearance.
+    fn group(&mut self) {
+        self.magnitudes.clear();
+        self.group_of.clear();
+        for &(c, _) in &self.terms {
+            let magnitude = c.abs();
+            let group = match self.magnitudes.iter().position(|&m| m == magnitude) {
+                Some(group) => group,
+                None => {
+                    self.magnitudes.push(magnitude);
+                    self.magnitudes.len() - 1
+                }
+            };
+            self.group_of.push(group);
+        }
+    }
+
+    /// The terms with each rebuilt, equal ones merged (their coefficients added in the
+    /// terms' order, at the first one's place) and those whose coefficient is zero dropped.
+    fn merge(&mut self, rebuilt: &[Option<Id>]) {
+        let mut merged = 0;
+        for k in 0..self.terms.len() {
+            let (c, t) = self.terms[k];
+            let t = rebuilt[t.index()].expect("terms are rebuilt first");
+            match self.terms[..merged].iter_mut().find(|(_, u)| *u == t) {
+                Some((existing, _)) => *existing += c,
+                None => {
+                    self.terms[merged] = (c, t);
+                    merged += 1;
+                }
+            }
+        }
+        self.terms.truncate(merged);
+        self.terms.retain(|&(c, _)| c != 0.0);
+    }
+}
+
+/// The heap and the partial sums of [`balanced_sum`], kept from one sum to the next.
+#[derive(Default)]
+struct SumBuffers {
+    ready: BinaryHeap<Reverse<(u32, usize)>>,
+    pending: Vec<(bool, Id)>,
 }
 
 /// `±(±t₁ ± t₂ ± …)` summed by always adding the two terms that are ready first (least
@@ -171,19 +221,25 @@ impl Combination {
 /// the others have been summed while it was computed. Merging the two least is optimal for
 /// this "maximum plus one" cost (Golumbic, "Combinatorial merging", IEEE Trans. Computers
 /// 25(11), 1976). Ties keep the terms' order. Returns the sign to apply and the sum.
-fn balanced_sum(graph: &mut ExprGraph, terms: Vec<(bool, Id)>, depths: &mut Depths) -> (bool, Id) {
+fn balanced_sum(
+    graph: &mut ExprGraph,
+    terms: &[(bool, Id)],
+    depths: &mut Depths,
+    buffers: &mut SumBuffers,
+) -> (bool, Id) {
     // One term is the sum; two are added in the order the merging below would take them
     // (the one ready first, the first of the two on a tie), without its heap.
-    match terms[..] {
+    match *terms {
         [] => panic!("a sum has a term"),
         [term] => return term,
         [a, b] if depths.of(graph, b.1) < depths.of(graph, a.1) => return signed_sum(graph, b, a),
         [a, b] => return signed_sum(graph, a, b),
         _ => {}
     }
-    let mut ready: BinaryHeap<Reverse<(u32, usize)>> = BinaryHeap::new();
-    let mut pending: Vec<(bool, Id)> = Vec::with_capacity(2 * terms.len());
-    for term in terms {
+    let SumBuffers { ready, pending } = buffers;
+    ready.clear();
+    pending.clear();
+    for &term in terms {
         ready.push(Reverse((depths.of(graph, term.1), pending.len())));
         pending.push(term);
     }
