@@ -375,6 +375,23 @@ mod tests {
         assert_eq!(new[1], b);
     }
 
+    /// The buffers kept from one combination to the next carry nothing over: each root of a
+    /// rewrite, after a longer combination with more groups, comes out as it does alone.
+    #[test]
+    fn each_combination_is_rewritten_as_it_is_alone() {
+        let texts = [
+            "(+ (* 2 x) (* 3 y) (* 5 z) (* 7 (* x y)) 11)",
+            "(* 4 (+ x y))",
+            "(- (* 3 (sin x)) (* 3 (cos y)))",
+        ];
+        let alone: Vec<String> = texts.iter().map(|text| rewrite(text)).collect();
+        let mut g = graph();
+        let roots: Vec<_> = texts.iter().map(|t| g.parse_sexpr(t).unwrap()).collect();
+        let together = distribute_constants(&mut g, &roots);
+        let together: Vec<String> = together.iter().map(|&r| g.to_sexpr(r)).collect();
+        assert_eq!(together, alone);
+    }
+
     #[test]
     fn the_rewrite_keeps_the_value_and_never_adds_operations() {
         let cases = [
