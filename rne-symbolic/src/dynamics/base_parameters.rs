@@ -13,12 +13,14 @@
 //! drop out.
 
 mod residual_update;
+mod vector;
 
 use nalgebra::{DMatrix, DVector};
 
 use crate::expr::{Id, Symbol};
 use crate::model::{RobotModel, StateLayout};
 use crate::DoubleDouble;
+use vector::{dot, subtract_scaled};
 
 /// Relative size of a column's residual below which it is dependent on the columns before it.
 pub const DEPENDENCE_TOLERANCE: f64 = 1e-9;
@@ -129,37 +131,6 @@ impl BaseParameters {
                         .sum::<f64>()
             })
             .collect()
-    }
-}
-
-/// `a · b` with the bits of nalgebra's `dot` (eight partial sums over the entries' indices
-/// modulo eight, added in its order, then the remainder), on slices: the compiler keeps the
-/// partial sums in vector registers, where nalgebra's strided loop reads one entry at a time.
-/// The base parameters found are those nalgebra's `dot` finds.
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let whole = n - n % 8;
-    let mut acc = [0.0f64; 8];
-    for (x, y) in a[..whole].chunks_exact(8).zip(b[..whole].chunks_exact(8)) {
-        for k in 0..8 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    let mut sum = 0.0;
-    for k in 0..4 {
-        sum += acc[k] + acc[k + 4];
-    }
-    for k in whole..n {
-        sum += a[k] * b[k];
-    }
-    sum
-}
-
-/// `r ← r − p·q` entry by entry: the bits of nalgebra's `r.axpy(−p, q, 1.0)`, which computes
-/// `(−p·q)·1 + 1·r`, without its two products by one.
-fn subtract_scaled(r: &mut [f64], p: f64, q: &[f64]) {
-    for (r, &q) in r.iter_mut().zip(q) {
-        *r += -p * q;
     }
 }
 
@@ -400,39 +371,5 @@ impl SplitMix {
     fn uniform(&mut self, low: f64, high: f64) -> f64 {
         let unit = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
         low + (high - low) * unit
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `dot` and `subtract_scaled` give nalgebra's bits on vectors of every length around the
-    /// eight-entry blocks and a long one: the base parameters do not depend on which computes.
-    #[test]
-    fn dot_and_subtract_scaled_are_nalgebras_bits() {
-        let mut random = SplitMix(0x0d07);
-        for n in (0..=25).chain([1960]) {
-            let a = DVector::from_fn(n, |_, _| {
-                random.uniform(-3.0, 3.0) * 1e3f64.powf(random.uniform(-1.0, 1.0))
-            });
-            let b = DVector::from_fn(n, |_, _| random.uniform(-3.0, 3.0));
-            assert_eq!(
-                dot(a.as_slice(), b.as_slice()).to_bits(),
-                a.dot(&b).to_bits(),
-                "n = {n}"
-            );
-            let p = random.uniform(-2.0, 2.0);
-            let mut ours = b.clone();
-            subtract_scaled(ours.as_mut_slice(), p, a.as_slice());
-            let mut theirs = b.clone();
-            theirs.axpy(-p, &a, 1.0);
-            assert!(
-                ours.iter()
-                    .zip(&theirs)
-                    .all(|(x, y)| x.to_bits() == y.to_bits()),
-                "n = {n}"
-            );
-        }
     }
 }
