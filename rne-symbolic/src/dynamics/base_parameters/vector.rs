@@ -2,9 +2,8 @@
 //! product and `r ← r − p·q`, with the bits of nalgebra's `dot` and `axpy`, so that the base
 //! parameters found are those nalgebra would find.
 //!
-//! They are most of the work of finding a large robot's base parameters (G1 with hands on a
-//! floating base: 1 960 rows, 440 columns, 1.35 G of the 2.29 G instructions). Where the
-//! processor has AVX2 (detected at run time) the same loops are compiled for it, four entries
+//! They are most of the work of finding a large robot's base parameters (docs/performance.md,
+//! "What a load is made of"). Where the processor has AVX2 (detected at run time) the same loops are compiled for it, four entries
 //! per instruction instead of two: each entry's product and sum are the same IEEE operations
 //! in the same order (no multiply–add is fused: AVX2 alone does not enable FMA), so the bits
 //! are the same on either path.
